@@ -1,0 +1,62 @@
+#pragma once
+// A residual block: a few rows of the nonlinear system c(x) (with row bounds: equality by default),
+// touching a fixed list of variable blocks. Ceres-style evaluation: values of each touched variable
+// block in, residual values out, and — when asked — one dense row-major Jacobian per touched block.
+// The global sparsity pattern is the union of these dense blocks, fixed when the problem is built.
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "pcr/core/types.hpp"
+
+namespace pcr {
+
+using VariableId = int;
+using ResidualId = int;
+
+class ResidualBlock {
+ public:
+  /// kind groups blocks in solve summaries (e.g. "rod.force_balance"); name identifies this block.
+  ResidualBlock(std::string kind, std::string name, int num_rows, std::vector<VariableId> variables);
+  virtual ~ResidualBlock() = default;
+
+  /// values[k]: the current values of variables()[k] (size of that block).
+  /// residual: num_rows() values.
+  /// jacobians: null for values only; else jacobians[k] is null (skip) or a row-major
+  /// num_rows() x size(variables()[k]) array to fill completely (entries not written are undefined).
+  virtual void evaluate(const double* const* values, double* residual, double* const* jacobians) const = 0;
+
+  const std::string& kind() const { return kind_; }
+  const std::string& name() const { return name_; }
+  int num_rows() const { return num_rows_; }
+  const std::vector<VariableId>& variables() const { return variables_; }
+
+  /// Row bounds l <= c(x) <= u; both 0 (equality) unless set.
+  const VecX& row_lower() const { return row_lower_; }
+  const VecX& row_upper() const { return row_upper_; }
+  void set_row_bounds(const VecX& lower, const VecX& upper);
+
+ private:
+  std::string kind_, name_;
+  int num_rows_;
+  std::vector<VariableId> variables_;
+  VecX row_lower_, row_upper_;
+};
+
+/// A term of the objective f(x) = sum of terms (optimisation problems such as IK).
+class ObjectiveTerm {
+ public:
+  ObjectiveTerm(std::string name, std::vector<VariableId> variables);
+  virtual ~ObjectiveTerm() = default;
+  /// Returns the term's value; gradients null for value only, else gradients[k] null or size(k).
+  virtual double evaluate(const double* const* values, double* const* gradients) const = 0;
+
+  const std::string& name() const { return name_; }
+  const std::vector<VariableId>& variables() const { return variables_; }
+
+ private:
+  std::string name_;
+  std::vector<VariableId> variables_;
+};
+
+}  // namespace pcr

@@ -1,0 +1,8 @@
+#pragma once
+
+namespace pcr {
+
+/// Library version "major.minor.patch".
+const char* version();
+
+}  // namespace pcr

@@ -1,0 +1,113 @@
+#include "pcr/rods/rod_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "pcr/core/error.hpp"
+
+namespace pcr {
+namespace {
+
+bool positive_finite(double v) { return std::isfinite(v) && v > 0.0; }
+
+void require_positive(const std::string& rod, const char* what, double v) {
+  require(positive_finite(v), "rod '", rod, "': ", what, " must be positive and finite, got ", v);
+}
+
+void validate_end(const std::string& rod, const char* which, const RodEnd& end) {
+  require(end.position.allFinite(), "rod '", rod, "': ", which, " position is not finite");
+  require(end.orientation.allFinite() && end.orientation.norm() > 1e-12, "rod '", rod, "': ", which,
+          " orientation quaternion must be finite and non-zero, got [", end.orientation.transpose(), "]");
+  require(end.force.allFinite() && end.moment.allFinite(), "rod '", rod, "': ", which, " load is not finite");
+}
+
+}  // namespace
+
+Material Material::from_poisson_ratio(double youngs_modulus, double poisson_ratio, double density) {
+  require(poisson_ratio > -1.0 && poisson_ratio < 0.5, "Poisson ratio must lie in (-1, 0.5), got ", poisson_ratio);
+  return Material{youngs_modulus, youngs_modulus / (2.0 * (1.0 + poisson_ratio)), density};
+}
+
+CrossSection CrossSection::circle(double radius) {
+  require(positive_finite(radius), "circular section: radius must be positive and finite, got ", radius);
+  CrossSection s;
+  const double r2 = radius * radius;
+  s.area = M_PI * r2;
+  s.second_moment_1 = s.second_moment_2 = M_PI * r2 * r2 / 4.0;
+  s.torsion_constant = M_PI * r2 * r2 / 2.0;
+  s.shear_coefficient = 1.0;
+  s.outer_radius = radius;
+  return s;
+}
+
+CrossSection CrossSection::rectangle(double width, double height) {
+  require(positive_finite(width), "rectangular section: width must be positive and finite, got ", width);
+  require(positive_finite(height), "rectangular section: height must be positive and finite, got ", height);
+  CrossSection s;
+  s.area = width * height;
+  s.second_moment_1 = width * height * height * height / 12.0;
+  s.second_moment_2 = height * width * width * width / 12.0;
+  const double a = std::max(width, height), b = std::min(width, height);
+  const double ratio = b / a;
+  s.torsion_constant = a * b * b * b * (1.0 / 3.0 - 0.21 * ratio * (1.0 - std::pow(ratio, 4) / 12.0));
+  s.shear_coefficient = 5.0 / 6.0;
+  s.outer_radius = 0.5 * std::hypot(width, height);
+  return s;
+}
+
+const char* to_string(RodEndKind kind) {
+  switch (kind) {
+    case RodEndKind::Clamped: return "clamped";
+    case RodEndKind::Collar: return "collar";
+    case RodEndKind::Spherical: return "spherical";
+    case RodEndKind::Free: return "free";
+  }
+  return "unknown";
+}
+
+void IntrinsicStrains::at(double s, Vec3& eps0, Vec3& kappa0) const {
+  eps0 = shear_extension;
+  kappa0 = curvature;
+  if (varying) varying(s, eps0, kappa0);
+}
+
+bool IntrinsicStrains::is_zero() const {
+  return !varying && shear_extension.isZero(0.0) && curvature.isZero(0.0);
+}
+
+void RodModel::set_material_and_section(const Material& material, const CrossSection& section) {
+  require_positive(name, "Young's modulus E", material.youngs_modulus);
+  require_positive(name, "shear modulus G", material.shear_modulus);
+  require(std::isfinite(material.density) && material.density >= 0.0, "rod '", name,
+          "': density must be non-negative and finite, got ", material.density);
+  const double kGA = section.shear_coefficient * material.shear_modulus * section.area;
+  shear_extension_stiffness = Vec3(kGA, kGA, material.youngs_modulus * section.area);
+  bending_torsion_stiffness = Vec3(material.youngs_modulus * section.second_moment_1,
+                                   material.youngs_modulus * section.second_moment_2,
+                                   material.shear_modulus * section.torsion_constant);
+  mass_per_length = material.density * section.area;
+  outer_radius = section.outer_radius;
+}
+
+Vec3 RodModel::distributed_force() const { return mass_per_length * loads.gravity + loads.force_per_length; }
+
+void RodModel::validate() const {
+  require_positive(name, "length", length);
+  const char* se[] = {"shear stiffness kGA (d1)", "shear stiffness kGA (d2)", "axial stiffness EA"};
+  const char* bt[] = {"bending stiffness EI1", "bending stiffness EI2", "torsional stiffness GJ"};
+  for (int i = 0; i < 3; ++i) {
+    require_positive(name, se[i], shear_extension_stiffness[i]);
+    require_positive(name, bt[i], bending_torsion_stiffness[i]);
+  }
+  require(std::isfinite(mass_per_length) && mass_per_length >= 0.0, "rod '", name,
+          "': mass per length must be non-negative and finite, got ", mass_per_length);
+  require(loads.gravity.allFinite() && loads.force_per_length.allFinite() && loads.moment_per_length.allFinite(),
+          "rod '", name, "': distributed loads are not finite");
+  validate_end(name, "base", base);
+  validate_end(name, "tip", tip);
+  require(base.kind == RodEndKind::Clamped || tip.kind == RodEndKind::Clamped, "rod '", name,
+          "': end conditions (base ", to_string(base.kind), ", tip ", to_string(tip.kind),
+          ") leave the rod free to move or twist; clamp at least one end");
+}
+
+}  // namespace pcr

@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Installs pcr's build and test dependencies from Debian's packages.
+# Idempotent: does nothing (and needs no network) when everything is already installed.
+# Works as root without sudo; uses sudo only when not root.
+set -euo pipefail
+
+packages=(
+  cmake g++ make pkg-config
+  libeigen3-dev
+  coinor-libipopt-dev
+  liburdfdom-dev
+  libboost-test-dev
+  libbenchmark-dev
+  gnuplot-nox
+)
+# Optional extras: clang for the libFuzzer target (PCR_EXTRA_PACKAGES="clang").
+read -r -a extra <<< "${PCR_EXTRA_PACKAGES:-}"
+packages+=("${extra[@]}")
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+as_root=()
+[ "$(id -u)" -eq 0 ] || as_root=(sudo)
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+"${as_root[@]}" apt-get update -qq
+"${as_root[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"

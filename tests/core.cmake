@@ -1,0 +1,1 @@
+pcr_add_test(NAME test_math LABELS core SOURCES ${CMAKE_CURRENT_LIST_DIR}/core/test_math.cpp)

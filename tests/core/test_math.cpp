@@ -1,0 +1,126 @@
+// Quaternions and SO(3): identities, derivatives against central finite differences, exp/log.
+#define BOOST_TEST_MODULE math
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+#include <random>
+
+#include "pcr/core/error.hpp"
+#include "pcr/math/quaternion.hpp"
+#include "pcr/math/so3.hpp"
+
+using namespace pcr;
+
+namespace {
+
+Quat random_quat(std::mt19937& rng, double scale_min = 0.3, double scale_max = 3.0) {
+  std::normal_distribution<double> n(0.0, 1.0);
+  std::uniform_real_distribution<double> s(scale_min, scale_max);
+  Quat q(n(rng), n(rng), n(rng), n(rng));
+  return s(rng) * q.normalized();
+}
+
+// Double precision: orthonormality of R(q) holds to a few ulps times the matrix size.
+constexpr double kRoundoff = 1e-14;
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(rotation_is_orthonormal_for_any_nonzero_quaternion) {
+  std::mt19937 rng(1);
+  for (int trial = 0; trial < 200; ++trial) {
+    const Quat q = random_quat(rng);
+    const Mat3 R = rotation_matrix(q);
+    BOOST_TEST((R.transpose() * R - Mat3::Identity()).cwiseAbs().maxCoeff() < kRoundoff);
+    BOOST_TEST(std::abs(R.determinant() - 1.0) < kRoundoff);
+    BOOST_TEST((rotation_matrix(-q) - R).cwiseAbs().maxCoeff() < kRoundoff);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(product_composes_rotations) {
+  std::mt19937 rng(2);
+  for (int trial = 0; trial < 100; ++trial) {
+    const Quat a = random_quat(rng), b = random_quat(rng);
+    const Mat3 lhs = rotation_matrix(quat_multiply(a, b));
+    const Mat3 rhs = rotation_matrix(a) * rotation_matrix(b);
+    BOOST_TEST((lhs - rhs).cwiseAbs().maxCoeff() < kRoundoff);
+    const Quat an = a.normalized();
+    BOOST_TEST((quat_multiply(an, quat_conjugate(an)) - quat_identity()).cwiseAbs().maxCoeff() < kRoundoff);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(zero_quaternion_is_rejected) {
+  BOOST_CHECK_THROW(rotation_matrix(Quat::Zero()), InputError);
+}
+
+BOOST_AUTO_TEST_CASE(first_and_second_derivatives_match_central_differences) {
+  std::mt19937 rng(3);
+  // Central differences with h = 1e-6 on |q| ~ 1: truncation O(h^2) ~ 1e-12 times the third
+  // derivative, round-off ~ eps / h ~ 1e-10; 1e-8 leaves a margin of 100 over both.
+  const double h = 1e-6, tol = 1e-8;
+  for (int trial = 0; trial < 50; ++trial) {
+    const Quat q = random_quat(rng, 0.5, 2.0);
+    Mat3 R;
+    QuatRotationJacobian dR;
+    QuatRotationHessian d2R;
+    rotation_matrix_second_derivatives(q, R, dR, d2R);
+    Mat3 R1;
+    QuatRotationJacobian dR1;
+    rotation_matrix_derivatives(q, R1, dR1);
+    BOOST_TEST((R - rotation_matrix(q)).cwiseAbs().maxCoeff() < kRoundoff);
+    for (int k = 0; k < 4; ++k) {
+      BOOST_TEST((dR1[k] - dR[k]).cwiseAbs().maxCoeff() < kRoundoff);
+      const Quat e = h * Quat::Unit(k);
+      const Mat3 fd = (rotation_matrix(q + e) - rotation_matrix(q - e)) / (2 * h);
+      BOOST_TEST((fd - dR[k]).cwiseAbs().maxCoeff() < tol);
+      Mat3 Rp, Rm;
+      QuatRotationJacobian dRp, dRm;
+      rotation_matrix_derivatives(q + e, Rp, dRp);
+      rotation_matrix_derivatives(q - e, Rm, dRm);
+      for (int l = 0; l < 4; ++l) {
+        const Mat3 fd2 = (dRp[l] - dRm[l]) / (2 * h);
+        BOOST_TEST((fd2 - d2R[k][l]).cwiseAbs().maxCoeff() < tol);
+      }
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(hat_vee_round_trip) {
+  const Vec3 v(0.3, -1.2, 2.5), w(-0.7, 0.1, 0.4);
+  BOOST_TEST((hat(v) * w - v.cross(w)).norm() < kRoundoff);
+  BOOST_TEST((vee(hat(v)) - v).norm() == 0.0);
+}
+
+BOOST_AUTO_TEST_CASE(exp_log_round_trip_including_near_zero_and_near_pi) {
+  std::mt19937 rng(4);
+  std::normal_distribution<double> n(0.0, 1.0);
+  const double angles[] = {0.0, 1e-12, 1e-8, 1e-5, 1e-3, 0.5, 1.0, 2.0, 3.0, M_PI - 1e-2, M_PI - 1e-4,
+                           M_PI - 1e-7, M_PI};
+  for (double angle : angles) {
+    for (int trial = 0; trial < 20; ++trial) {
+      const Vec3 axis = Vec3(n(rng), n(rng), n(rng)).normalized();
+      const Vec3 theta = angle * axis;
+      const Mat3 R = so3_exp(theta);
+      BOOST_TEST((R.transpose() * R - Mat3::Identity()).cwiseAbs().maxCoeff() < kRoundoff);
+      // exp(log(R)) = R: near pi, log loses digits in the axis as sqrt(eps) ~ 1e-8 at worst in
+      // the rotation; elsewhere round-off only.
+      const double tol = angle > M_PI - 1e-3 ? 1e-7 : 1e-13;
+      BOOST_TEST((so3_exp(so3_log(R)) - R).cwiseAbs().maxCoeff() < tol);
+      // The rotation vector itself is unique for angles below pi.
+      if (angle < M_PI - 1e-3) BOOST_TEST((so3_log(R) - theta).norm() < 1e-12);
+      // Quaternion of the same rotation agrees.
+      const Quat q = quat_from_rotation_vector(theta);
+      BOOST_TEST((rotation_matrix(q) - R).cwiseAbs().maxCoeff() < 1e-14);
+      BOOST_TEST((rotation_matrix(quat_from_rotation(R)) - R).cwiseAbs().maxCoeff() < 1e-14);
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(rotation_error_measures) {
+  const Mat3 Ra = rotation_from_rpy(0.1, -0.2, 0.3);
+  const Mat3 Rb = Ra * rotation_z(0.25);
+  BOOST_TEST(std::abs(rotation_angle_between(Ra, Rb) - 0.25) < 1e-14);
+  BOOST_TEST(std::abs(rotation_angle_between(Ra, Ra)) < 1e-14);
+  // rpy convention of URDF: Rz(yaw) Ry(pitch) Rx(roll), checked on a vector.
+  const Vec3 ex = rotation_from_rpy(0.0, 0.0, M_PI / 2) * Vec3::UnitX();
+  BOOST_TEST((ex - Vec3::UnitY()).norm() < 1e-15);
+}
