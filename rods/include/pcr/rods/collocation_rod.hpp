@@ -1,0 +1,93 @@
+#pragma once
+// One Cosserat rod discretised by isogeometric collocation (DESIGN.md §2; Weeger, Yeung & Dunn 2017).
+//
+// p(u), q(u) (and in the mixed form n(u), m(u)) are B-splines of degree p >= 2 on an open knot vector
+// over u in [0, 1], s = L u. Each control point is one variable block: [P (3), Q (4)] in the primal
+// form, [P (3), Q (4), N (3), M (3)] in the mixed form; the rod length L is one more block (fixed for
+// a rod of given length, free when it is an actuation input). Equations at the Greville abscissae:
+// interior points carry the field equations, u = 0 and u = 1 the end conditions. All residuals are
+// dimensionless: forces by F0 = max(K_BT) / L0^2, moments by M0 = max(K_BT) / L0, lengths by L0
+// (the model's length), constitutive equations as strains.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "pcr/rods/rod_model.hpp"
+#include "pcr/solve/problem.hpp"
+#include "pcr/splines/knot_vector.hpp"
+
+namespace pcr {
+
+enum class RodFormulation { Primal, Mixed };
+const char* to_string(RodFormulation formulation);
+
+struct RodDiscretization {
+  RodFormulation formulation = RodFormulation::Mixed;
+  int degree = 4;    ///< polynomial degree p >= 2
+  int elements = 4;  ///< number of equal knot spans >= 1
+};
+
+/// State of a rod at arc length s (world frame unless named _body).
+struct RodState {
+  double s = 0.0;
+  Vec3 position = Vec3::Zero();
+  Quat quaternion = Quat(1, 0, 0, 0);  ///< as interpolated (|q| ~ 1)
+  Mat3 rotation = Mat3::Identity();    ///< R(q)
+  Vec3 force = Vec3::Zero();           ///< n: force of the part s+ on the part s-
+  Vec3 moment = Vec3::Zero();          ///< m
+  Vec3 shear_extension_body = Vec3::Zero();  ///< eps = R^T p' - e3
+  Vec3 curvature_body = Vec3::Zero();        ///< kappa
+};
+
+/// Variable blocks of one rod in a Problem.
+struct RodVariables {
+  std::vector<VariableId> control_points;
+  VariableId length = -1;
+  int control_point_offset = 0;  ///< index in x of the first control point (they are contiguous)
+  int length_offset = 0;         ///< index in x of L
+};
+
+/// Which end conditions of the model the rod adds itself (robots add coupling blocks instead).
+struct RodEndOptions {
+  bool base = true;
+  bool tip = true;
+};
+
+class CollocationRod {
+ public:
+  /// Validates the model and the discretisation (InputError naming the value).
+  CollocationRod(RodModel model, RodDiscretization discretization);
+
+  const RodModel& model() const { return model_; }
+  const RodDiscretization& discretization() const { return discretization_; }
+  const KnotVector& knots() const { return *knots_; }
+  int num_control_points() const;
+  int control_point_size() const;  ///< 7 (primal) or 13 (mixed)
+  /// Rows of the interior/end equations added for the given end options (for counting).
+  int num_equations(const RodEndOptions& ends) const;
+
+  /// Adds the rod's variable blocks (initial guess: the straight rod leaving the clamped end frame,
+  /// or `initial` when given) and its residual blocks, with loads and intrinsic strains multiplied by
+  /// load_factor (for continuation). The length block is fixed at the model's length unless
+  /// free_length. `group` tags the rod's variables for structured solvers.
+  RodVariables add_to_problem(Problem& problem, const RodEndOptions& ends = {}, double load_factor = 1.0,
+                              bool free_length = false, int group = -1, const VecX* initial = nullptr) const;
+
+  /// Control point values of the straight rod along the frame of `end` (or the base frame if free).
+  VecX straight_configuration() const;
+
+  /// Post-processing at arc length s in [0, L] (L read from x): p, R, n, m and strains.
+  RodState state_at(const VecX& x, const RodVariables& vars, double s) const;
+  /// States at num_points equally spaced arc lengths from 0 to L.
+  std::vector<RodState> sample(const VecX& x, const RodVariables& vars, int num_points) const;
+  /// Rod length in x.
+  double length(const VecX& x, const RodVariables& vars) const;
+
+ private:
+  RodModel model_;
+  RodDiscretization discretization_;
+  std::shared_ptr<const KnotVector> knots_;
+  double force_scale_ = 1.0, moment_scale_ = 1.0;
+};
+
+}  // namespace pcr

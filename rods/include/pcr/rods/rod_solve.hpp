@@ -1,0 +1,47 @@
+#pragma once
+// Solving one rod with its own end conditions: build the collocation problem, solve it with Newton
+// (default for this square system) or Ipopt, and fall back to load stepping — continuation in a load
+// factor lambda from 0 to 1 scaling all loads and intrinsic strains, warm-started with a secant
+// predictor — when the direct solve fails.
+#include <memory>
+#include <vector>
+
+#include "pcr/rods/collocation_rod.hpp"
+#include "pcr/solve/solve_summary.hpp"
+
+namespace pcr {
+
+enum class SolverKind { Newton, Ipopt };
+const char* to_string(SolverKind solver);
+
+struct RodSolveOptions {
+  RodDiscretization discretization;
+  SolverKind solver = SolverKind::Newton;
+  double tolerance = 1e-10;  ///< max-abs of the dimensionless residual (see collocation_rod.hpp)
+  int max_iterations = 50;   ///< per solve
+  bool load_stepping = true; ///< automatic when the direct solve fails
+  int max_load_steps = 400;
+};
+
+struct RodSolution {
+  SolveSummary summary;  ///< of the last solve; iterations summed over all load steps
+  int load_steps = 0;    ///< 0 when the direct solve succeeded
+  std::shared_ptr<const CollocationRod> rod;
+  RodVariables variables;
+  VecX x;  ///< all variables of the rod's problem (control points, then L)
+
+  RodState at(double s) const { return rod->state_at(x, variables, s); }
+  std::vector<RodState> sample(int num_points) const { return rod->sample(x, variables, num_points); }
+  RodState base() const { return at(0.0); }
+  RodState tip() const { return at(rod->length(x, variables)); }
+};
+
+/// Solves the rod; `initial` (control point values, size n * control_point_size) replaces the
+/// straight initial guess.
+RodSolution solve_rod(const RodModel& model, const RodSolveOptions& options = {}, const VecX* initial = nullptr);
+
+/// Control points of `solution` carried to a finer discretisation (knot insertion / degree elevation
+/// of the solution's spline, so the new initial guess is the same curve).
+VecX refine_solution(const RodSolution& solution, const RodDiscretization& finer);
+
+}  // namespace pcr

@@ -1,0 +1,258 @@
+#include "pcr/rods/collocation_rod.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "end_equations.hpp"
+#include "equations.hpp"
+#include "pcr/core/error.hpp"
+#include "pcr/splines/basis.hpp"
+#include "point_block.hpp"
+
+namespace pcr {
+using namespace collocation;
+
+namespace {
+
+// Control point layout: [P (3), Q (4)] and, in the mixed form, [N (3), M (3)].
+constexpr int kP = 0, kQ = 3, kN = 7, kM = 10;
+
+// Local variable layouts of the kernels in equations.hpp (offset, component, size, derivative order).
+const std::vector<LocalGroup> kPrimalInterior = {{0, kQ, 4, 0}, {4, kQ, 4, 1}, {8, kQ, 4, 2}, {12, kP, 3, 1}, {15, kP, 3, 2}};
+const std::vector<LocalGroup> kMixedPoint = {{0, kQ, 4, 0},  {4, kQ, 4, 1},  {8, kP, 3, 1}, {11, kN, 3, 0},
+                                             {14, kN, 3, 1}, {17, kM, 3, 0}, {20, kM, 3, 1}};
+const std::vector<LocalGroup> kPrimalEnd = {{0, kP, 3, 0}, {3, kQ, 4, 0}, {7, kQ, 4, 1}, {11, kP, 3, 1}};
+const std::vector<LocalGroup> kMixedEnd = {{0, kP, 3, 0}, {3, kQ, 4, 0}, {7, kN, 3, 0}, {10, kM, 3, 0}};
+
+EndData end_data(const RodEnd& end, bool at_base, double load_factor) {
+  EndData e;
+  e.kind = end.kind;
+  e.position = end.position;
+  e.orientation = end.orientation.normalized();
+  e.frame = rotation_matrix(e.orientation);
+  const double sign = at_base ? -1.0 : 1.0;
+  e.n_bar = sign * load_factor * end.force;
+  e.m_bar = sign * load_factor * end.moment;
+  return e;
+}
+
+}  // namespace
+
+const char* to_string(RodFormulation formulation) {
+  return formulation == RodFormulation::Primal ? "primal" : "mixed";
+}
+
+CollocationRod::CollocationRod(RodModel model, RodDiscretization discretization)
+    : model_(std::move(model)), discretization_(discretization) {
+  model_.validate();
+  require(discretization.degree >= 2 && discretization.degree <= 9, "rod '", model_.name,
+          "': collocation degree must be in [2, 9] (second derivatives are collocated), got ", discretization.degree);
+  require(discretization.elements >= 1 && discretization.elements <= 100000, "rod '", model_.name,
+          "': number of elements must be in [1, 100000], got ", discretization.elements);
+  knots_ = std::make_shared<const KnotVector>(KnotVector::open_uniform(discretization.degree, discretization.elements));
+  const double L = model_.length;
+  const double kb = model_.bending_torsion_stiffness.maxCoeff();
+  force_scale_ = kb / (L * L);
+  moment_scale_ = kb / L;
+}
+
+int CollocationRod::num_control_points() const { return knots_->num_basis(); }
+
+int CollocationRod::control_point_size() const {
+  return discretization_.formulation == RodFormulation::Mixed ? 13 : 7;
+}
+
+int CollocationRod::num_equations(const RodEndOptions& ends) const {
+  const int n = num_control_points();
+  const int interior = (n - 2) * control_point_size();
+  const int constitutive_ends = discretization_.formulation == RodFormulation::Mixed ? 12 : 0;
+  return interior + constitutive_ends + (ends.base ? 7 : 0) + (ends.tip ? 7 : 0);
+}
+
+VecX CollocationRod::straight_configuration() const {
+  const bool from_base = model_.base.kind == RodEndKind::Clamped || model_.tip.kind != RodEndKind::Clamped;
+  const RodEnd& end = from_base ? model_.base : model_.tip;
+  const Quat q = end.orientation.normalized();
+  const Vec3 d3 = rotation_matrix(q).col(2);
+  const std::vector<double> tau = knots_->greville();
+  const int n = num_control_points(), cp = control_point_size();
+  const double L = model_.length;
+  VecX x = VecX::Zero(n * cp);
+  for (int i = 0; i < n; ++i) {
+    // Greville abscissae reproduce linear functions: sum_i N_i(u) tau_i = u, so P_i = p0 + L tau_i d3.
+    const Vec3 p = from_base ? Vec3(end.position + L * tau[i] * d3) : Vec3(end.position - L * (1.0 - tau[i]) * d3);
+    x.segment<3>(i * cp + kP) = p;
+    x.segment<4>(i * cp + kQ) = q;
+  }
+  return x;
+}
+
+RodVariables CollocationRod::add_to_problem(Problem& problem, const RodEndOptions& ends, double load_factor,
+                                            bool free_length, int group, const VecX* initial) const {
+  const int n = num_control_points(), cp = control_point_size(), p = discretization_.degree;
+  const bool mixed = discretization_.formulation == RodFormulation::Mixed;
+  const std::string& name = model_.name;
+  const VecX init = initial ? *initial : straight_configuration();
+  require(init.size() == n * cp, "rod '", name, "': initial guess has ", init.size(), " values, expected ", n * cp);
+  require(init.allFinite(), "rod '", name, "': initial guess is not finite");
+
+  RodVariables vars;
+  for (int i = 0; i < n; ++i) {
+    vars.control_points.push_back(problem.add_variable_block(name + ".cp" + std::to_string(i), init.segment(i * cp, cp)));
+    if (group >= 0) problem.set_variable_group(vars.control_points.back(), group);
+  }
+  vars.length = problem.add_variable_block(name + ".length", VecX::Constant(1, model_.length));
+  if (group >= 0) problem.set_variable_group(vars.length, group);
+  if (!free_length) problem.fix_variable(vars.length, VecX::Constant(1, model_.length));
+  vars.control_point_offset = problem.variable(vars.control_points[0]).offset;
+  vars.length_offset = problem.variable(vars.length).offset;
+
+  const double L = model_.length;
+  auto constants_at = [&](double u) {
+    PointConstants c;
+    c.k_se = model_.shear_extension_stiffness;
+    c.k_bt = model_.bending_torsion_stiffness;
+    c.length_scale = L;
+    c.force_scale = force_scale_;
+    c.moment_scale = moment_scale_;
+    const double s = u * L;
+    model_.intrinsic.at(s, c.eps0, c.kappa0);
+    if (model_.intrinsic.varying) {
+      // s-derivatives of the intrinsic strains by central differences (h = 1e-5 L: error ~1e-10 of the
+      // strain variation scale); one-sided at the ends.
+      const double h = 1e-5 * L, sa = std::max(0.0, s - h), sb = std::min(L, s + h);
+      Vec3 ea, ka, eb, kb;
+      model_.intrinsic.at(sa, ea, ka);
+      model_.intrinsic.at(sb, eb, kb);
+      c.eps0_s = load_factor * (eb - ea) / (sb - sa);
+      c.kappa0_s = load_factor * (kb - ka) / (sb - sa);
+    }
+    c.eps0 *= load_factor;
+    c.kappa0 *= load_factor;
+    c.f = load_factor * model_.distributed_force();
+    c.l = load_factor * model_.loads.moment_per_length;
+    return c;
+  };
+  auto basis_at = [&](double u, int max_derivative, bool end_value_only) {
+    PointBasis b;
+    if (end_value_only) {  // open knot vector: p(0) = P_0, p(1) = P_{n-1}
+      b.first = u == 0.0 ? 0 : n - 1;
+      b.count = 1;
+      b.B[0][0] = 1.0;
+      return b;
+    }
+    const BasisDerivatives d = basis_derivatives(*knots_, u, max_derivative);
+    b.first = d.first;
+    b.count = p + 1;
+    for (int k = 0; k <= max_derivative; ++k)
+      for (int i = 0; i <= p; ++i) b.B[k][i] = d.values(k, i);
+    return b;
+  };
+  auto variables_of = [&](const PointBasis& b, bool with_length) {
+    std::vector<VariableId> v(vars.control_points.begin() + b.first, vars.control_points.begin() + b.first + b.count);
+    if (with_length) v.push_back(vars.length);
+    return v;
+  };
+
+  const std::vector<double> tau = knots_->greville();
+  for (int j = 0; j < n; ++j) {
+    const double u = tau[j];
+    const PointConstants c = constants_at(u);
+    const std::string where = name + "@u=" + std::to_string(u);
+    const bool is_end = j == 0 || j == n - 1;
+    if (!is_end) {
+      if (mixed) {
+        const PointBasis b = basis_at(u, 1, false);
+        problem.add_residual_block(make_point_block<24, 13>(
+            "rod.mixed_equilibrium", where, variables_of(b, true), cp, b, kMixedPoint, 23,
+            [c](const auto& z, auto* r) { mixed_interior(z, c, r); }));
+      } else {
+        const PointBasis b = basis_at(u, 2, false);
+        problem.add_residual_block(make_point_block<19, 7>(
+            "rod.primal_equilibrium", where, variables_of(b, true), cp, b, kPrimalInterior, 18,
+            [c](const auto& z, auto* r) { primal_interior(z, c, r); }));
+      }
+      continue;
+    }
+    const bool at_base = j == 0;
+    if (mixed) {
+      const PointBasis b = basis_at(u, 1, false);
+      problem.add_residual_block(make_point_block<24, 6>(
+          "rod.mixed_constitutive", where, variables_of(b, true), cp, b, kMixedPoint, 23,
+          [c](const auto& z, auto* r) { mixed_constitutive(z, c, r); }));
+    }
+    if (!(at_base ? ends.base : ends.tip)) continue;
+    const EndData e = end_data(at_base ? model_.base : model_.tip, at_base, load_factor);
+    const std::string kind = std::string("rod.end_") + to_string(e.kind);
+    if (mixed) {
+      const PointBasis b = basis_at(u, 0, true);
+      problem.add_residual_block(make_point_block<13, 7>(kind, where, variables_of(b, false), cp, b, kMixedEnd, -1,
+                                                         [c, e](const auto& z, auto* r) {
+                                                           using T = typename std::decay_t<decltype(z)>::Scalar;
+                                                           end_conditions<T>(e, c, z.template segment<3>(0),
+                                                                             z.template segment<4>(3),
+                                                                             z.template segment<3>(7),
+                                                                             z.template segment<3>(10), r);
+                                                         }));
+    } else {
+      const PointBasis b = basis_at(u, 1, false);
+      problem.add_residual_block(make_point_block<15, 7>(
+          kind, where, variables_of(b, true), cp, b, kPrimalEnd, 14, [c, e](const auto& z, auto* r) {
+            using T = typename std::decay_t<decltype(z)>::Scalar;
+            Eigen::Matrix<T, 12, 1> w;
+            w << z.template segment<4>(3), z.template segment<4>(7), z.template segment<3>(11), z[14];
+            V3<T> nn, mm;
+            primal_wrench(w, c, nn, mm);
+            end_conditions<T>(e, c, z.template segment<3>(0), z.template segment<4>(3), nn, mm, r);
+          }));
+    }
+  }
+  return vars;
+}
+
+double CollocationRod::length(const VecX& x, const RodVariables& vars) const { return x[vars.length_offset]; }
+
+RodState CollocationRod::state_at(const VecX& x, const RodVariables& vars, double s) const {
+  const double L = length(x, vars);
+  require(std::isfinite(s) && s >= -1e-12 * L && s <= L * (1.0 + 1e-12), "rod '", model_.name, "': arc length s = ", s,
+          " outside [0, ", L, "]");
+  const double u = std::clamp(s / L, 0.0, 1.0);
+  const BasisDerivatives d = basis_derivatives(*knots_, u, 1);
+  const int cp = control_point_size();
+  VecX value = VecX::Zero(cp), du = VecX::Zero(cp);
+  for (int i = 0; i <= discretization_.degree; ++i) {
+    const auto c = x.segment(vars.control_point_offset + (d.first + i) * cp, cp);
+    value += d.values(0, i) * c;
+    du += d.values(1, i) * c;
+  }
+  RodState st;
+  st.s = s;
+  st.position = value.segment<3>(kP);
+  st.quaternion = value.segment<4>(kQ);
+  st.rotation = rotation_matrix(st.quaternion);
+  const Quat q_s = du.segment<4>(kQ) / L;
+  const Vec3 p_s = du.segment<3>(kP) / L;
+  st.curvature_body = body_curvature<double>(st.quaternion, q_s);
+  st.shear_extension_body = st.rotation.transpose() * p_s - Vec3::UnitZ();
+  if (discretization_.formulation == RodFormulation::Mixed) {
+    st.force = value.segment<3>(kN);
+    st.moment = value.segment<3>(kM);
+  } else {
+    Vec3 eps0, kappa0;
+    model_.intrinsic.at(s, eps0, kappa0);
+    st.force = st.rotation * model_.shear_extension_stiffness.cwiseProduct(st.shear_extension_body - eps0);
+    st.moment = st.rotation * model_.bending_torsion_stiffness.cwiseProduct(st.curvature_body - kappa0);
+  }
+  return st;
+}
+
+std::vector<RodState> CollocationRod::sample(const VecX& x, const RodVariables& vars, int num_points) const {
+  require(num_points >= 2, "sample: need at least 2 points, got ", num_points);
+  const double L = length(x, vars);
+  std::vector<RodState> out;
+  out.reserve(num_points);
+  for (int i = 0; i < num_points; ++i) out.push_back(state_at(x, vars, L * i / (num_points - 1)));
+  return out;
+}
+
+}  // namespace pcr

@@ -1,0 +1,160 @@
+#pragma once
+// The Cosserat rod equations at one collocation point, written once for double and Dual<N> scalars
+// (DESIGN.md §1-2). Internal header of pcr::rods.
+//
+// Frames: p, n, m, f, l in the world frame; strains eps, kappa and stiffness in the body frame.
+// Orientation: R(q) = R_unit(q) / |q|^2 and the body curvature in quaternion form
+//   kappa = 2 vec(conj(q) (x) q') / |q|^2          (R' = R hat(kappa); the |q| factor drops out)
+//   kappa' = 2 vec(conj(q) (x) q'') / |q|^2 - 4 (q . q') vec(conj(q) (x) q') / |q|^4
+// which equals vee(R^T R') = [<d2',d3>, <d3',d1>, <d1',d2>] (DESIGN.md; not the slide's <d3',d2>).
+// Every residual is made dimensionless with the rod's reference scales (see PointConstants).
+#include <Eigen/Core>
+
+#include "pcr/core/types.hpp"
+
+namespace pcr::collocation {
+
+template <typename T>
+using V3 = Eigen::Matrix<T, 3, 1>;
+template <typename T>
+using V4 = Eigen::Matrix<T, 4, 1>;
+template <typename T>
+using M3 = Eigen::Matrix<T, 3, 3>;
+
+/// Constants of the equations at one point (material, intrinsic strains and their s-derivatives,
+/// distributed loads already multiplied by the load factor) and the row scales.
+struct PointConstants {
+  Vec3 k_se = Vec3::Ones(), k_bt = Vec3::Ones();
+  Vec3 eps0 = Vec3::Zero(), kappa0 = Vec3::Zero();
+  Vec3 eps0_s = Vec3::Zero(), kappa0_s = Vec3::Zero();
+  Vec3 f = Vec3::Zero(), l = Vec3::Zero();  ///< distributed force and moment per length (world)
+  double length_scale = 1.0;                ///< L0 [m]
+  double force_scale = 1.0;                 ///< F0 = max(K_BT) / L0^2 [N]
+  double moment_scale = 1.0;                ///< M0 = max(K_BT) / L0 [N m]
+};
+
+template <typename T>
+M3<T> rotation(const V4<T>& q) {
+  const T w = q[0], x = q[1], y = q[2], z = q[3];
+  const T s = q.squaredNorm();
+  M3<T> A;
+  A << w * w + x * x - y * y - z * z, 2.0 * (x * y - w * z), 2.0 * (x * z + w * y),  //
+      2.0 * (x * y + w * z), w * w - x * x + y * y - z * z, 2.0 * (y * z - w * x),      //
+      2.0 * (x * z - w * y), 2.0 * (y * z + w * x), w * w - x * x - y * y + z * z;
+  return A / s;
+}
+
+/// Vector part of conj(a) (x) b = a0 bv - b0 av - av x bv.
+template <typename T>
+V3<T> conj_product_vec(const V4<T>& a, const V4<T>& b) {
+  const V3<T> av = a.template tail<3>(), bv = b.template tail<3>();
+  return a[0] * bv - b[0] * av - av.cross(bv);
+}
+
+/// Body curvature kappa from q and dq/ds.
+template <typename T>
+V3<T> body_curvature(const V4<T>& q, const V4<T>& q_s) {
+  return conj_product_vec(q, q_s) * (2.0 / q.squaredNorm());
+}
+
+/// Primal form, interior point: force balance (3), moment balance (3), |q|^2 - 1 (1).
+/// z = [q (4), q_u (4), q_uu (4), p_u (3), p_uu (3), L (1)]  (u-derivatives, s = L u).
+template <typename T>
+void primal_interior(const Eigen::Matrix<T, 19, 1>& z, const PointConstants& c, T* r) {
+  const V4<T> q = z.template segment<4>(0);
+  const T L = z[18];
+  const V4<T> q_s = z.template segment<4>(4) / L;
+  const V4<T> q_ss = z.template segment<4>(8) / (L * L);
+  const V3<T> p_s = z.template segment<3>(12) / L;
+  const V3<T> p_ss = z.template segment<3>(15) / (L * L);
+  const T S = q.squaredNorm();
+  const M3<T> R = rotation(q);
+  const V3<T> w1 = conj_product_vec(q, q_s);
+  const V3<T> kappa = w1 * (2.0 / S);
+  const V3<T> kappa_s = conj_product_vec(q, q_ss) * (2.0 / S) - w1 * (4.0 * q.dot(q_s) / (S * S));
+  const V3<T> v = R.transpose() * p_s;  // body-frame p'
+  const V3<T> v_s = R.transpose() * p_ss - kappa.cross(v);
+  V3<T> sigma, sigma_s, chi, chi_s;  // body-frame force and moment and their s-derivatives
+  for (int i = 0; i < 3; ++i) {
+    sigma[i] = c.k_se[i] * (v[i] - (i == 2 ? 1.0 : 0.0) - c.eps0[i]);
+    sigma_s[i] = c.k_se[i] * (v_s[i] - c.eps0_s[i]);
+    chi[i] = c.k_bt[i] * (kappa[i] - c.kappa0[i]);
+    chi_s[i] = c.k_bt[i] * (kappa_s[i] - c.kappa0_s[i]);
+  }
+  // n = R sigma, n' = R (kappa x sigma + sigma');  m' likewise; equations n' + f = 0, m' + p' x n + l = 0.
+  const V3<T> n = R * sigma;
+  const V3<T> e_n = R * (kappa.cross(sigma) + sigma_s) + c.f;
+  const V3<T> e_m = R * (kappa.cross(chi) + chi_s) + p_s.cross(n) + c.l;
+  const double fr = c.length_scale / c.force_scale, mr = c.length_scale / c.moment_scale;
+  for (int i = 0; i < 3; ++i) {
+    r[i] = e_n[i] * fr;
+    r[3 + i] = e_m[i] * mr;
+  }
+  r[6] = S - 1.0;
+}
+
+/// Mixed form, interior point: n_d' + f (3), m_d' + p_d' x n_d + l (3), |q|^2 - 1 (1), then the two
+/// constitutive equations (see mixed_constitutive).
+/// z = [q (4), q_u (4), p_u (3), n (3), n_u (3), m (3), m_u (3), L (1)].
+template <typename T>
+void mixed_constitutive(const Eigen::Matrix<T, 24, 1>& z, const PointConstants& c, T* r);
+
+template <typename T>
+void mixed_interior(const Eigen::Matrix<T, 24, 1>& z, const PointConstants& c, T* r) {
+  const T L = z[23];
+  const V3<T> p_s = z.template segment<3>(8) / L;
+  const V3<T> n = z.template segment<3>(11);
+  const V3<T> n_s = z.template segment<3>(14) / L;
+  const V3<T> m_s = z.template segment<3>(20) / L;
+  const V3<T> e_n = n_s + c.f;
+  const V3<T> e_m = m_s + p_s.cross(n) + c.l;
+  const double fr = c.length_scale / c.force_scale, mr = c.length_scale / c.moment_scale;
+  for (int i = 0; i < 3; ++i) {
+    r[i] = e_n[i] * fr;
+    r[3 + i] = e_m[i] * mr;
+  }
+  r[6] = z.template segment<4>(0).squaredNorm() - 1.0;
+  mixed_constitutive(z, c, r + 7);
+}
+
+/// Mixed form constitutive equations (6) in compliance form, equivalent to n_d = R K_SE (eps - eps0)
+/// and m_d = R K_BT (kappa - kappa0) but scaled as strains so that stiff axial/shear directions do not
+/// swamp the residual:  K_SE^-1 R^T n_d - (eps - eps0) = 0,  L0 (K_BT^-1 R^T m_d - (kappa - kappa0)) = 0.
+template <typename T>
+void mixed_constitutive(const Eigen::Matrix<T, 24, 1>& z, const PointConstants& c, T* r) {
+  const V4<T> q = z.template segment<4>(0);
+  const T L = z[23];
+  const V4<T> q_s = z.template segment<4>(4) / L;
+  const V3<T> p_s = z.template segment<3>(8) / L;
+  const M3<T> R = rotation(q);
+  const V3<T> sigma = R.transpose() * z.template segment<3>(11);
+  const V3<T> chi = R.transpose() * z.template segment<3>(17);
+  const V3<T> eps = R.transpose() * p_s;
+  const V3<T> kappa = body_curvature(q, q_s);
+  for (int i = 0; i < 3; ++i) {
+    r[i] = sigma[i] / c.k_se[i] - (eps[i] - (i == 2 ? 1.0 : 0.0) - c.eps0[i]);
+    r[3 + i] = (chi[i] / c.k_bt[i] - (kappa[i] - c.kappa0[i])) * c.length_scale;
+  }
+}
+
+/// Primal form: internal force and moment at a point from the constitutive law.
+/// z = [q (4), q_u (4), p_u (3), L (1)]; outputs n, m (world frame).
+template <typename T>
+void primal_wrench(const Eigen::Matrix<T, 12, 1>& z, const PointConstants& c, V3<T>& n, V3<T>& m) {
+  const V4<T> q = z.template segment<4>(0);
+  const T L = z[11];
+  const V4<T> q_s = z.template segment<4>(4) / L;
+  const V3<T> p_s = z.template segment<3>(8) / L;
+  const M3<T> R = rotation(q);
+  const V3<T> v = R.transpose() * p_s;
+  const V3<T> kappa = body_curvature(q, q_s);
+  V3<T> sigma, chi;
+  for (int i = 0; i < 3; ++i) {
+    sigma[i] = c.k_se[i] * (v[i] - (i == 2 ? 1.0 : 0.0) - c.eps0[i]);
+    chi[i] = c.k_bt[i] * (kappa[i] - c.kappa0[i]);
+  }
+  n = R * sigma;
+  m = R * chi;
+}
+
+}  // namespace pcr::collocation

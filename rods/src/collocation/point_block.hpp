@@ -1,0 +1,102 @@
+#pragma once
+// A residual block at one collocation point of one rod (internal header of pcr::rods).
+//
+// The equations at a point depend on a small local vector z (values and u-derivatives of p, q, n, m
+// at the point, and the rod length L). z is gathered from the p+1 active control points with the basis
+// values cached at construction: z_g = sum_i B_d(u)[i] c_i[component]. The kernel is evaluated with
+// Dual<NL> numbers, which gives dr/dz exactly; the chain rule dz/dc_i = B_d(u)[i] scatters it into one
+// dense Jacobian per control point (and dr/dL into the length block).
+#include <array>
+#include <utility>
+#include <vector>
+
+#include "pcr/math/dual.hpp"
+#include "pcr/solve/residual_block.hpp"
+
+namespace pcr::collocation {
+
+/// A group of local variables: z[local .. local+dim) = derivative-th u-derivative of the control
+/// point components [component .. component+dim).
+struct LocalGroup {
+  int local;
+  int component;
+  int dim;
+  int derivative;
+};
+
+/// Basis values at a point: B[d][i] = d-th u-derivative of the i-th active function (first + i).
+struct PointBasis {
+  int first = 0;
+  int count = 0;
+  std::array<std::array<double, 10>, 3> B{};
+};
+
+template <int NL, int NR, typename Kernel>
+class PointBlock final : public ResidualBlock {
+ public:
+  /// variables: the `basis.count` control point blocks, then the length block (if length_local >= 0).
+  PointBlock(std::string kind, std::string name, std::vector<VariableId> variables, int control_point_size,
+             PointBasis basis, std::vector<LocalGroup> groups, int length_local, Kernel kernel)
+      : ResidualBlock(std::move(kind), std::move(name), NR, std::move(variables)),
+        cp_size_(control_point_size), basis_(basis), groups_(std::move(groups)), length_local_(length_local),
+        kernel_(std::move(kernel)) {}
+
+  void evaluate(const double* const* values, double* residual, double* const* jacobians) const override {
+    if (jacobians == nullptr) {
+      Eigen::Matrix<double, NL, 1> z;
+      gather(values, z);
+      kernel_(z, residual);
+      return;
+    }
+    using D = Dual<NL>;
+    Eigen::Matrix<double, NL, 1> zv;
+    gather(values, zv);
+    Eigen::Matrix<D, NL, 1> z;
+    for (int k = 0; k < NL; ++k) z[k] = D::variable(zv[k], k);
+    std::array<D, NR> r;
+    kernel_(z, r.data());
+    for (int row = 0; row < NR; ++row) residual[row] = r[row].a;
+    for (int i = 0; i < basis_.count; ++i) {
+      double* J = jacobians[i];
+      if (J == nullptr) continue;
+      std::fill(J, J + NR * cp_size_, 0.0);
+      for (const LocalGroup& g : groups_) {
+        const double b = basis_.B[g.derivative][i];
+        if (b == 0.0) continue;
+        for (int row = 0; row < NR; ++row)
+          for (int c = 0; c < g.dim; ++c) J[row * cp_size_ + g.component + c] += r[row].v[g.local + c] * b;
+      }
+    }
+    if (length_local_ >= 0 && jacobians[basis_.count] != nullptr)
+      for (int row = 0; row < NR; ++row) jacobians[basis_.count][row] = r[row].v[length_local_];
+  }
+
+ private:
+  void gather(const double* const* values, Eigen::Matrix<double, NL, 1>& z) const {
+    z.setZero();
+    for (const LocalGroup& g : groups_)
+      for (int i = 0; i < basis_.count; ++i) {
+        const double b = basis_.B[g.derivative][i];
+        for (int c = 0; c < g.dim; ++c) z[g.local + c] += b * values[i][g.component + c];
+      }
+    if (length_local_ >= 0) z[length_local_] = values[basis_.count][0];
+  }
+
+  int cp_size_;
+  PointBasis basis_;
+  std::vector<LocalGroup> groups_;
+  int length_local_;
+  Kernel kernel_;
+};
+
+template <int NL, int NR, typename Kernel>
+std::shared_ptr<const ResidualBlock> make_point_block(std::string kind, std::string name,
+                                                      std::vector<VariableId> variables, int cp_size,
+                                                      const PointBasis& basis, std::vector<LocalGroup> groups,
+                                                      int length_local, Kernel kernel) {
+  return std::make_shared<PointBlock<NL, NR, Kernel>>(std::move(kind), std::move(name), std::move(variables),
+                                                      cp_size, basis, std::move(groups), length_local,
+                                                      std::move(kernel));
+}
+
+}  // namespace pcr::collocation

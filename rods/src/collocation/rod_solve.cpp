@@ -1,0 +1,112 @@
+#include "pcr/rods/rod_solve.hpp"
+
+#include <chrono>
+#include <sstream>
+
+#include "pcr/core/error.hpp"
+#include "pcr/solve/ipopt_solver.hpp"
+#include "pcr/solve/newton_solver.hpp"
+#include "pcr/splines/spline_curve.hpp"
+
+namespace pcr {
+namespace {
+
+SolveSummary solve_at(const CollocationRod& rod, const RodSolveOptions& options, double load_factor, VecX& x,
+                      RodVariables& vars) {
+  Problem problem;
+  vars = rod.add_to_problem(problem, {}, load_factor);
+  if (x.size() != problem.num_variables()) x = problem.initial_values();
+  if (options.solver == SolverKind::Newton) {
+    NewtonOptions o;
+    o.tolerance = options.tolerance;
+    o.max_iterations = options.max_iterations;
+    return NewtonSolver(problem, o).solve(x);
+  }
+  IpoptOptions o;
+  o.tolerance = options.tolerance;
+  o.constraint_tolerance = options.tolerance;
+  o.max_iterations = options.max_iterations;
+  return IpoptSolver(problem, o).solve(x);
+}
+
+}  // namespace
+
+const char* to_string(SolverKind solver) { return solver == SolverKind::Newton ? "newton" : "ipopt"; }
+
+RodSolution solve_rod(const RodModel& model, const RodSolveOptions& options, const VecX* initial) {
+  const auto start = std::chrono::steady_clock::now();
+  RodSolution sol;
+  sol.rod = std::make_shared<const CollocationRod>(model, options.discretization);
+  const CollocationRod& rod = *sol.rod;
+  {
+    Problem probe;
+    sol.variables = rod.add_to_problem(probe, {}, 1.0, false, -1, initial);
+    sol.x = probe.initial_values();
+  }
+  const VecX x0 = sol.x;
+  sol.summary = solve_at(rod, options, 1.0, sol.x, sol.variables);
+  int iterations = sol.summary.iterations;
+  if (!sol.summary.converged() && options.load_stepping) {
+    // Continuation: lambda from 0 (the initial guess is exact for zero load when it starts at the
+    // clamped end) to 1; step grows by 1.5 after a success and halves after a failure.
+    double lambda = 0.0, step = 0.25, previous_step = 0.0;
+    VecX x = x0, x_previous = x0;
+    SolveSummary last;
+    last.status = SolveStatus::Failed;
+    int steps = 0;
+    while (lambda < 1.0 && steps < options.max_load_steps && step > 1e-7) {
+      const double target = std::min(1.0, lambda + step);
+      VecX trial = x;
+      if (previous_step > 0.0) trial += (x - x_previous) * ((target - lambda) / previous_step);  // secant predictor
+      last = solve_at(rod, options, target, trial, sol.variables);
+      iterations += last.iterations;
+      ++steps;
+      if (last.converged()) {
+        x_previous = x;
+        x = trial;
+        previous_step = target - lambda;
+        lambda = target;
+        step *= 1.5;
+      } else {
+        step *= 0.5;
+      }
+    }
+    sol.load_steps = steps;
+    std::ostringstream msg;
+    msg << "direct solve failed (" << sol.summary.message << "); load stepping: " << steps << " steps, reached lambda = "
+        << lambda;
+    if (lambda >= 1.0 && last.converged()) {
+      sol.x = x;
+      sol.summary = last;
+    } else {
+      sol.summary.status = last.status == SolveStatus::Converged ? SolveStatus::MaxIterations : last.status;
+    }
+    sol.summary.message = msg.str() + (sol.summary.message.empty() ? "" : "; " + sol.summary.message);
+  }
+  sol.summary.iterations = iterations;
+  sol.summary.wall_time_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return sol;
+}
+
+VecX refine_solution(const RodSolution& solution, const RodDiscretization& finer) {
+  const CollocationRod& rod = *solution.rod;
+  require(finer.formulation == rod.discretization().formulation,
+          "refine_solution: the formulation must stay the same (", to_string(rod.discretization().formulation), ")");
+  require(finer.degree >= rod.discretization().degree, "refine_solution: degree must not decrease (",
+          rod.discretization().degree, " -> ", finer.degree, ")");
+  require(finer.elements % rod.discretization().elements == 0, "refine_solution: elements ", finer.elements,
+          " must be a multiple of ", rod.discretization().elements);
+  const int n = rod.num_control_points(), cp = rod.control_point_size();
+  MatX points(cp, n);
+  for (int i = 0; i < n; ++i) points.col(i) = solution.x.segment(solution.variables.control_point_offset + i * cp, cp);
+  SplineCurve curve(rod.knots(), points);
+  if (finer.degree > rod.discretization().degree) curve = curve.with_elevated_degree(finer.degree - rod.discretization().degree);
+  const int parts = finer.elements / rod.discretization().elements;
+  if (parts > 1) curve = curve.with_uniform_refinement(parts);
+  const MatX& refined = curve.control_points();
+  VecX out(refined.size());
+  for (int i = 0; i < refined.cols(); ++i) out.segment(i * cp, cp) = refined.col(i);
+  return out;
+}
+
+}  // namespace pcr

@@ -1,0 +1,182 @@
+// Collocation rods: every residual block's Jacobian against finite differences, the model and
+// discretisation checks, post-processing, refinement, and Newton against Ipopt.
+#define BOOST_TEST_MODULE collocation_rod
+#include <boost/test/unit_test.hpp>
+
+#include <random>
+
+#include "pcr/core/error.hpp"
+#include "pcr/rods/collocation_rod.hpp"
+#include "pcr/rods/rod_solve.hpp"
+#include "pcr/solve/jacobian_check.hpp"
+#include "rod_fixtures.hpp"
+
+using namespace pcr;
+
+namespace {
+
+RodModel loaded_rod(RodEndKind base, RodEndKind tip) {
+  RodModel m = test::cantilever(0.7, Vec3(3e3, 2e3, 5e3), Vec3(2.0, 1.5, 1.2));
+  m.base.kind = base;
+  m.tip.kind = tip;
+  m.base.orientation = quat_from_rotation_vector(Vec3(0.1, -0.2, 0.05));
+  m.tip.position = Vec3(0.1, 0.05, 0.6);
+  m.tip.orientation = quat_from_rotation_vector(Vec3(0.3, 0.1, -0.2));
+  m.tip.force = Vec3(0.3, -0.2, 0.1);
+  m.tip.moment = Vec3(0.05, 0.1, -0.02);
+  m.base.force = Vec3(-0.1, 0.2, 0.0);
+  m.base.moment = Vec3(0.02, 0.0, 0.03);
+  m.mass_per_length = 0.2;
+  m.loads.gravity = Vec3(0, -9.81, 0);
+  m.loads.moment_per_length = Vec3(0.01, 0.02, -0.01);
+  m.intrinsic.curvature = Vec3(0.3, -0.1, 0.2);
+  m.intrinsic.shear_extension = Vec3(0.001, 0.0, 0.002);
+  return m;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(every_block_jacobian_matches_finite_differences) {
+  // All pairings with one clamped end, both formulations, free length (so dr/dL is checked too),
+  // at a randomly perturbed, non-unit-quaternion state.
+  const RodEndKind kinds[] = {RodEndKind::Clamped, RodEndKind::Collar, RodEndKind::Spherical, RodEndKind::Free};
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0.0, 0.05);
+  for (RodFormulation f : {RodFormulation::Primal, RodFormulation::Mixed}) {
+    for (RodEndKind other : kinds) {
+      for (bool clamped_base : {true, false}) {
+        RodModel m = clamped_base ? loaded_rod(RodEndKind::Clamped, other) : loaded_rod(other, RodEndKind::Clamped);
+        m.intrinsic.varying = [](double s, Vec3& eps0, Vec3& kappa0) { kappa0 += Vec3(0.2 * s, -0.1 * s * s, 0.0); };
+        CollocationRod rod(m, {f, 3, 3});
+        Problem problem;
+        rod.add_to_problem(problem, {}, 1.0, /*free_length=*/true);
+        VecX x = problem.initial_values();
+        for (int i = 0; i < x.size(); ++i) x[i] += noise(rng);
+        // Default checker tolerances 1e-6 abs + 1e-6 rel: central differences with relative step
+        // 1e-6 have truncation ~1e-12 and round-off ~1e-10 on these O(1)..O(1e3) residuals.
+        const JacobianCheckResult r = check_problem_jacobian(problem, x);
+        BOOST_TEST(r.passed, to_string(f) << " base " << to_string(m.base.kind) << " tip " << to_string(m.tip.kind)
+                                          << ": " << r.to_string());
+        BOOST_TEST(r.entries_checked > 0);
+      }
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(square_system_in_both_formulations) {
+  for (RodFormulation f : {RodFormulation::Primal, RodFormulation::Mixed}) {
+    CollocationRod rod(loaded_rod(RodEndKind::Clamped, RodEndKind::Free), {f, 4, 5});
+    Problem problem;
+    rod.add_to_problem(problem);
+    const int unknowns = rod.num_control_points() * rod.control_point_size();
+    BOOST_TEST(problem.num_rows() == unknowns);
+    BOOST_TEST(rod.num_equations({}) == unknowns);
+    BOOST_TEST(rod.num_equations({false, false}) == unknowns - 14);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(bad_discretisation_and_model_are_rejected_with_the_value) {
+  const RodModel good = test::cantilever(1.0, Vec3(1e3, 1e3, 1e3), Vec3(1, 1, 1));
+  try {
+    CollocationRod rod(good, {RodFormulation::Mixed, 1, 4});
+    BOOST_FAIL("degree 1 accepted");
+  } catch (const InputError& e) {
+    BOOST_TEST(std::string(e.what()).find("degree") != std::string::npos);
+    BOOST_TEST(std::string(e.what()).find("1") != std::string::npos);
+  }
+  BOOST_CHECK_THROW(CollocationRod(good, {RodFormulation::Mixed, 3, 0}), InputError);
+  RodModel bad = good;
+  bad.length = -2.0;
+  try {
+    CollocationRod rod(bad, {});
+    BOOST_FAIL("negative length accepted");
+  } catch (const InputError& e) {
+    BOOST_TEST(std::string(e.what()).find("length") != std::string::npos);
+    BOOST_TEST(std::string(e.what()).find("-2") != std::string::npos);
+  }
+  bad = good;
+  bad.bending_torsion_stiffness[2] = 0.0;
+  BOOST_CHECK_THROW(CollocationRod(bad, {}), InputError);
+  bad = good;
+  bad.base.kind = RodEndKind::Free;
+  BOOST_CHECK_THROW(CollocationRod(bad, {}), InputError);  // free at both ends: not determined
+  bad = good;
+  bad.base.kind = RodEndKind::Collar;
+  bad.tip.kind = RodEndKind::Collar;
+  BOOST_CHECK_THROW(CollocationRod(bad, {}), InputError);  // free twist gauge
+}
+
+BOOST_AUTO_TEST_CASE(gravity_loaded_cantilever_is_in_global_equilibrium) {
+  // Global balance n(0) = n(L) + integral_0^L f ds = F_tip + f L (n' + f = 0), whatever the
+  // deformation; the support's reaction on the rod is -n(0).
+  RodModel m = test::cantilever(0.5, Vec3(1e5, 1e5, 2e5), Vec3(0.5, 0.5, 0.4));
+  m.mass_per_length = 0.05;
+  m.loads.gravity = Vec3(0, 0, -9.81);
+  m.base.orientation = quat_from_rotation_vector(Vec3(M_PI / 2, 0, 0));  // horizontal rod along -y
+  m.tip.force = Vec3(0.1, 0.0, -0.2);
+  for (RodFormulation f : {RodFormulation::Primal, RodFormulation::Mixed}) {
+    RodSolveOptions o;
+    o.discretization = {f, 4, 8};
+    const RodSolution sol = solve_rod(m, o);
+    BOOST_REQUIRE_MESSAGE(sol.summary.converged(), sol.summary.brief_report());
+    const RodState b = sol.base(), t = sol.tip();
+    const Vec3 total = m.distributed_force() * m.length + m.tip.force;
+    // n(0) = n(L) + integral f ds exactly for constant f in the mixed form (n_d' + f = 0 is linear and
+    // collocated: n_d is then exactly linear); in the primal form n is recovered by the constitutive
+    // law, so only the discretisation accuracy holds there (1e-6 relative at 8 elements, p = 4).
+    const double tol = f == RodFormulation::Mixed ? 1e-9 : 1e-5;
+    BOOST_TEST((b.force - total).norm() < tol * total.norm(), to_string(f) << " base force " << b.force.transpose());
+    BOOST_TEST((t.force - m.tip.force).norm() < 1e-9 * total.norm());
+  }
+}
+
+BOOST_AUTO_TEST_CASE(newton_and_ipopt_agree) {
+  RodModel m = test::cantilever(1.0, Vec3(1e4, 1e4, 1e4), Vec3(1, 1, 0.8));
+  m.tip.force = Vec3(2.0, 0.5, -0.3);
+  m.tip.moment = Vec3(0.0, 0.3, 0.2);
+  for (RodFormulation f : {RodFormulation::Primal, RodFormulation::Mixed}) {
+    RodSolveOptions o;
+    o.discretization = {f, 4, 6};
+    o.tolerance = 1e-12;
+    const RodSolution newton = solve_rod(m, o);
+    o.solver = SolverKind::Ipopt;
+    const RodSolution ipopt = solve_rod(m, o);
+    BOOST_REQUIRE_MESSAGE(newton.summary.converged(), newton.summary.brief_report());
+    BOOST_REQUIRE_MESSAGE(ipopt.summary.converged(), ipopt.summary.brief_report());
+    // Both solve the same square system to 1e-12: their solutions agree to about cond(J) * 1e-12;
+    // the issue asks for 1e-10 on the centerline.
+    double worst = 0.0;
+    for (double s = 0.0; s <= 1.0; s += 0.05) worst = std::max(worst, (newton.at(s).position - ipopt.at(s).position).norm());
+    BOOST_TEST(worst < 1e-10, to_string(f) << " worst centerline difference " << worst);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(refinement_carries_the_solution_as_initial_guess) {
+  RodModel m = test::cantilever(1.0, Vec3(1e4, 1e4, 1e4), Vec3(1, 1, 0.8));
+  m.tip.force = Vec3(3.0, 0.0, 0.0);
+  RodSolveOptions o;
+  o.discretization = {RodFormulation::Mixed, 3, 4};
+  const RodSolution coarse = solve_rod(m, o);
+  BOOST_REQUIRE(coarse.summary.converged());
+  RodSolveOptions fine = o;
+  fine.discretization = {RodFormulation::Mixed, 5, 8};
+  const VecX guess = refine_solution(coarse, fine.discretization);
+  // The refined spline is the same curve (knot insertion and degree elevation are exact).
+  CollocationRod fine_rod(m, fine.discretization);
+  Problem problem;
+  const RodVariables vars = fine_rod.add_to_problem(problem, {}, 1.0, false, -1, &guess);
+  const VecX x = problem.initial_values();
+  for (double s = 0.0; s <= 1.0; s += 0.1)
+    BOOST_TEST((fine_rod.state_at(x, vars, s).position - coarse.at(s).position).norm() < 1e-13);
+  const RodSolution warm = solve_rod(m, fine, &guess);
+  const RodSolution cold = solve_rod(m, fine);
+  BOOST_REQUIRE(warm.summary.converged() && cold.summary.converged());
+  BOOST_TEST(warm.summary.iterations <= cold.summary.iterations);
+}
+
+BOOST_AUTO_TEST_CASE(post_processing_rejects_s_outside_the_rod) {
+  RodSolveOptions o;
+  const RodSolution sol = solve_rod(test::cantilever(1.0, Vec3(1e3, 1e3, 1e3), Vec3(1, 1, 1)), o);
+  BOOST_CHECK_THROW(sol.at(1.5), InputError);
+  BOOST_CHECK_THROW(sol.at(-0.1), InputError);
+}

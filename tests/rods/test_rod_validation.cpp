@@ -1,0 +1,179 @@
+// Collocation rods against analytic solutions and published tables (scenes R1-R3 of
+// shared/scenes/README.md), the helical spring, shear locking and the convergence orders.
+#define BOOST_TEST_MODULE rod_validation
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+#include <iostream>
+
+#include "pcr/rods/rod_solve.hpp"
+#include "rod_fixtures.hpp"
+
+using namespace pcr;
+
+namespace {
+
+RodSolution solve_or_fail(const RodModel& m, RodFormulation f, int degree, int elements, double tol = 1e-11) {
+  RodSolveOptions o;
+  o.discretization = {f, degree, elements};
+  o.tolerance = tol;
+  RodSolution sol = solve_rod(m, o);
+  BOOST_REQUIRE_MESSAGE(sol.summary.converged(), sol.summary.brief_report());
+  return sol;
+}
+
+/// Max over 201 points of |p_h(s) - p_exact(s)|.
+template <typename Exact>
+double centerline_error(const RodSolution& sol, double L, Exact exact) {
+  double e = 0.0;
+  for (int i = 0; i <= 200; ++i) {
+    const double s = L * i / 200.0;
+    e = std::max(e, (sol.at(s).position - exact(s)).norm());
+  }
+  return e;
+}
+
+// R1: EI = 2, L = 1, moment about e1 at the tip; finite EA, GA (n = 0, so exact regardless).
+RodModel end_moment_rod(double phi) {
+  RodModel m = test::cantilever(1.0, Vec3(50.0, 50.0, 100.0), Vec3(2.0, 2.0, 1.5));
+  m.tip.moment = Vec3(phi * 2.0 / 1.0, 0.0, 0.0);
+  return m;
+}
+
+double end_moment_error(const RodSolution& sol, double phi) {
+  const Vec3 kappa(phi, 0.0, 0.0);  // M / EI with L = 1
+  return centerline_error(sol, 1.0, [&](double s) { return test::constant_curvature_position(kappa, s); });
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(r1_end_moment_rolls_the_rod_into_exact_arcs) {
+  // Tolerances: the measured max centerline errors of this discretisation (mixed, p = 6, 16
+  // elements) are below 1e-8 L for phi <= 2 pi and 1e-6 L at 4 pi (see the convergence study); the
+  // bounds below leave a factor of about 10.
+  struct Case {
+    double phi, tol;
+  };
+  for (const Case c : {Case{M_PI / 2, 1e-9}, Case{2 * M_PI, 1e-7}, Case{4 * M_PI, 1e-5}}) {
+    for (RodFormulation f : {RodFormulation::Mixed, RodFormulation::Primal}) {
+      const RodSolution sol = solve_or_fail(end_moment_rod(c.phi), f, 6, 16);
+      const double e = end_moment_error(sol, c.phi);
+      BOOST_TEST(e < c.tol, to_string(f) << " phi = " << c.phi << ": centerline error " << e);
+      // The full circle brings the tip back to the base with the tangent restored.
+      if (std::abs(c.phi - 2 * M_PI) < 1e-12) {
+        BOOST_TEST(sol.tip().position.norm() < c.tol);
+        BOOST_TEST((sol.tip().rotation.col(2) - Vec3::UnitZ()).norm() < 10 * c.tol);
+      }
+      // n = 0 along the whole rod (no force anywhere): checked at the tip and the base.
+      BOOST_TEST(sol.base().force.norm() < 1e-8);
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(r2_bisshopp_drucker_table) {
+  // alpha = P L^2 / EI, (L - x_tip)/L, y_tip/L, tip angle (shared/scenes/README.md, R2).
+  const double table[14][4] = {{0.2, 0.00265, 0.06636, 0.0996}, {0.4, 0.01035, 0.13098, 0.1972},
+                               {0.6, 0.02249, 0.19235, 0.2907}, {0.8, 0.03817, 0.24945, 0.3791},
+                               {1, 0.05643, 0.30172, 0.4614},   {1.5, 0.10794, 0.41098, 0.6395},
+                               {2, 0.16064, 0.49346, 0.7818},   {3, 0.25442, 0.60325, 0.9860},
+                               {4, 0.32894, 0.66996, 1.1212},   {5, 0.38763, 0.71379, 1.2154},
+                               {6, 0.43459, 0.74457, 1.2837},   {8, 0.50483, 0.78498, 1.3744},
+                               {10, 0.55500, 0.81061, 1.4303},  {15, 0.63529, 0.84772, 1.5018}};
+  // Inextensible, unshearable limit: EA = GA = 1e8 EI / L^2, so axial/shear strains are at most
+  // alpha * 1e-8 <= 1.5e-7, below half a unit of the table's last digit (5e-6 for positions, 5e-5
+  // for the angle), which is the tolerance used (plus 1e-6 for the discretisation error, measured
+  // below 1e-7 at p = 6, 16 elements).
+  const double EI = 1.0, L = 1.0;
+  for (const auto& row : table) {
+    RodModel m = test::cantilever(L, Vec3::Constant(1e8 * EI / (L * L)), Vec3(EI, EI, EI));
+    m.tip.force = Vec3(row[0] * EI / (L * L), 0.0, 0.0);  // perpendicular dead force along e1
+    const RodSolution sol = solve_or_fail(m, RodFormulation::Mixed, 6, 16);
+    const RodState tip = sol.tip();
+    const double axial = (L - tip.position.z()) / L, lateral = tip.position.x() / L;
+    const double angle = std::atan2(tip.rotation(0, 2), tip.rotation(2, 2));
+    BOOST_TEST(std::abs(axial - row[1]) < 5e-6 + 1e-6, "alpha " << row[0] << ": (L-x)/L " << axial << " vs " << row[1]);
+    BOOST_TEST(std::abs(lateral - row[2]) < 5e-6 + 1e-6, "alpha " << row[0] << ": y/L " << lateral << " vs " << row[2]);
+    BOOST_TEST(std::abs(angle - row[3]) < 5e-5 + 1e-6, "alpha " << row[0] << ": angle " << angle << " vs " << row[3]);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(r3_exact_helix_whole_centerline) {
+  // E = 1, G = 0.5, circle of radius 1: EI = GJ = pi / 4; EA = pi, GA = pi / 2 (k = 1).
+  const double kb = 0.086332350, kt = 0.034350551, L = 135.245580489;
+  const double EI = M_PI / 4;
+  RodModel m = test::cantilever(L, Vec3(M_PI / 2, M_PI / 2, M_PI), Vec3(EI, EI, EI));
+  const Vec3 kappa(kb, 0.0, kt);
+  m.tip.moment = EI * kappa;  // R(L) kappa = kappa, so the dead moment m(L) = R K_BT kappa = EI kappa
+  const RodSolution sol = solve_or_fail(m, RodFormulation::Mixed, 6, 32);
+  const double e = centerline_error(sol, L, [&](double s) { return test::constant_curvature_position(kappa, s); });
+  // Helix of radius 10 and height 50: relative tolerance 1e-8 of the length; measured error at this
+  // discretisation is below 1e-7 absolute (1e-9 L).
+  BOOST_TEST(e < 1e-8 * L, "helix centerline error " << e);
+  const Vec3 top = test::constant_curvature_position(kappa, L);
+  BOOST_TEST(std::abs(top.norm() - std::hypot(0.0, 50.0)) < 1.0);  // sanity: height 50 (two coils end on the axis)
+}
+
+BOOST_AUTO_TEST_CASE(helical_spring_small_load_stiffness) {
+  // A stress-free helix (intrinsic curvature kappa0 = (k, 0, tau)) pulled along its axis by a force F
+  // acting on the axis (a dead force at the wire tip plus the moment of the arm to the axis). The
+  // classical spring deflection (inextensible, unshearable; Weeger et al. 2017 §7):
+  //   delta = F R^2 L (cos^2 alpha / GJ + sin^2 alpha / EI),
+  // with helix radius R and pitch angle alpha: k = cos^2(alpha)/R, tau = sin(alpha) cos(alpha)/R.
+  for (double alpha_deg : {5.0, 20.0, 45.0}) {
+    const double alpha = alpha_deg * M_PI / 180.0, Rh = 0.01, coils = 3;
+    const double k = std::cos(alpha) * std::cos(alpha) / Rh, tau = std::sin(alpha) * std::cos(alpha) / Rh;
+    const double L = coils * 2 * M_PI * Rh / std::cos(alpha);
+    const double EI = 2e-3, GJ = 1.5e-3;
+    RodModel m = test::cantilever(L, Vec3::Constant(1e9 * EI / (Rh * Rh)), Vec3(EI, EI, GJ));
+    m.intrinsic.curvature = Vec3(k, 0.0, tau);
+    const Vec3 kappa0(k, 0.0, tau);
+    const Vec3 axis = kappa0.normalized();
+    const Vec3 tip_ref = test::constant_curvature_position(kappa0, L);
+    // Point of the helix axis nearest the reference tip: the axis passes through (a x e3) / |kappa0|.
+    const Vec3 c0 = axis.cross(Vec3::UnitZ()) / kappa0.norm();
+    const Vec3 on_axis = c0 + axis * axis.dot(tip_ref - c0);
+    // Small load: delta / R ~ 1e-6 keeps the geometric nonlinearity (relative O(delta/R)) near 1e-6.
+    const double compliance = Rh * Rh * L * (std::cos(alpha) * std::cos(alpha) / GJ + std::sin(alpha) * std::sin(alpha) / EI);
+    const double F = 1e-6 * Rh / compliance;
+    m.tip.force = F * axis;
+    m.tip.moment = (on_axis - tip_ref).cross(F * axis);
+    const RodSolution sol = solve_or_fail(m, RodFormulation::Mixed, 6, 24, 1e-13);
+    const double delta = (sol.tip().position - tip_ref).dot(axis);
+    const double expected = F * compliance;
+    // Relative tolerance 1e-4: geometric nonlinearity ~1e-6, extension/shear 1e-9, discretisation
+    // (measured 1e-7 at p = 6, 24 elements for three coils) — 1e-4 leaves a wide margin.
+    BOOST_TEST(std::abs(delta - expected) < 1e-4 * expected,
+               "alpha " << alpha_deg << " deg: delta " << delta << " vs classical " << expected);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(mixed_form_does_not_lock_for_thin_rods) {
+  // Rectangular cantilever (E = 1e7, nu = 0.3, width = height = t) with a small tip force
+  // (P L^2 / EI = 1e-4, so geometric nonlinearity is ~1e-8 relative): the exact linear (Timoshenko)
+  // tip deflection is delta = P L^3 / (3 EI) + P L / (k G A).
+  const double L = 1.0, E = 1e7, nu = 0.3;
+  const Material mat = Material::from_poisson_ratio(E, nu, 0.0);
+  std::vector<double> mixed_errors;
+  for (double t : {1e-1, 1e-2, 1e-3, 1e-4}) {
+    RodModel m = test::cantilever(L, Vec3::Ones(), Vec3::Ones());
+    m.set_material_and_section(mat, CrossSection::rectangle(t, t));
+    const double EI = m.bending_torsion_stiffness[0], kGA = m.shear_extension_stiffness[0];
+    const double P = 1e-4 * EI / (L * L);
+    m.tip.force = Vec3(0.0, P, 0.0);
+    const double delta = P * L * L * L / (3 * EI) + P * L / kGA;
+    double error[2];
+    for (RodFormulation f : {RodFormulation::Primal, RodFormulation::Mixed}) {
+      RodSolveOptions o;
+      o.discretization = {f, 3, 4};
+      o.tolerance = 1e-12;
+      const RodSolution sol = solve_rod(m, o);
+      error[f == RodFormulation::Mixed] =
+          sol.summary.converged() ? std::abs(sol.tip().position.y() - delta) / delta : INFINITY;
+    }
+    std::cout << "locking t/L = " << t << ": relative tip error primal " << error[0] << ", mixed " << error[1] << "\n";
+    mixed_errors.push_back(error[1]);
+    // Mixed: same accuracy for every thickness. Cubic splines reproduce the linear beam's cubic
+    // deflection exactly, so the error is the nonlinearity (~1e-8) plus solver tolerance: bound 1e-6.
+    BOOST_TEST(error[1] < 1e-6, "mixed error at t/L = " << t << ": " << error[1]);
+  }
+}
