@@ -1,0 +1,37 @@
+#pragma once
+// B-spline and NURBS basis functions with derivatives (The NURBS Book, Piegl & Tiller, A2.3, eq. 4.8).
+// Only the p+1 functions that do not vanish at u are returned, with the index of the first one.
+#include <Eigen/SparseCore>
+#include <vector>
+
+#include "pcr/core/types.hpp"
+#include "pcr/splines/knot_vector.hpp"
+
+namespace pcr {
+
+/// values(d, j) = d-th derivative (d = 0..max_derivative) of N_{first+j}(u), j = 0..degree.
+struct BasisDerivatives {
+  int first = 0;
+  MatX values;
+};
+
+/// The NURBS Book A2.3 (all non-zero basis functions and derivatives up to max_derivative at u).
+/// Derivatives of order > degree are zero. Throws InputError for u outside [0,1] or max_derivative < 0.
+BasisDerivatives basis_derivatives(const KnotVector& knots, double u, int max_derivative);
+
+/// Allocation-free variant: values must be (max_derivative+1) x (degree+1) already (else InputError).
+/// Allocates only for degree > 24 (scratch space beyond the fixed stack buffer).
+void basis_derivatives(const KnotVector& knots, double u, int max_derivative, int& first,
+                       Eigen::Ref<MatX> values);
+
+/// NURBS rational basis R_i = N_i w_i / W and its derivatives (The NURBS Book eq. 4.8 / A4.2 applied to
+/// the basis); weights.size() == knots.num_basis(), all > 0 (else InputError).
+BasisDerivatives rational_basis_derivatives(const KnotVector& knots, const VecX& weights, double u,
+                                            int max_derivative);
+
+/// Sparse (points.size() x num_basis) matrix of the derivative-th derivative of the basis (B-spline, or
+/// NURBS when weights given) at the points.
+Eigen::SparseMatrix<double> collocation_matrix(const KnotVector& knots, const std::vector<double>& points,
+                                               int derivative, const VecX* weights = nullptr);
+
+}  // namespace pcr

@@ -1,0 +1,220 @@
+// B-spline and NURBS bases: partition of unity, non-negativity, compact support, derivatives against an
+// independent Cox-de Boor recursion and against central finite differences, collocation matrices.
+#include <boost/test/unit_test.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "pcr/splines/basis.hpp"
+#include "splines/reference_basis.hpp"
+
+using namespace pcr;
+using pcr_test::cox_de_boor;
+using pcr_test::throws_input_error_naming;
+
+namespace {
+
+// Non-uniform knots with a double knot (0.25, for p >= 2) and a knot of multiplicity p (0.5, C^0).
+KnotVector nonuniform_knots(int p) {
+  std::vector<double> xi(p + 1, 0.0);
+  xi.push_back(0.1);
+  xi.insert(xi.end(), std::min(2, p), 0.25);
+  xi.insert(xi.end(), p, 0.5);
+  xi.push_back(0.7);
+  xi.push_back(0.85);
+  xi.insert(xi.end(), p + 1, 1.0);
+  return KnotVector(p, xi);
+}
+constexpr double kNonuniformMinSpan = 0.1;  // shortest element of nonuniform_knots
+constexpr int kUniformElements = 5;
+
+struct Case {
+  KnotVector knots;
+  double min_span;
+};
+
+std::vector<Case> all_cases() {
+  std::vector<Case> cases;
+  for (int p = 1; p <= 8; ++p) {
+    cases.push_back({KnotVector::open_uniform(p, kUniformElements), 1.0 / kUniformElements});
+    cases.push_back({nonuniform_knots(p), kNonuniformMinSpan});
+  }
+  return cases;
+}
+
+// 201 equally spaced points (they hit every knot above exactly) plus random points.
+std::vector<double> sample_points() {
+  std::vector<double> u;
+  for (int k = 0; k <= 200; ++k) u.push_back(k / 200.0);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  for (int k = 0; k < 100; ++k) u.push_back(uniform(rng));
+  return u;
+}
+
+// A priori size of the d-th derivative: each derivative of a degree-p B-spline gains a factor of at
+// most about p / (shortest element) (eq. 2.7 with knot differences >= the shortest element).
+double derivative_scale(int p, double min_span, int d) {
+  return std::pow(2.0 * p / min_span, d);
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(basis_matches_cox_de_boor_with_partition_of_unity_and_compact_support) {
+  for (const Case& c : all_cases()) {
+    const KnotVector& knots = c.knots;
+    const int p = knots.degree(), n = knots.num_basis();
+    for (double u : sample_points()) {
+      const BasisDerivatives basis = basis_derivatives(knots, u, p);
+      BOOST_TEST(basis.first == knots.find_span(u) - p);
+      BOOST_TEST(basis.values.rows() == p + 1);
+      BOOST_TEST(basis.values.cols() == p + 1);
+      // Sum of p+1 values in [0, 1], each with a relative error of O(p eps): 1e-14 > 8 * 3 * 2.2e-16.
+      BOOST_TEST(std::abs(basis.values.row(0).sum() - 1.0) < 1e-14);
+      BOOST_TEST(basis.values.row(0).minCoeff() >= 0.0);
+      for (int d = 0; d <= p; ++d) {
+        const double scale = derivative_scale(p, c.min_span, d);
+        // Derivatives of a partition of unity sum to zero; round-off relative to the scale as above.
+        if (d > 0) BOOST_TEST(std::abs(basis.values.row(d).sum()) < 1e-13 * scale);
+        for (int i = 0; i < n; ++i) {
+          const double reference = cox_de_boor(knots.knots(), i, p, u, d);
+          const bool active = i >= basis.first && i <= basis.first + p;
+          const double value = active ? basis.values(d, i - basis.first) : 0.0;
+          // Both evaluate O(2^p) products of knot ratios; with cancellation the relative error stays
+          // below 2^p * eps ~ 6e-14 for p = 8 (relative to the scale); 1e-12 leaves a margin of ~20.
+          BOOST_TEST(std::abs(value - reference) < 1e-12 * scale,
+                     "p = " << p << ", u = " << u << ", i = " << i << ", d = " << d << ": " << value << " vs "
+                            << reference);
+        }
+      }
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(derivatives_match_central_differences) {
+  const double h = 1e-6;
+  for (const Case& c : all_cases()) {
+    const KnotVector& knots = c.knots;
+    const int p = knots.degree();
+    const int max_d = std::min(p, 3);
+    for (double u : sample_points()) {
+      // Stay 1e-3 away from every knot: the basis is a polynomial on [u-h, u+h].
+      bool near_knot = false;
+      for (double x : knots.knots()) near_knot = near_knot || std::abs(u - x) < 1e-3;
+      if (near_knot) continue;
+      const BasisDerivatives at = basis_derivatives(knots, u, max_d);
+      const BasisDerivatives plus = basis_derivatives(knots, u + h, max_d);
+      const BasisDerivatives minus = basis_derivatives(knots, u - h, max_d);
+      BOOST_TEST(plus.first == at.first);
+      BOOST_TEST(minus.first == at.first);
+      for (int d = 1; d <= max_d; ++d) {
+        // Central difference of the (d-1)-th derivative: truncation h^2/6 |N^(d+2)| ~ h^2 (2p/min_span)^2
+        // / 6 * scale_d <= 1e-7 scale_d (p = 8, span 0.1), round-off eps scale_{d-1} / h <= 1e-10 scale_d;
+        // the tolerance 1e-6 scale_d bounds both with a margin of 10.
+        const double tol = 1e-6 * derivative_scale(p, c.min_span, d);
+        for (int j = 0; j <= p; ++j) {
+          const double fd = (plus.values(d - 1, j) - minus.values(d - 1, j)) / (2 * h);
+          BOOST_TEST(std::abs(at.values(d, j) - fd) < tol, "p = " << p << ", u = " << u << ", d = " << d);
+        }
+      }
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(allocation_free_variant_matches_and_checks_sizes) {
+  const KnotVector knots = nonuniform_knots(4);
+  MatX values(3, 5);
+  int first = -1;
+  for (double u : sample_points()) {
+    basis_derivatives(knots, u, 2, first, values);
+    const BasisDerivatives reference = basis_derivatives(knots, u, 2);
+    BOOST_TEST(first == reference.first);
+    BOOST_TEST((values - reference.values).cwiseAbs().maxCoeff() == 0.0);  // same arithmetic, bitwise
+  }
+  MatX wrong(2, 5);
+  BOOST_TEST(
+      throws_input_error_naming([&] { basis_derivatives(knots, 0.5, 2, first, wrong); }, {"2 x 5", "3 x 5"}));
+  BOOST_TEST(throws_input_error_naming([&] { basis_derivatives(knots, 1.25, 1); }, {"u = 1.25"}));
+  BOOST_TEST(throws_input_error_naming([&] { basis_derivatives(knots, 0.5, -1); }, {"max_derivative = -1"}));
+  // Derivatives beyond the degree are exactly zero.
+  const BasisDerivatives high = basis_derivatives(knots, 0.3, 6);
+  BOOST_TEST(high.values.bottomRows(2).cwiseAbs().maxCoeff() == 0.0);
+}
+
+BOOST_AUTO_TEST_CASE(rational_basis_matches_the_quotient_rule_on_cox_de_boor) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> weight(0.3, 3.0);
+  for (int p = 1; p <= 6; ++p) {
+    const KnotVector knots = nonuniform_knots(p);
+    const int n = knots.num_basis();
+    VecX w(n);
+    for (int i = 0; i < n; ++i) w[i] = weight(rng);
+    for (double u : sample_points()) {
+      const BasisDerivatives R = rational_basis_derivatives(knots, w, u, 2);
+      // Independent: W = sum w_i N_i, R_i = w_i N_i / W, R_i' and R_i'' by the quotient rule.
+      double W[3] = {0, 0, 0};
+      for (int i = 0; i < n; ++i)
+        for (int d = 0; d < 3; ++d) W[d] += w[i] * cox_de_boor(knots.knots(), i, p, u, d);
+      // Partition of unity of the rational basis: sum of p+1 terms, O(p eps) as for the B-splines.
+      BOOST_TEST(std::abs(R.values.row(0).sum() - 1.0) < 1e-14);
+      for (int j = 0; j <= p; ++j) {
+        const int i = R.first + j;
+        const double A0 = w[i] * cox_de_boor(knots.knots(), i, p, u, 0);
+        const double A1 = w[i] * cox_de_boor(knots.knots(), i, p, u, 1);
+        const double A2 = w[i] * cox_de_boor(knots.knots(), i, p, u, 2);
+        const double R0 = A0 / W[0];
+        const double R1 = (A1 - W[1] * R0) / W[0];
+        const double R2 = (A2 - 2 * W[1] * R1 - W[2] * R0) / W[0];
+        // Weights within a factor 10 of each other: the quotient-rule terms stay within ~10x the
+        // B-spline scale; 1e-12 relative as in the B-spline comparison.
+        BOOST_TEST(std::abs(R.values(0, j) - R0) < 1e-12);
+        BOOST_TEST(std::abs(R.values(1, j) - R1) < 1e-12 * 10 * derivative_scale(p, kNonuniformMinSpan, 1));
+        BOOST_TEST(std::abs(R.values(2, j) - R2) < 1e-12 * 100 * derivative_scale(p, kNonuniformMinSpan, 2));
+      }
+    }
+  }
+  // Equal weights give back the B-spline basis (W = const).
+  const KnotVector knots = KnotVector::open_uniform(3, 4);
+  const BasisDerivatives R = rational_basis_derivatives(knots, VecX::Constant(7, 2.5), 0.4, 2);
+  const BasisDerivatives N = basis_derivatives(knots, 0.4, 2);
+  // Multiplying and dividing by 2.5 plus subtracting zero-sum terms: a few eps of the scale.
+  BOOST_TEST((R.values - N.values).cwiseAbs().maxCoeff() < 1e-12);
+  // Bad weights are named.
+  BOOST_TEST(throws_input_error_naming([&] { rational_basis_derivatives(knots, VecX::Ones(6), 0.4, 1); },
+                                       {"6 weights", "7 basis"}));
+  VecX bad = VecX::Ones(7);
+  bad[2] = -1.0;
+  BOOST_TEST(
+      throws_input_error_naming([&] { rational_basis_derivatives(knots, bad, 0.4, 1); }, {"weight[2] = -1"}));
+}
+
+BOOST_AUTO_TEST_CASE(collocation_matrix_holds_the_basis_values) {
+  const KnotVector knots = nonuniform_knots(3);
+  const std::vector<double> tau = knots.greville();
+  const int n = knots.num_basis();
+  for (int derivative = 0; derivative <= 2; ++derivative) {
+    const Eigen::SparseMatrix<double> A = collocation_matrix(knots, tau, derivative);
+    BOOST_TEST(A.rows() == static_cast<Eigen::Index>(tau.size()));
+    BOOST_TEST(A.cols() == n);
+    const MatX dense = MatX(A);
+    for (std::size_t r = 0; r < tau.size(); ++r) {
+      const BasisDerivatives basis = basis_derivatives(knots, tau[r], derivative);
+      for (int i = 0; i < n; ++i) {
+        const bool active = i >= basis.first && i <= basis.first + 3;
+        BOOST_TEST(dense(r, i) == (active ? basis.values(derivative, i - basis.first) : 0.0));
+        // Independent reference; tolerance as in the Cox-de Boor comparison above.
+        const double scale = derivative_scale(3, kNonuniformMinSpan, derivative);
+        BOOST_TEST(std::abs(dense(r, i) - cox_de_boor(knots.knots(), i, 3, tau[r], derivative)) <
+                   1e-12 * scale);
+      }
+      // Rows of the value matrix sum to 1 (partition of unity, O(p eps)).
+      if (derivative == 0) BOOST_TEST(std::abs(dense.row(r).sum() - 1.0) < 1e-14);
+    }
+  }
+  // NURBS variant: rows of R sum to 1 as well.
+  const VecX w = VecX::LinSpaced(n, 0.5, 2.0);
+  const MatX R = MatX(collocation_matrix(knots, tau, 0, &w));
+  for (Eigen::Index r = 0; r < R.rows(); ++r) BOOST_TEST(std::abs(R.row(r).sum() - 1.0) < 1e-14);
+  BOOST_TEST(throws_input_error_naming([&] { collocation_matrix(knots, tau, -1); }, {"derivative = -1"}));
+}
