@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
-#include "end_equations.hpp"
-#include "equations.hpp"
+#include "pcr/rods/collocation/end_equations.hpp"
+#include "pcr/rods/collocation/equations.hpp"
 #include "pcr/core/error.hpp"
 #include "pcr/splines/basis.hpp"
-#include "point_block.hpp"
+#include "pcr/rods/collocation/point_block.hpp"
 
 namespace pcr {
 using namespace collocation;
@@ -24,16 +24,28 @@ const std::vector<LocalGroup> kMixedPoint = {{0, kQ, 4, 0},  {4, kQ, 4, 1},  {8,
 const std::vector<LocalGroup> kPrimalEnd = {{0, kP, 3, 0}, {3, kQ, 4, 0}, {7, kQ, 4, 1}, {11, kP, 3, 1}};
 const std::vector<LocalGroup> kMixedEnd = {{0, kP, 3, 0}, {3, kQ, 4, 0}, {7, kN, 3, 0}, {10, kM, 3, 0}};
 
+// The constant frame and the prescribed loads of a model end (load factor and signs applied).
+struct EndData {
+  RodEndKind kind;
+  EndTarget<double> target;
+  EndLoads loads;
+};
+
 EndData end_data(const RodEnd& end, bool at_base, double load_factor) {
   EndData e;
   e.kind = end.kind;
-  e.position = end.position;
-  e.orientation = end.orientation.normalized();
-  e.frame = rotation_matrix(e.orientation);
+  e.target.position = end.position;
+  e.target.orientation = end.orientation.normalized();
+  e.target.frame = rotation_matrix(e.target.orientation);
   const double sign = at_base ? -1.0 : 1.0;
-  e.n_bar = sign * load_factor * end.force;
-  e.m_bar = sign * load_factor * end.moment;
+  e.loads.n_bar = sign * load_factor * end.force;
+  e.loads.m_bar = sign * load_factor * end.moment;
   return e;
+}
+
+template <typename T>
+EndTarget<T> cast_target(const EndTarget<double>& t) {
+  return {t.position.cast<T>(), t.orientation.cast<T>(), t.frame.cast<T>()};
 }
 
 }  // namespace
@@ -189,7 +201,8 @@ RodVariables CollocationRod::add_to_problem(Problem& problem, const RodEndOption
       problem.add_residual_block(make_point_block<13, 7>(kind, where, variables_of(b, false), cp, b, kMixedEnd, -1,
                                                          [c, e](const auto& z, auto* r) {
                                                            using T = typename std::decay_t<decltype(z)>::Scalar;
-                                                           end_conditions<T>(e, c, z.template segment<3>(0),
+                                                           end_conditions<T>(e.kind, cast_target<T>(e.target), e.loads, c,
+                                                                             z.template segment<3>(0),
                                                                              z.template segment<4>(3),
                                                                              z.template segment<3>(7),
                                                                              z.template segment<3>(10), r);
@@ -203,7 +216,8 @@ RodVariables CollocationRod::add_to_problem(Problem& problem, const RodEndOption
             w << z.template segment<4>(3), z.template segment<4>(7), z.template segment<3>(11), z[14];
             V3<T> nn, mm;
             primal_wrench(w, c, nn, mm);
-            end_conditions<T>(e, c, z.template segment<3>(0), z.template segment<4>(3), nn, mm, r);
+            end_conditions<T>(e.kind, cast_target<T>(e.target), e.loads, c, z.template segment<3>(0),
+                              z.template segment<4>(3), nn, mm, r);
           }));
     }
   }

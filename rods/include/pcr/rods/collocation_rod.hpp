@@ -83,6 +83,12 @@ class CollocationRod {
   /// Rod length in x.
   double length(const VecX& x, const RodVariables& vars) const;
 
+  /// Reference scales of the dimensionless residuals: L0 = model length, F0 = max(K_BT) / L0^2,
+  /// M0 = max(K_BT) / L0.
+  double length_scale() const { return model_.length; }
+  double force_scale() const { return force_scale_; }
+  double moment_scale() const { return moment_scale_; }
+
  private:
   RodModel model_;
   RodDiscretization discretization_;

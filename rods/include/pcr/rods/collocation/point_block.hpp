@@ -1,5 +1,5 @@
 #pragma once
-// A residual block at one collocation point of one rod (internal header of pcr::rods).
+// A residual block at one collocation point of one rod (shared by rods and robot couplings).
 //
 // The equations at a point depend on a small local vector z (values and u-derivatives of p, q, n, m
 // at the point, and the rod length L). z is gathered from the p+1 active control points with the basis

@@ -1,6 +1,6 @@
 #pragma once
 // The Cosserat rod equations at one collocation point, written once for double and Dual<N> scalars
-// (DESIGN.md §1-2). Internal header of pcr::rods.
+// (DESIGN.md §1-2). Shared by pcr::rods and the robot couplings in pcr::robots.
 //
 // Frames: p, n, m, f, l in the world frame; strains eps, kappa and stiffness in the body frame.
 // Orientation: R(q) = R_unit(q) / |q|^2 and the body curvature in quaternion form
@@ -49,6 +49,16 @@ template <typename T>
 V3<T> conj_product_vec(const V4<T>& a, const V4<T>& b) {
   const V3<T> av = a.template tail<3>(), bv = b.template tail<3>();
   return a[0] * bv - b[0] * av - av.cross(bv);
+}
+
+/// Hamilton product a (x) b (scalar first).
+template <typename T>
+V4<T> quat_product(const V4<T>& a, const V4<T>& b) {
+  const V3<T> av = a.template tail<3>(), bv = b.template tail<3>();
+  V4<T> r;
+  r[0] = a[0] * b[0] - av.dot(bv);
+  r.template tail<3>() = a[0] * bv + b[0] * av + av.cross(bv);
+  return r;
 }
 
 /// Body curvature kappa from q and dq/ds.

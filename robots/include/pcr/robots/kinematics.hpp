@@ -1,0 +1,108 @@
+#pragma once
+// Forward and inverse kinematics of a robot (DESIGN.md §4) on its assembly.
+//  - ForwardKinematics: inputs -> platform poses, rod shapes and end wrenches (square system;
+//    Newton by default). Each solve is warm-started from the previous solution; a failed solve is
+//    retried by continuation in the inputs from the last converged state.
+//  - InverseKinematics: platform targets -> inputs. A full-pose target on every DOF gives a square
+//    system, solved by Newton when the result is inside the input bounds; otherwise (bounds active,
+//    partial targets) Ipopt minimises the distance to the reference inputs subject to all equations.
+//  - Derivatives by the implicit function theorem on the assembled Jacobian.
+// Poses are world-frame; rotations of poses in derivatives are world-frame rotation vectors.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "pcr/robots/robot_assembly.hpp"
+#include "pcr/rods/rod_solve.hpp"
+#include "pcr/solve/solve_summary.hpp"
+
+namespace pcr {
+
+struct KinematicsOptions {
+  AssemblyOptions assembly;
+  SolverKind solver = SolverKind::Newton;  ///< FK only; IK picks Newton or Ipopt as described above
+  double tolerance = 1e-10;                ///< max-abs of the dimensionless residuals
+  int max_iterations = 100;
+  int centerline_points = 21;  ///< points per rod in the results
+};
+
+struct RodResult {
+  std::string name;
+  double length = 0.0;
+  /// n(0), m(0): the wrench the rod exerts on its start link (world frame, moment about the end point).
+  Vec3 base_force = Vec3::Zero(), base_moment = Vec3::Zero();
+  /// n(L), m(L): the wrench the end link exerts on the rod.
+  Vec3 tip_force = Vec3::Zero(), tip_moment = Vec3::Zero();
+  /// Axial force at the feed point n(0) . d3(0) (positive in tension): minus the actuator's push.
+  double axial_force = 0.0;
+  std::vector<Vec3> centerline;
+};
+
+struct RobotSolution {
+  SolveSummary summary;
+  VecX inputs;                 ///< in the model's input order
+  std::vector<Pose> platforms; ///< in the model's platform order
+  std::vector<RodResult> rods;
+};
+
+class ForwardKinematics {
+ public:
+  explicit ForwardKinematics(std::shared_ptr<const RobotModel> model, const KinematicsOptions& options = {});
+  /// Solves for the given inputs (model order); throws InputError for a wrong size or out-of-bounds value.
+  RobotSolution solve(const VecX& inputs);
+  const RobotAssembly& assembly() const { return assembly_; }
+  /// The assembly's variables at the last converged solution.
+  const VecX& state() const { return x_; }
+  bool has_solution() const { return has_solution_; }
+
+  /// d(platform poses)/d(inputs) at the last solution: 6 rows per platform [dx (3), dtheta (3)].
+  MatX input_jacobian() const;
+  /// d(pose of `platform`)/d(external wrench on it) at the last solution (6 x 6): columns are a
+  /// force (3) at the platform origin and a torque (3), world frame.
+  MatX compliance(int platform) const;
+
+ private:
+  SolveSummary solve_once(VecX& x);
+  RobotAssembly assembly_;
+  KinematicsOptions options_;
+  VecX x_;
+  bool has_solution_ = false;
+  struct Solvers;
+  std::shared_ptr<Solvers> solvers_;
+};
+
+/// A target on a link carried by a platform.
+struct LinkTarget {
+  std::string link;
+  enum class Mode { Pose, Position, Orientation } mode = Mode::Pose;
+  Pose pose;
+};
+
+class InverseKinematics {
+ public:
+  /// targets fix which links are targeted and how; their poses can change at every solve.
+  InverseKinematics(std::shared_ptr<const RobotModel> model, const std::vector<LinkTarget>& targets,
+                    const KinematicsOptions& options = {});
+  /// Solves for target poses (same order as the constructor's targets), warm-started from the
+  /// previous solution. reference: inputs to stay close to (default: the previous solution's).
+  RobotSolution solve(const std::vector<Pose>& target_poses, const VecX* reference = nullptr);
+  const RobotAssembly& assembly() const { return assembly_; }
+  const VecX& state() const { return x_; }
+  /// Whether the targets fix every degree of freedom (square system).
+  bool square() const { return square_; }
+
+ private:
+  RobotAssembly assembly_;
+  KinematicsOptions options_;
+  std::vector<VariableId> target_variables_;
+  std::vector<LinkTarget> targets_;
+  VecX x_;
+  bool square_ = false;
+  struct Solvers;
+  std::shared_ptr<Solvers> solvers_;
+};
+
+/// Results (poses, rods, wrenches) read from the assembly's variables x.
+RobotSolution read_solution(const RobotAssembly& assembly, const VecX& x, int centerline_points);
+
+}  // namespace pcr

@@ -1,0 +1,68 @@
+#pragma once
+// The multibody system of a robot (DESIGN.md §3) as one Problem:
+//   unknowns  — per rod: control points (+ length), per platform: pose [x (3), Q (4)], per moving
+//               URDF joint: its value;
+//   equations — per rod: its collocation equations; per attached rod end: the 7 coupling equations
+//               of its kind (the rod end frame = link pose * attachment frame); per free rod end: its
+//               dead loads; per platform: force and moment balance + |Q|^2 = 1.
+// Actuation inputs (rod lengths, joint values) are variable blocks too: fixed for forward
+// kinematics, free within their bounds for inverse kinematics.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "pcr/robots/robot_model.hpp"
+#include "pcr/rods/collocation_rod.hpp"
+#include "pcr/solve/problem.hpp"
+
+namespace pcr {
+
+struct AssemblyOptions {
+  /// Discretisation of rods that carry no hints in the model (formulation "auto" = mixed: it does
+  /// not lock for slender rods, DESIGN.md §2).
+  RodDiscretization discretization{RodFormulation::Mixed, 4, 4};
+  /// Use the model's per-rod discretisation hints where given.
+  bool use_model_hints = true;
+};
+
+class RobotAssembly {
+ public:
+  RobotAssembly(std::shared_ptr<const RobotModel> model, const AssemblyOptions& options = {});
+
+  const RobotModel& model() const { return *model_; }
+  const std::shared_ptr<const RobotModel>& model_ptr() const { return model_; }
+  const Problem& problem() const { return problem_; }
+  Problem& problem() { return problem_; }
+
+  int num_rods() const { return static_cast<int>(rods_.size()); }
+  const CollocationRod& rod(int i) const { return *rods_[i]; }
+  const RodVariables& rod_variables(int i) const { return rod_variables_[i]; }
+  VariableId platform_variable(int platform) const { return platform_variables_[platform]; }
+  /// Variable block (size 1) of model input i (a rod length or a joint value).
+  VariableId input_variable(int input) const { return input_variables_[input]; }
+  /// Representative scales: the longest rod [m], and the largest rod force / moment scale.
+  double length_scale() const { return length_scale_; }
+  double force_scale() const { return force_scale_; }
+  double moment_scale() const { return moment_scale_; }
+
+  /// Initial guess: platforms at their initial poses, each rod a cubic Hermite curve from its start
+  /// frame to its end frame (straight when free), inputs at their defaults.
+  VecX initial_guess() const;
+  VecX inputs(const VecX& x) const;
+  /// Writes input values into x.
+  void set_inputs(VecX& x, const VecX& inputs) const;
+  Pose platform_pose(const VecX& x, int platform) const;
+  /// Fixes (forward kinematics) or frees with the model's bounds (inverse kinematics) the inputs.
+  void fix_inputs(const VecX& inputs);
+  void free_inputs();
+
+ private:
+  std::shared_ptr<const RobotModel> model_;
+  Problem problem_;
+  std::vector<std::shared_ptr<const CollocationRod>> rods_;
+  std::vector<RodVariables> rod_variables_;
+  std::vector<VariableId> platform_variables_, joint_variables_, input_variables_;
+  double length_scale_ = 1.0, force_scale_ = 1.0, moment_scale_ = 1.0;
+};
+
+}  // namespace pcr

@@ -1,0 +1,171 @@
+#include "robot_blocks.hpp"
+
+#include "pcr/math/dual.hpp"
+#include "pcr/math/so3.hpp"
+#include "pcr/rods/collocation/end_equations.hpp"
+
+namespace pcr::assembly {
+using namespace collocation;
+
+namespace {
+
+std::vector<VariableId> concat(std::vector<VariableId> a, const std::vector<VariableId>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+using RowMap = Eigen::Map<RowMajorMatX>;
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------------
+CouplingBlock::CouplingBlock(const std::string& name, RodEndEvaluator end, LinkFrame frame, RodEndKind kind,
+                             const PointConstants& scales)
+    : ResidualBlock(std::string("coupling.") + to_string(kind), name, 7, concat(end.variables(), frame.variables)),
+      end_(std::move(end)), frame_(std::move(frame)), kind_(kind), scales_(scales),
+      end_blocks_(static_cast<int>(end_.variables().size())) {}
+
+void CouplingBlock::evaluate(const double* const* values, double* residual, double* const* jacobians) const {
+  RodEndVector y;
+  std::vector<MatX> dy;
+  end_.evaluate(values, y, jacobians ? &dy : nullptr);
+  Vec7 zl;
+  MatX dz;
+  frame_.evaluate(values + end_blocks_, zl, jacobians ? &dz : nullptr);
+  using D = Dual<20>;
+  Eigen::Matrix<D, 20, 1> z;
+  for (int k = 0; k < 13; ++k) z[k] = D::variable(y[k], k);
+  for (int k = 0; k < 7; ++k) z[13 + k] = D::variable(zl[k], 13 + k);
+  const V3<D> x = z.segment<3>(13);
+  const V4<D> Q = z.segment<4>(16);
+  const M3<D> RQ = rotation(Q);
+  EndTarget<D> t;
+  t.position = x + RQ * frame_.offset.position.cast<D>();
+  t.orientation = quat_product<D>(Q, frame_.offset.orientation.cast<D>());
+  t.frame = RQ * frame_.offset.rotation().cast<D>();
+  D r[7];
+  end_conditions<D>(kind_, t, EndLoads{}, scales_, z.segment<3>(0), z.segment<4>(3), z.segment<3>(7),
+                    z.segment<3>(10), r);
+  for (int i = 0; i < 7; ++i) residual[i] = r[i].a;
+  if (!jacobians) return;
+  Eigen::Matrix<double, 7, 20> dr;
+  for (int i = 0; i < 7; ++i) dr.row(i) = r[i].v.transpose();
+  for (int k = 0; k < end_blocks_; ++k)
+    if (jacobians[k]) RowMap(jacobians[k], 7, dy[k].cols()) = dr.leftCols<13>() * dy[k];
+  int column = 0;
+  for (size_t k = 0; k < frame_.variables.size(); ++k) {
+    const int size = frame_.kind == LinkFrame::Kind::Platform ? 7 : 1;
+    if (jacobians[end_blocks_ + k]) RowMap(jacobians[end_blocks_ + k], 7, size) = dr.rightCols<7>() * dz.middleCols(column, size);
+    column += size;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------------
+namespace {
+std::vector<VariableId> balance_variables(VariableId platform, const std::vector<PlatformRodEnd>& ends) {
+  std::vector<VariableId> v{platform};
+  for (const PlatformRodEnd& e : ends) v = concat(v, e.end.variables());
+  return v;
+}
+}  // namespace
+
+PlatformBalanceBlock::PlatformBalanceBlock(const std::string& name, VariableId platform, std::vector<PlatformRodEnd> ends,
+                                           std::vector<PlatformLoad> loads, double mass, const Vec3& center_of_mass,
+                                           const Vec3& gravity, double force_scale, double moment_scale)
+    : ResidualBlock("platform.balance", name, 7, balance_variables(platform, ends)), ends_(std::move(ends)),
+      loads_(std::move(loads)), mass_(mass), com_(center_of_mass), gravity_(gravity), force_scale_(force_scale),
+      moment_scale_(moment_scale) {}
+
+void PlatformBalanceBlock::evaluate(const double* const* values, double* residual, double* const* jacobians) const {
+  const Eigen::Map<const Vec7> pose(values[0]);
+  const Vec3 x = pose.head<3>();
+  const Quat Q = pose.tail<4>();
+  Mat3 R;
+  QuatRotationJacobian dR;
+  rotation_matrix_derivatives(Q, R, dR);
+  const Vec3 weight = mass_ * gravity_;
+  Vec3 force = weight, moment = (R * com_).cross(weight);
+  Eigen::Matrix<double, 3, 4> dmoment_dQ;
+  for (int k = 0; k < 4; ++k) dmoment_dQ.col(k) = (dR[k] * com_).cross(weight);
+  for (const PlatformLoad& l : loads_) {
+    force += l.force;
+    moment += l.torque + (R * l.point).cross(l.force);
+    for (int k = 0; k < 4; ++k) dmoment_dQ.col(k) += (dR[k] * l.point).cross(l.force);
+  }
+  Mat3 dmoment_dx = Mat3::Zero();
+  int block = 1;
+  std::vector<MatX> dy;
+  for (const PlatformRodEnd& e : ends_) {
+    RodEndVector y;
+    e.end.evaluate(values + block, y, jacobians ? &dy : nullptr);
+    const Vec3 p = y.segment<3>(0), n = y.segment<3>(7), m = y.segment<3>(10);
+    force -= e.sigma * n;
+    moment -= e.sigma * (m + (p - x).cross(n));
+    if (jacobians) {
+      // d/dp = sigma hat(n), d/dn = -sigma hat(p - x), d/dm = -sigma I;  d/dx = -sigma hat(n).
+      Eigen::Matrix<double, 7, 13> dr_dy = Eigen::Matrix<double, 7, 13>::Zero();
+      dr_dy.block<3, 3>(0, 7) = -e.sigma * Mat3::Identity() / force_scale_;
+      dr_dy.block<3, 3>(3, 0) = e.sigma * hat(n) / moment_scale_;
+      dr_dy.block<3, 3>(3, 7) = -e.sigma * hat(p - x) / moment_scale_;
+      dr_dy.block<3, 3>(3, 10) = -e.sigma * Mat3::Identity() / moment_scale_;
+      dmoment_dx -= e.sigma * hat(n);
+      for (size_t k = 0; k < dy.size(); ++k)
+        if (jacobians[block + k]) RowMap(jacobians[block + k], 7, dy[k].cols()) = dr_dy * dy[k];
+    }
+    block += static_cast<int>(e.end.variables().size());
+  }
+  Eigen::Map<Eigen::Matrix<double, 7, 1>> r(residual);
+  r.head<3>() = force / force_scale_;
+  r.segment<3>(3) = moment / moment_scale_;
+  r[6] = Q.squaredNorm() - 1.0;
+  if (jacobians && jacobians[0]) {
+    RowMap J(jacobians[0], 7, 7);
+    J.setZero();
+    J.block<3, 3>(3, 0) = dmoment_dx / moment_scale_;
+    J.block<3, 4>(3, 3) = dmoment_dQ / moment_scale_;
+    J.block<1, 4>(6, 3) = 2.0 * Q.transpose();
+  }
+}
+
+// ---------------------------------------------------------------------------------------------------
+namespace {
+int target_rows(TargetMode mode) { return mode == TargetMode::Pose ? 6 : 3; }
+const char* target_kind(TargetMode mode) {
+  return mode == TargetMode::Pose ? "target.pose" : mode == TargetMode::Position ? "target.position" : "target.orientation";
+}
+}  // namespace
+
+PoseTargetBlock::PoseTargetBlock(const std::string& name, VariableId platform, VariableId target, const Pose& offset,
+                                 TargetMode mode, double length_scale)
+    : ResidualBlock(target_kind(mode), name, target_rows(mode), {platform, target}), offset_(offset), mode_(mode),
+      length_scale_(length_scale) {}
+
+void PoseTargetBlock::evaluate(const double* const* values, double* residual, double* const* jacobians) const {
+  using D = Dual<14>;
+  Eigen::Matrix<D, 14, 1> z;
+  for (int k = 0; k < 7; ++k) {
+    z[k] = D::variable(values[0][k], k);
+    z[7 + k] = D::variable(values[1][k], 7 + k);
+  }
+  const V3<D> x = z.segment<3>(0), xt = z.segment<3>(7);
+  const V4<D> Q = z.segment<4>(3), Qt = z.segment<4>(10);
+  D r[6];
+  int rows = 0;
+  if (mode_ != TargetMode::Orientation) {
+    const V3<D> xf = x + rotation(Q) * offset_.position.cast<D>();
+    for (int i = 0; i < 3; ++i) r[rows++] = (xf[i] - xt[i]) / length_scale_;
+  }
+  if (mode_ != TargetMode::Position) {
+    const V4<D> Qf = quat_product<D>(Q, offset_.orientation.cast<D>());
+    const V3<D> e = conj_product_vec<D>(Qt, Qf) * 2.0;
+    for (int i = 0; i < 3; ++i) r[rows++] = e[i];
+  }
+  for (int i = 0; i < rows; ++i) {
+    residual[i] = r[i].a;
+    for (int b = 0; b < 2; ++b)
+      if (jacobians && jacobians[b])
+        for (int k = 0; k < 7; ++k) jacobians[b][i * 7 + k] = r[i].v[7 * b + k];
+  }
+}
+
+}  // namespace pcr::assembly

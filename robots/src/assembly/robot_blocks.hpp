@@ -1,0 +1,77 @@
+#pragma once
+// Residual blocks of the robot assembly (DESIGN.md §3; internal header of pcr::robots):
+//  - CouplingBlock: a rod end held in a link frame (the 7 end equations of its coupling kind, with
+//    the target frame = link pose * attachment, DESIGN.md §1);
+//  - PlatformBalanceBlock: force and moment balance of a platform about its origin, and |Q|^2 = 1;
+//  - PoseTargetBlock: IK target on a platform-carried frame (position and/or orientation).
+#include <vector>
+
+#include "link_frame.hpp"
+#include "pcr/rods/collocation/equations.hpp"
+#include "pcr/rods/rod_end.hpp"
+
+namespace pcr::assembly {
+
+class CouplingBlock final : public ResidualBlock {
+ public:
+  CouplingBlock(const std::string& name, RodEndEvaluator end, LinkFrame frame, RodEndKind kind,
+                const collocation::PointConstants& scales);
+  void evaluate(const double* const* values, double* residual, double* const* jacobians) const override;
+
+ private:
+  RodEndEvaluator end_;
+  LinkFrame frame_;
+  RodEndKind kind_;
+  collocation::PointConstants scales_;
+  int end_blocks_;
+  std::vector<int> sizes_;
+};
+
+/// One rod end acting on a platform; sigma = +1 for a rod's s = L end, -1 for its s = 0 end.
+struct PlatformRodEnd {
+  RodEndEvaluator end;
+  double sigma;
+};
+
+/// A dead wrench on the platform: force at `point` (platform frame), torque; world frame vectors.
+struct PlatformLoad {
+  Vec3 point = Vec3::Zero(), force = Vec3::Zero(), torque = Vec3::Zero();
+};
+
+class PlatformBalanceBlock final : public ResidualBlock {
+ public:
+  /// Rows: force balance / force_scale (3), moment balance about the platform origin / moment_scale
+  /// (3), |Q|^2 - 1 (1):
+  ///   F_ext + m g - sum sigma n_end = 0
+  ///   M_ext + sum (R r_load) x F_load + (R c) x m g - sum sigma (m_end + (p_end - x) x n_end) = 0.
+  PlatformBalanceBlock(const std::string& name, VariableId platform, std::vector<PlatformRodEnd> ends,
+                       std::vector<PlatformLoad> loads, double mass, const Vec3& center_of_mass, const Vec3& gravity,
+                       double force_scale, double moment_scale);
+  void evaluate(const double* const* values, double* residual, double* const* jacobians) const override;
+
+ private:
+  std::vector<PlatformRodEnd> ends_;
+  std::vector<PlatformLoad> loads_;
+  double mass_;
+  Vec3 com_, gravity_;
+  double force_scale_, moment_scale_;
+};
+
+enum class TargetMode { Pose, Position, Orientation };
+
+/// IK target: (x_f - x_t) / length_scale (3 rows, unless orientation only) and
+/// 2 vec(conj(Q_t) (x) Q_f) (3 rows, unless position only), where (x_f, Q_f) = platform pose * offset
+/// and the target (x_t, Q_t) is a variable block of its own (fixed by the IK at each solve).
+class PoseTargetBlock final : public ResidualBlock {
+ public:
+  PoseTargetBlock(const std::string& name, VariableId platform, VariableId target, const Pose& offset, TargetMode mode,
+                  double length_scale);
+  void evaluate(const double* const* values, double* residual, double* const* jacobians) const override;
+
+ private:
+  Pose offset_;
+  TargetMode mode_;
+  double length_scale_;
+};
+
+}  // namespace pcr::assembly

@@ -1,0 +1,348 @@
+#include "pcr/robots/kinematics.hpp"
+
+#include <chrono>
+#include <sstream>
+
+#include <Eigen/SparseLU>
+
+#include "../assembly/robot_blocks.hpp"
+#include "input_objective.hpp"
+#include "pcr/core/error.hpp"
+#include "pcr/math/quaternion.hpp"
+#include "pcr/solve/ipopt_solver.hpp"
+#include "pcr/solve/newton_solver.hpp"
+
+namespace pcr {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+NewtonOptions newton_options(const KinematicsOptions& o) {
+  NewtonOptions n;
+  n.tolerance = o.tolerance;
+  n.max_iterations = o.max_iterations;
+  return n;
+}
+
+IpoptOptions ipopt_options(const KinematicsOptions& o) {
+  IpoptOptions i;
+  i.tolerance = o.tolerance;
+  i.constraint_tolerance = o.tolerance;
+  i.max_iterations = 3000;
+  return i;
+}
+
+/// Columns of the free (not fixed) variables, in order.
+std::vector<int> free_columns(const Problem& problem) {
+  std::vector<int> cols;
+  for (int v = 0; v < problem.num_variable_blocks(); ++v) {
+    if (problem.variable_fixed(v)) continue;
+    const VariableBlock& b = problem.variable(v);
+    for (int k = 0; k < b.size; ++k) cols.push_back(b.offset + k);
+  }
+  return cols;
+}
+
+/// Solves J_free dX = -rhs for the free columns (implicit function theorem); returns dX over all
+/// variables (zero rows for fixed ones), one column per rhs column.
+MatX implicit_derivative(const Problem& problem, const VecX& x, const MatX& rhs) {
+  VecX c;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> J;
+  problem.evaluate_residuals_and_jacobian(x, c, J);
+  const std::vector<int> cols = free_columns(problem);
+  std::vector<int> position(problem.num_variables(), -1);
+  for (size_t k = 0; k < cols.size(); ++k) position[cols[k]] = static_cast<int>(k);
+  std::vector<Eigen::Triplet<double>> t;
+  for (int r = 0; r < J.outerSize(); ++r)
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(J, r); it; ++it)
+      if (position[it.col()] >= 0) t.emplace_back(r, position[it.col()], it.value());
+  Eigen::SparseMatrix<double> Jf(J.rows(), static_cast<int>(cols.size()));
+  Jf.setFromTriplets(t.begin(), t.end());
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+  lu.compute(Jf);
+  require(lu.info() == Eigen::Success, "derivatives: the assembled Jacobian is singular at this configuration");
+  const MatX dfree = lu.solve(-rhs);
+  MatX out = MatX::Zero(problem.num_variables(), rhs.cols());
+  for (size_t k = 0; k < cols.size(); ++k) out.row(cols[k]) = dfree.row(k);
+  return out;
+}
+
+/// 6 rows [dx; dtheta_world] of a platform from dX (its 7 rows [dx; dQ]): dtheta = 2 vec(dQ (x) conj(Q)).
+MatX platform_rows(const RobotAssembly& a, const VecX& x, int platform, const MatX& dX) {
+  const int o = a.problem().variable(a.platform_variable(platform)).offset;
+  const Quat Q = x.segment<4>(o + 3);
+  MatX rows(6, dX.cols());
+  for (int c = 0; c < dX.cols(); ++c) {
+    rows.block<3, 1>(0, c) = dX.block<3, 1>(o, c);
+    const Quat dQ = dX.block<4, 1>(o + 3, c);
+    rows.block<3, 1>(3, c) = 2.0 * quat_multiply(dQ, quat_conjugate(Q)).tail<3>() / Q.squaredNorm();
+  }
+  return rows;
+}
+
+bool finite_solution(const VecX& x) { return x.allFinite(); }
+
+}  // namespace
+
+RobotSolution read_solution(const RobotAssembly& a, const VecX& x, int centerline_points) {
+  RobotSolution s;
+  s.inputs = a.inputs(x);
+  for (size_t p = 0; p < a.model().platforms().size(); ++p) s.platforms.push_back(a.platform_pose(x, static_cast<int>(p)));
+  for (int i = 0; i < a.num_rods(); ++i) {
+    const CollocationRod& rod = a.rod(i);
+    const RodVariables& v = a.rod_variables(i);
+    RodResult r;
+    r.name = rod.model().name;
+    r.length = rod.length(x, v);
+    const RodState b = rod.state_at(x, v, 0.0), t = rod.state_at(x, v, r.length);
+    r.base_force = b.force;
+    r.base_moment = b.moment;
+    r.tip_force = t.force;
+    r.tip_moment = t.moment;
+    r.axial_force = b.force.dot(b.rotation.col(2));
+    for (const RodState& st : rod.sample(x, v, std::max(2, centerline_points))) r.centerline.push_back(st.position);
+    s.rods.push_back(r);
+  }
+  return s;
+}
+
+// ---------------------------------------------------------------------------------------------------
+struct ForwardKinematics::Solvers {
+  std::unique_ptr<NewtonSolver> newton;
+  std::unique_ptr<IpoptSolver> ipopt;
+};
+
+ForwardKinematics::ForwardKinematics(std::shared_ptr<const RobotModel> model, const KinematicsOptions& options)
+    : assembly_(std::move(model), options.assembly), options_(options), solvers_(std::make_shared<Solvers>()) {
+  x_ = assembly_.initial_guess();
+}
+
+SolveSummary ForwardKinematics::solve_once(VecX& x) {
+  if (options_.solver == SolverKind::Newton) {
+    if (!solvers_->newton) solvers_->newton = std::make_unique<NewtonSolver>(assembly_.problem(), newton_options(options_));
+    return solvers_->newton->solve(x);
+  }
+  if (!solvers_->ipopt) solvers_->ipopt = std::make_unique<IpoptSolver>(assembly_.problem(), ipopt_options(options_));
+  return solvers_->ipopt->solve(x);
+}
+
+RobotSolution ForwardKinematics::solve(const VecX& inputs) {
+  const auto start = Clock::now();
+  assembly_.fix_inputs(inputs);  // validates size and bounds
+  VecX x = x_;
+  assembly_.set_inputs(x, inputs);
+  SolveSummary summary = solve_once(x);
+  int iterations = summary.iterations;
+  if (!summary.converged()) {
+    // Continuation in the inputs from the last converged state (or, on a cold start, from the
+    // model's default inputs, solved first).
+    VecX x_start = x_;
+    if (!has_solution_) {
+      const VecX defaults = assembly_.model().default_input_values();
+      assembly_.fix_inputs(defaults);
+      x_start = assembly_.initial_guess();
+      const SolveSummary s0 = solve_once(x_start);
+      iterations += s0.iterations;
+      if (!s0.converged()) x_start.resize(0);
+    }
+    if (x_start.size() > 0) {
+      const VecX u0 = assembly_.inputs(x_start);
+      double t = 0.0, step = 0.5;
+      VecX xc = x_start;
+      SolveSummary last;
+      int steps = 0;
+      while (t < 1.0 && step > 1e-4 && steps < 200) {
+        const double target = std::min(1.0, t + step);
+        const VecX u = u0 + target * (inputs - u0);
+        assembly_.fix_inputs(u);
+        VecX trial = xc;
+        assembly_.set_inputs(trial, u);
+        last = solve_once(trial);
+        iterations += last.iterations;
+        ++steps;
+        if (last.converged()) {
+          xc = trial;
+          t = target;
+          step *= 1.5;
+        } else {
+          step *= 0.5;
+        }
+      }
+      if (t >= 1.0 && last.converged()) {
+        x = xc;
+        summary = last;
+        summary.message = "converged by continuation in the inputs (" + std::to_string(steps) + " steps)";
+      } else {
+        summary.message += "; continuation in the inputs stopped at t = " + std::to_string(t);
+      }
+    }
+    assembly_.fix_inputs(inputs);
+  }
+  summary.iterations = iterations;
+  summary.wall_time_seconds = seconds_since(start);
+  if (summary.converged() && finite_solution(x)) {
+    x_ = x;
+    has_solution_ = true;
+  } else if (summary.converged()) {
+    summary.status = SolveStatus::Failed;
+    summary.message = "non-finite solution";
+  }
+  RobotSolution out = read_solution(assembly_, summary.converged() ? x_ : (x.allFinite() ? x : x_),
+                                    options_.centerline_points);
+  out.summary = summary;
+  return out;
+}
+
+MatX ForwardKinematics::input_jacobian() const {
+  require(has_solution_, "input_jacobian: no converged forward kinematics solution yet");
+  const Problem& problem = assembly_.problem();
+  VecX c;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> J;
+  problem.evaluate_residuals_and_jacobian(x_, c, J);
+  const int m = static_cast<int>(assembly_.model().inputs().size());
+  MatX rhs = MatX::Zero(problem.num_rows(), m);
+  for (int i = 0; i < m; ++i) rhs.col(i) = J.col(problem.variable(assembly_.input_variable(i)).offset);
+  const MatX dX = implicit_derivative(problem, x_, rhs);
+  const int np = static_cast<int>(assembly_.model().platforms().size());
+  MatX out(6 * np, m);
+  for (int p = 0; p < np; ++p) out.middleRows(6 * p, 6) = platform_rows(assembly_, x_, p, dX);
+  return out;
+}
+
+MatX ForwardKinematics::compliance(int platform) const {
+  require(has_solution_, "compliance: no converged forward kinematics solution yet");
+  require(platform >= 0 && platform < static_cast<int>(assembly_.model().platforms().size()), "compliance: platform index ",
+          platform, " out of range");
+  const Problem& problem = assembly_.problem();
+  // The balance rows of the platform: force / F0 (3), moment / M0 (3); an external wrench (f, tau) at
+  // the origin adds (f / F0, tau / M0) to them.
+  int balance = -1;
+  for (int b = 0; b < problem.num_residual_blocks(); ++b)
+    if (problem.residual(b).kind() == "platform.balance" &&
+        problem.residual(b).name() == assembly_.model().platforms()[platform].name)
+      balance = b;
+  require(balance >= 0, "compliance: no balance block for platform ", platform);
+  const int row = problem.row_offset(balance);
+  MatX dR = MatX::Zero(problem.num_rows(), 6);
+  for (int k = 0; k < 3; ++k) {
+    dR(row + k, k) = 1.0 / assembly_.force_scale();
+    dR(row + 3 + k, 3 + k) = 1.0 / assembly_.moment_scale();
+  }
+  return platform_rows(assembly_, x_, platform, implicit_derivative(problem, x_, dR));
+}
+
+// ---------------------------------------------------------------------------------------------------
+struct InverseKinematics::Solvers {
+  Problem square;     // targets as equations, inputs free without bounds (Newton)
+  Problem optimised;  // + bounds and the input-distance objective (Ipopt)
+  std::unique_ptr<NewtonSolver> newton;
+  std::unique_ptr<IpoptSolver> ipopt;
+  VariableId reference = -1;
+};
+
+InverseKinematics::InverseKinematics(std::shared_ptr<const RobotModel> model, const std::vector<LinkTarget>& targets,
+                                     const KinematicsOptions& options)
+    : assembly_(std::move(model), options.assembly), options_(options), targets_(targets),
+      solvers_(std::make_shared<Solvers>()) {
+  const RobotModel& m = assembly_.model();
+  require(!targets.empty(), "inverse kinematics: no target given");
+  Problem& problem = assembly_.problem();
+  const std::vector<Pose> identity(m.platforms().size());
+  const VecX q0 = m.default_joint_values();
+  for (const LinkTarget& t : targets) {
+    const int link = m.link_index(t.link);
+    const int platform = m.carrying_platform(link);
+    require(platform >= 0, "inverse kinematics: target link '", t.link, "' is not carried by a platform");
+    const Pose offset = m.link_pose(link, q0, identity);
+    VecX z(7);
+    z << t.pose.position, t.pose.orientation.normalized();
+    const VariableId tv = problem.add_variable_block("target." + t.link, z);
+    problem.fix_variable(tv, z);
+    target_variables_.push_back(tv);
+    const assembly::TargetMode mode = t.mode == LinkTarget::Mode::Pose       ? assembly::TargetMode::Pose
+                                      : t.mode == LinkTarget::Mode::Position ? assembly::TargetMode::Position
+                                                                             : assembly::TargetMode::Orientation;
+    problem.add_residual_block(std::make_shared<assembly::PoseTargetBlock>(
+        "target." + t.link, assembly_.platform_variable(platform), tv, offset, mode, assembly_.length_scale()));
+  }
+  // Square problem: inputs free (no bounds: Newton checks them afterwards).
+  const int n_in = static_cast<int>(m.inputs().size());
+  for (int i = 0; i < n_in; ++i)
+    problem.set_variable_bounds(assembly_.input_variable(i), VecX::Constant(1, -INFINITY), VecX::Constant(1, INFINITY));
+  int free_unknowns = 0;
+  for (int v = 0; v < problem.num_variable_blocks(); ++v)
+    if (!problem.variable_fixed(v)) free_unknowns += problem.variable(v).size;
+  square_ = free_unknowns == problem.num_rows();
+  solvers_->square = problem;
+  // Optimisation problem: bounds and objective.
+  Problem& opt = solvers_->optimised;
+  opt = problem;
+  std::vector<VariableId> inputs;
+  VecX scales(n_in);
+  for (int i = 0; i < n_in; ++i) {
+    const ActuationInput& in = m.inputs()[i];
+    opt.set_variable_bounds(assembly_.input_variable(i), VecX::Constant(1, in.lower), VecX::Constant(1, in.upper));
+    inputs.push_back(assembly_.input_variable(i));
+    scales[i] = in.kind == ActuationInput::Kind::RodLength ? assembly_.length_scale() : 1.0;
+  }
+  solvers_->reference = opt.add_variable_block("ik.reference", m.default_input_values());
+  opt.fix_variable(solvers_->reference, m.default_input_values());
+  opt.add_objective_term(std::make_shared<kinematics::InputDistance>(inputs, solvers_->reference, scales));
+  x_ = solvers_->square.initial_values();
+}
+
+RobotSolution InverseKinematics::solve(const std::vector<Pose>& target_poses, const VecX* reference) {
+  const auto start = Clock::now();
+  require(target_poses.size() == targets_.size(), "inverse kinematics: ", target_poses.size(), " target poses for ",
+          targets_.size(), " targets");
+  const RobotModel& m = assembly_.model();
+  for (size_t k = 0; k < targets_.size(); ++k) {
+    require(target_poses[k].position.allFinite() && target_poses[k].orientation.allFinite() &&
+                target_poses[k].orientation.norm() > 0,
+            "inverse kinematics: target for '", targets_[k].link, "' is not a finite pose");
+    VecX z(7);
+    z << target_poses[k].position, target_poses[k].orientation.normalized();
+    solvers_->square.fix_variable(target_variables_[k], z);
+    solvers_->optimised.fix_variable(target_variables_[k], z);
+  }
+  const VecX previous_inputs = assembly_.inputs(x_);
+  const VecX ref = reference ? *reference : previous_inputs;
+  require(ref.size() == static_cast<int>(m.inputs().size()), "inverse kinematics: reference has ", ref.size(),
+          " values, the model has ", m.inputs().size(), " inputs");
+
+  auto within_bounds = [&](const VecX& u) {
+    for (int i = 0; i < u.size(); ++i)
+      if (u[i] < m.inputs()[i].lower || u[i] > m.inputs()[i].upper) return false;
+    return true;
+  };
+  SolveSummary summary;
+  VecX x = x_;
+  bool done = false;
+  int iterations = 0;
+  if (square_) {
+    if (!solvers_->newton) solvers_->newton = std::make_unique<NewtonSolver>(solvers_->square, newton_options(options_));
+    summary = solvers_->newton->solve(x);
+    iterations += summary.iterations;
+    done = summary.converged() && within_bounds(assembly_.inputs(x));
+  }
+  if (!done) {
+    VecX xo(solvers_->optimised.num_variables());
+    xo.head(x_.size()) = (square_ && summary.converged()) ? x_ : x_;
+    xo.tail(ref.size()) = ref;
+    solvers_->optimised.fix_variable(solvers_->reference, ref);
+    if (!solvers_->ipopt) solvers_->ipopt = std::make_unique<IpoptSolver>(solvers_->optimised, ipopt_options(options_));
+    summary = solvers_->ipopt->solve(xo);
+    iterations += summary.iterations;
+    x = xo.head(x_.size());
+  }
+  summary.iterations = iterations;
+  summary.wall_time_seconds = seconds_since(start);
+  if (summary.converged() && x.allFinite()) x_ = x;
+  RobotSolution out = read_solution(assembly_, summary.converged() ? x_ : (x.allFinite() ? x : x_), options_.centerline_points);
+  out.summary = summary;
+  return out;
+}
+
+}  // namespace pcr

@@ -1,0 +1,39 @@
+#pragma once
+// The quantities at one end of a collocation rod — y = [p (3), q (4), n (3), m (3)] in the world
+// frame — as functions of the rod's variable blocks, with their Jacobians. Coupling and balance
+// blocks of a robot are built on top of this (robots/): they never need to know the formulation.
+// Mixed form: y is the end control point itself (open knot vector: the spline interpolates its end
+// control points). Primal form: p, q from the end control point, n = R K_SE (eps - eps0) and
+// m = R K_BT (kappa - kappa0) from the p+1 end control points and L.
+#include <vector>
+
+#include "pcr/rods/collocation_rod.hpp"
+
+namespace pcr {
+
+using RodEndVector = Eigen::Matrix<double, 13, 1>;
+
+class RodEndEvaluator {
+ public:
+  /// at_tip: the s = L end, else s = 0.
+  RodEndEvaluator(const CollocationRod& rod, const RodVariables& variables, bool at_tip);
+
+  /// Variable blocks y depends on (control points, and L for the primal form).
+  const std::vector<VariableId>& variables() const { return variables_; }
+  bool at_tip() const { return at_tip_; }
+
+  /// values[k]: values of variables()[k]. jacobians: null for values only, else (*jacobians)[k] is
+  /// set to the 13 x size(k) matrix dy / d(block k).
+  void evaluate(const double* const* values, RodEndVector& y, std::vector<MatX>* jacobians) const;
+
+ private:
+  bool at_tip_;
+  bool mixed_;
+  int cp_size_;
+  int count_;  ///< control points touched
+  std::vector<VariableId> variables_;
+  std::vector<double> value_basis_, derivative_basis_;  ///< N_i and N_i' at the end
+  Vec3 k_se_, k_bt_, eps0_, kappa0_;
+};
+
+}  // namespace pcr

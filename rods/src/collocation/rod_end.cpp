@@ -1,0 +1,98 @@
+#include "pcr/rods/rod_end.hpp"
+
+#include "pcr/rods/collocation/equations.hpp"
+#include "pcr/math/dual.hpp"
+#include "pcr/splines/basis.hpp"
+
+namespace pcr {
+using namespace collocation;
+
+RodEndEvaluator::RodEndEvaluator(const CollocationRod& rod, const RodVariables& variables, bool at_tip)
+    : at_tip_(at_tip),
+      mixed_(rod.discretization().formulation == RodFormulation::Mixed),
+      cp_size_(rod.control_point_size()) {
+  const int n = rod.num_control_points(), p = rod.discretization().degree;
+  const double u = at_tip ? 1.0 : 0.0;
+  if (mixed_) {
+    count_ = 1;
+    variables_ = {variables.control_points[at_tip ? n - 1 : 0]};
+    value_basis_ = {1.0};
+    return;
+  }
+  const BasisDerivatives d = basis_derivatives(rod.knots(), u, 1);
+  count_ = p + 1;
+  for (int i = 0; i <= p; ++i) {
+    variables_.push_back(variables.control_points[d.first + i]);
+    value_basis_.push_back(d.values(0, i));
+    derivative_basis_.push_back(d.values(1, i));
+  }
+  variables_.push_back(variables.length);
+  const RodModel& m = rod.model();
+  k_se_ = m.shear_extension_stiffness;
+  k_bt_ = m.bending_torsion_stiffness;
+  m.intrinsic.at(u * m.length, eps0_, kappa0_);
+}
+
+void RodEndEvaluator::evaluate(const double* const* values, RodEndVector& y, std::vector<MatX>* jacobians) const {
+  if (mixed_) {
+    y = Eigen::Map<const RodEndVector>(values[0]);
+    if (jacobians) {
+      jacobians->resize(1);
+      (*jacobians)[0] = MatX::Identity(13, 13);
+    }
+    return;
+  }
+  // Primal: local z = [q (4), q_u (4), p_u (3), L (1)] for the wrench; p, q are the end values.
+  using D = Dual<12>;
+  Eigen::Matrix<double, 12, 1> zv = Eigen::Matrix<double, 12, 1>::Zero();
+  Vec3 p = Vec3::Zero();
+  for (int i = 0; i < count_; ++i) {
+    const Eigen::Map<const Eigen::Matrix<double, 7, 1>> c(values[i]);
+    p += value_basis_[i] * c.head<3>();
+    zv.segment<4>(0) += value_basis_[i] * c.segment<4>(3);
+    zv.segment<4>(4) += derivative_basis_[i] * c.segment<4>(3);
+    zv.segment<3>(8) += derivative_basis_[i] * c.head<3>();
+  }
+  zv[11] = values[count_][0];
+  PointConstants c;
+  c.k_se = k_se_;
+  c.k_bt = k_bt_;
+  c.eps0 = eps0_;
+  c.kappa0 = kappa0_;
+  Eigen::Matrix<D, 12, 1> z;
+  for (int k = 0; k < 12; ++k) z[k] = D::variable(zv[k], k);
+  V3<D> n, m;
+  primal_wrench(z, c, n, m);
+  y.segment<3>(0) = p;
+  y.segment<4>(3) = zv.segment<4>(0);
+  for (int i = 0; i < 3; ++i) {
+    y[7 + i] = n[i].a;
+    y[10 + i] = m[i].a;
+  }
+  if (!jacobians) return;
+  jacobians->assign(count_ + 1, MatX());
+  for (int i = 0; i < count_; ++i) {
+    MatX& J = (*jacobians)[i];
+    J = MatX::Zero(13, 7);
+    J.block<3, 3>(0, 0) = value_basis_[i] * Mat3::Identity();
+    J.block<4, 4>(3, 3) = value_basis_[i] * Eigen::Matrix4d::Identity();
+    for (int r = 0; r < 3; ++r) {
+      for (int k = 0; k < 4; ++k) {
+        J(7 + r, 3 + k) = n[r].v[k] * value_basis_[i] + n[r].v[4 + k] * derivative_basis_[i];
+        J(10 + r, 3 + k) = m[r].v[k] * value_basis_[i] + m[r].v[4 + k] * derivative_basis_[i];
+      }
+      for (int k = 0; k < 3; ++k) {
+        J(7 + r, k) = n[r].v[8 + k] * derivative_basis_[i];
+        J(10 + r, k) = m[r].v[8 + k] * derivative_basis_[i];
+      }
+    }
+  }
+  MatX& JL = (*jacobians)[count_];
+  JL = MatX::Zero(13, 1);
+  for (int r = 0; r < 3; ++r) {
+    JL(7 + r, 0) = n[r].v[11];
+    JL(10 + r, 0) = m[r].v[11];
+  }
+}
+
+}  // namespace pcr
