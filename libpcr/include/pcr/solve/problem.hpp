@@ -4,8 +4,14 @@
 // The description is fixed once built; values live in a separate vector x (size num_variables()).
 // The global sparse Jacobian pattern is the union of the blocks' dense (block rows x variable block)
 // patterns, computed once; evaluation writes into it without rebuilding triplets.
+//
+// Thread safety: the const evaluation functions use mutable scratch buffers and a lazily rebuilt pattern
+// cache inside the Problem, so one Problem must not be evaluated from several threads at once (copy it
+// instead: copies are deep and independent).
+#include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/SparseCore>
@@ -24,9 +30,17 @@ struct VariableBlock {
 
 class Problem {
  public:
+  Problem();
+  Problem(const Problem& other);  ///< deep copy (blocks themselves are shared: they are immutable)
+  Problem& operator=(const Problem& other);
+  Problem(Problem&&) noexcept;
+  Problem& operator=(Problem&&) noexcept;
+  ~Problem();
+
   /// Adds a variable block; bounds default to +-infinity. Returns its id.
   VariableId add_variable_block(const std::string& name, const VecX& initial);
-  VariableId add_variable_block(const std::string& name, const VecX& initial, const VecX& lower, const VecX& upper);
+  VariableId add_variable_block(const std::string& name, const VecX& initial, const VecX& lower,
+                                const VecX& upper);
   /// Adds a residual block; its variables must exist. Returns its id.
   ResidualId add_residual_block(std::shared_ptr<const ResidualBlock> block);
   void add_objective_term(std::shared_ptr<const ObjectiveTerm> term);
@@ -35,8 +49,10 @@ class Problem {
   void set_residual_active(ResidualId id, bool active);
   void set_variable_group(VariableId id, int group);
   void set_variable_bounds(VariableId id, const VecX& lower, const VecX& upper);
-  /// Fixes a variable block at value (lower = upper = value; solvers treat it as a constant).
+  /// Fixes a variable block at value (lower = upper = initial = value; solvers treat it as a constant
+  /// and overwrite its entries of x with value). set_variable_bounds un-fixes it.
   void fix_variable(VariableId id, const VecX& value);
+  bool variable_fixed(VariableId id) const;
 
   int num_variables() const;
   int num_rows() const;  ///< rows of the active residual blocks
@@ -48,13 +64,20 @@ class Problem {
   /// First row of an active residual block in c(x); -1 when inactive.
   int row_offset(ResidualId id) const;
   bool has_objective() const;
+  /// Changes whenever rows, blocks or activity change (solvers re-analyse their pattern when it does).
+  std::uint64_t structure_version() const;
+  /// Non-zeros of the Jacobian pattern of the active rows.
+  int jacobian_nonzeros() const;
+  /// The active residual block owning row (0 <= row < num_rows()).
+  ResidualId residual_at_row(int row) const;
 
   /// Initial values of all variable blocks stacked (size num_variables()).
   VecX initial_values() const;
   /// c(x), size num_rows().
   void evaluate_residuals(const VecX& x, VecX& c) const;
   /// c(x) and its Jacobian in the fixed pattern (J keeps its pattern between calls).
-  void evaluate_residuals_and_jacobian(const VecX& x, VecX& c, Eigen::SparseMatrix<double, Eigen::RowMajor>& J) const;
+  void evaluate_residuals_and_jacobian(const VecX& x, VecX& c,
+                                       Eigen::SparseMatrix<double, Eigen::RowMajor>& J) const;
   /// f(x) and optionally its gradient (size num_variables()).
   double evaluate_objective(const VecX& x, VecX* gradient) const;
 
@@ -64,10 +87,25 @@ class Problem {
   VecX variable_lower() const;
   VecX variable_upper() const;
 
+  /// Unscaled violation of row i: max(l_i - c_i, c_i - u_i, 0); returns its max over all rows
+  /// (+infinity if any c_i is not finite, 0 when there are no rows).
+  double constraint_violation(const VecX& c) const;
+  /// Max violation per residual block kind, kinds in order of first appearance among active blocks.
+  std::vector<std::pair<std::string, double>> violation_by_kind(const VecX& c) const;
+
+  /// True when every active residual block and every objective term provides its Hessian.
+  bool provides_hessian() const;
+  /// Lower triangle (col <= row) of  objective_factor * Hess f(x) + sum_i multipliers[i] Hess c_i(x)
+  /// in a fixed pattern (union of the blocks' dense touched-variable patterns); like J, H keeps its
+  /// pattern between calls. Throws std::logic_error unless provides_hessian().
+  void evaluate_hessian(const VecX& x, double objective_factor, const VecX& multipliers,
+                        Eigen::SparseMatrix<double, Eigen::RowMajor>& H) const;
+
  private:
   struct Impl;
-  std::shared_ptr<Impl> impl_;
+  std::unique_ptr<Impl> impl_;
   void ensure_impl();
+  Impl& impl() const;
 };
 
 }  // namespace pcr

@@ -26,6 +26,21 @@ class ResidualBlock {
   /// num_rows() x size(variables()[k]) array to fill completely (entries not written are undefined).
   virtual void evaluate(const double* const* values, double* residual, double* const* jacobians) const = 0;
 
+  /// Optional size check: the size variables()[k] must have, or -1 (default) for "any". Problem
+  /// validates it when the block is added.
+  virtual int expected_variable_size(int k) const {
+    (void)k;
+    return -1;
+  }
+
+  /// Optional second derivatives (used by Ipopt for exact Hessians when EVERY active block and objective
+  /// term provides them, else limited-memory BFGS). Default: not provided.
+  virtual bool provides_hessian() const { return false; }
+  /// Hessian of sum_i weights[i] c_i(x) with respect to the stacked touched variables (ordered as
+  /// variables(), dimension n = sum of their sizes): a dense row-major symmetric n x n array to fill
+  /// completely. Only called when provides_hessian(); the default throws std::logic_error.
+  virtual void evaluate_hessian(const double* const* values, const double* weights, double* hessian) const;
+
   const std::string& kind() const { return kind_; }
   const std::string& name() const { return name_; }
   int num_rows() const { return num_rows_; }
@@ -50,6 +65,16 @@ class ObjectiveTerm {
   virtual ~ObjectiveTerm() = default;
   /// Returns the term's value; gradients null for value only, else gradients[k] null or size(k).
   virtual double evaluate(const double* const* values, double* const* gradients) const = 0;
+
+  /// As ResidualBlock::expected_variable_size: -1 (default) for "any".
+  virtual int expected_variable_size(int k) const {
+    (void)k;
+    return -1;
+  }
+  /// Optional Hessian of the term over the stacked touched variables (dense row-major symmetric n x n,
+  /// filled completely). Default: not provided (the default evaluate_hessian throws std::logic_error).
+  virtual bool provides_hessian() const { return false; }
+  virtual void evaluate_hessian(const double* const* values, double* hessian) const;
 
   const std::string& name() const { return name_; }
   const std::vector<VariableId>& variables() const { return variables_; }

@@ -13,7 +13,7 @@ const char* to_string(SolveStatus status);
 
 struct SolveSummary {
   SolveStatus status = SolveStatus::Failed;
-  std::string solver;   ///< "ipopt" or "newton" (or another method's name)
+  std::string solver;  ///< "ipopt" or "newton" (or another method's name)
   int iterations = 0;
   double residual_max_abs = 0.0;  ///< unscaled max |c_i(x) - bound| over all active rows
   std::vector<std::pair<std::string, double>> residual_by_kind;  ///< max-abs per residual block kind

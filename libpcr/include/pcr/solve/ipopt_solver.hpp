@@ -1,0 +1,61 @@
+#pragma once
+// Interior-point solve of a Problem with Ipopt (hidden: no Ipopt header here; DESIGN.md §5).
+//   min f(x) (0 without objective terms)  s.t.  c_l <= c(x) <= c_u,  x_l <= x <= x_u.
+// One IpoptApplication is initialised per solver and reused for every solve; with warm_start the
+// previous primal-dual solution seeds the next solve. Fixed variables are eliminated by Ipopt
+// (fixed_variable_treatment make_parameter). After Ipopt returns, the unscaled constraint violation is
+// recomputed here: status Converged only if it is <= constraint_tolerance and x is finite.
+//
+// NOT thread-safe: MUMPS in Ipopt 3.11 keeps global state, so there must be no concurrent Ipopt solves in
+// one process (not even with different IpoptSolver objects).
+#include <memory>
+#include <string>
+
+#include "pcr/core/types.hpp"
+#include "pcr/solve/problem.hpp"
+#include "pcr/solve/solve_summary.hpp"
+
+namespace pcr {
+
+enum class IpoptHessian {
+  ExactWhenAvailable,  ///< exact if Problem::provides_hessian(), else limited-memory BFGS
+  LimitedMemory,
+};
+
+enum class IpoptScaling {
+  None,           ///< nlp_scaling_method none
+  GradientBased,  ///< Ipopt's default: rows/objective with gradients above 100 scaled down
+};
+
+struct IpoptOptions {
+  double tol = 1e-8;                   ///< Ipopt "tol" (scaled overall NLP error)
+  double constraint_tolerance = 1e-8;  ///< Ipopt "constr_viol_tol" and our unscaled acceptance test
+  int max_iterations = 3000;           ///< "max_iter"
+  IpoptHessian hessian = IpoptHessian::ExactWhenAvailable;
+  int print_level = 0;                        ///< "print_level" 0..12
+  bool warm_start = true;                     ///< seed solves after the first with the previous multipliers
+  double warm_start_mu = 1e-6;                ///< "mu_init" for warm-started solves
+  IpoptScaling scaling = IpoptScaling::None;  ///< chosen by bench_solve (README "Solvers")
+  std::string linear_solver = "mumps";        ///< "linear_solver"
+};
+
+class IpoptSolver {
+ public:
+  /// Throws InputError for invalid options or if Ipopt cannot be initialised.
+  IpoptSolver(const Problem& problem, IpoptOptions options = {});
+  ~IpoptSolver();
+  IpoptSolver(const IpoptSolver&) = delete;
+  IpoptSolver& operator=(const IpoptSolver&) = delete;
+
+  /// x: start point in, solution (or last iterate) out, size num_variables().
+  SolveSummary solve(VecX& x);
+  /// Forgets the stored multipliers: the next solve is a cold start.
+  void reset_warm_start();
+  const IpoptOptions& options() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace pcr

@@ -1,0 +1,46 @@
+#pragma once
+// Damped Newton for square, equality-only problems c(x) = c_l (= c_u), no objective, no bounds on the
+// free variables (DESIGN.md §5 "skip what a scene does not need"). Fixed variables are constants.
+//   J dx = -(c(x) - c_l)   (sparse LU: pattern analysed once, numeric factorisation per iteration)
+//   x <- x + alpha dx,  alpha = 1, 1/2, ... until |r(x + alpha dx)|_2 <= (1 - armijo alpha) |r(x)|_2.
+// Converged when max_i |c_i - c_l,i| <= tolerance (unscaled) and x is finite.
+#include <memory>
+
+#include "pcr/core/types.hpp"
+#include "pcr/solve/problem.hpp"
+#include "pcr/solve/solve_summary.hpp"
+
+namespace pcr {
+
+struct NewtonOptions {
+  double tolerance = 1e-10;  ///< max-abs residual for convergence
+  int max_iterations = 50;
+  double armijo = 1e-4;    ///< sufficient decrease factor of the line search
+  double backtrack = 0.5;  ///< step reduction factor
+  double min_step = 1e-8;  ///< line search gives up below this alpha
+  /// Singular / ill-conditioned detection: a step larger than max_step_ratio * (1 + |x|_inf), or a linear
+  /// solve with relative residual |J dx + r| / |r| above linear_residual_limit.
+  double max_step_ratio = 1e10;
+  double linear_residual_limit = 1e-6;
+};
+
+/// Holds the factorisation workspace; solve() allocates nothing after the first call unless the
+/// problem's structure changed. Not thread-safe (one solve at a time per solver and problem).
+class NewtonSolver {
+ public:
+  /// Throws InputError if problem is not square / equality-only / free of objective terms and bounds.
+  NewtonSolver(const Problem& problem, NewtonOptions options = {});
+  ~NewtonSolver();
+  NewtonSolver(const NewtonSolver&) = delete;
+  NewtonSolver& operator=(const NewtonSolver&) = delete;
+
+  /// x: start point in, final iterate out (size num_variables(); fixed entries are set to their values).
+  SolveSummary solve(VecX& x);
+  const NewtonOptions& options() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace pcr

@@ -1,0 +1,231 @@
+// Damped Newton with sparse LU on the free columns (see newton_solver.hpp).
+#include "pcr/solve/newton_solver.hpp"
+
+#include <Eigen/SparseLU>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "pcr/core/error.hpp"
+
+namespace pcr {
+
+namespace {
+using SparseRowMajor = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+using SparseColMajor = Eigen::SparseMatrix<double>;
+
+std::string format(const char* fmt, double a, double b = 0.0) {
+  char buffer[200];
+  std::snprintf(buffer, sizeof buffer, fmt, a, b);
+  return buffer;
+}
+}  // namespace
+
+struct NewtonSolver::Impl {
+  const Problem& problem;
+  NewtonOptions options;
+  std::uint64_t version = 0;  // problem structure the workspace was built for
+
+  std::vector<int> reduced_column;  // global column -> free column, -1 for a fixed one
+  VecX fixed_values;                // value of every fixed column (others unused)
+  VecX target;                      // c_l = c_u of every row
+  SparseRowMajor J;                 // full Jacobian in the problem's pattern
+  SparseColMajor J_free;            // free columns, column-major for SparseLU
+  std::vector<int> value_map;       // J value index -> J_free value index, -1 for fixed columns
+  Eigen::SparseLU<SparseColMajor, Eigen::COLAMDOrdering<int>> lu;
+  VecX c, r, r_trial, x_trial, dx_free, dx, linear_check;
+
+  Impl(const Problem& p, NewtonOptions o) : problem(p), options(o) {}
+  void prepare();
+  void build_free_pattern();
+};
+
+// Validates the problem for Newton and sizes the workspace (only when the structure changed).
+void NewtonSolver::Impl::prepare() {
+  if (version == problem.structure_version()) return;
+  require(!problem.has_objective(), "NewtonSolver: the problem has objective terms (use IpoptSolver)");
+  const int n = problem.num_variables(), m = problem.num_rows();
+  reduced_column.assign(n, -1);
+  fixed_values = VecX::Zero(n);
+  int n_free = 0;
+  for (VariableId v = 0; v < problem.num_variable_blocks(); ++v) {
+    const VariableBlock& b = problem.variable(v);
+    const bool fixed = problem.variable_fixed(v);
+    for (int j = 0; j < b.size; ++j) {
+      if (fixed) {
+        fixed_values[b.offset + j] = b.lower[j];
+        continue;
+      }
+      require(std::isinf(b.lower[j]) && std::isinf(b.upper[j]), "NewtonSolver: variable block '", b.name,
+              "' entry ", j, " has bounds [", b.lower[j], ", ", b.upper[j],
+              "] (Newton ignores bounds; use IpoptSolver)");
+      reduced_column[b.offset + j] = n_free++;
+    }
+  }
+  require(n_free == m, "NewtonSolver: the problem is not square: ", n_free, " free variables, ", m,
+          " active rows");
+  const VecX lower = problem.row_lower(), upper = problem.row_upper();
+  for (int i = 0; i < m; ++i) {
+    if (lower[i] != upper[i] || !std::isfinite(lower[i])) {
+      const ResidualId b = problem.residual_at_row(i);
+      throw_input_error("NewtonSolver: residual block '", problem.residual(b).name(), "' row ",
+                        i - problem.row_offset(b), " is not an equality: bounds [", lower[i], ", ", upper[i],
+                        "]");
+    }
+  }
+  target = lower;
+  c.resize(m);
+  r.resize(m);
+  r_trial.resize(m);
+  linear_check.resize(m);
+  dx_free.resize(m);
+  dx = VecX::Zero(n);
+  x_trial.resize(n);
+  J = SparseRowMajor();
+  value_map.clear();
+  version = problem.structure_version();
+}
+
+// Free-column copy of J's pattern (J must hold the problem's pattern) and its symbolic analysis.
+void NewtonSolver::Impl::build_free_pattern() {
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(J.nonZeros());
+  for (int i = 0; i < J.outerSize(); ++i) {
+    for (SparseRowMajor::InnerIterator it(J, i); it; ++it) {
+      if (reduced_column[it.col()] >= 0) entries.emplace_back(i, reduced_column[it.col()], 0.0);
+    }
+  }
+  J_free.resize(J.rows(), J.rows());
+  J_free.setFromTriplets(entries.begin(), entries.end());
+  J_free.makeCompressed();
+  value_map.assign(J.nonZeros(), -1);
+  for (int i = 0; i < J.outerSize(); ++i) {
+    for (int p = J.outerIndexPtr()[i]; p < J.outerIndexPtr()[i + 1]; ++p) {
+      const int col = reduced_column[J.innerIndexPtr()[p]];
+      if (col < 0) continue;
+      const int* begin = J_free.innerIndexPtr() + J_free.outerIndexPtr()[col];
+      const int* end = J_free.innerIndexPtr() + J_free.outerIndexPtr()[col + 1];
+      value_map[p] = static_cast<int>(std::lower_bound(begin, end, i) - J_free.innerIndexPtr());
+    }
+  }
+  lu.analyzePattern(J_free);
+}
+
+NewtonSolver::NewtonSolver(const Problem& problem, NewtonOptions options)
+    : impl_(std::make_unique<Impl>(problem, options)) {
+  require(options.tolerance > 0.0, "NewtonOptions: tolerance = ", options.tolerance, " <= 0");
+  require(options.max_iterations >= 0, "NewtonOptions: max_iterations = ", options.max_iterations, " < 0");
+  require(options.armijo > 0.0 && options.armijo < 1.0, "NewtonOptions: armijo = ", options.armijo,
+          " not in (0, 1)");
+  require(options.backtrack > 0.0 && options.backtrack < 1.0,
+          "NewtonOptions: backtrack = ", options.backtrack, " not in (0, 1)");
+  require(options.min_step > 0.0 && options.min_step < 1.0, "NewtonOptions: min_step = ", options.min_step,
+          " not in (0, 1)");
+  impl_->prepare();
+}
+
+NewtonSolver::~NewtonSolver() = default;
+const NewtonOptions& NewtonSolver::options() const {
+  return impl_->options;
+}
+
+SolveSummary NewtonSolver::solve(VecX& x) {
+  const auto start_time = std::chrono::steady_clock::now();
+  Impl& w = *impl_;
+  const NewtonOptions& o = w.options;
+  w.prepare();
+  const Problem& problem = w.problem;
+  require(x.size() == problem.num_variables(), "NewtonSolver::solve: x has size ", x.size(), ", expected ",
+          problem.num_variables());
+  for (int j = 0; j < x.size(); ++j) {
+    if (w.reduced_column[j] < 0) x[j] = w.fixed_values[j];
+  }
+
+  SolveSummary summary;
+  summary.solver = "newton";
+  auto finish = [&](SolveStatus status, std::string message) {
+    summary.status = status;
+    summary.message = std::move(message);
+    summary.residual_max_abs = problem.constraint_violation(w.c);
+    summary.residual_by_kind = problem.violation_by_kind(w.c);
+    // Never report a non-finite point as converged.
+    if (summary.status == SolveStatus::Converged &&
+        !(x.allFinite() && std::isfinite(summary.residual_max_abs))) {
+      summary.status = SolveStatus::Diverged;
+    }
+    summary.wall_time_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+    return summary;
+  };
+
+  if (!x.allFinite()) {
+    w.c.setConstant(std::numeric_limits<double>::infinity());
+    return finish(SolveStatus::InvalidInput, "start point is not finite");
+  }
+  problem.evaluate_residuals(x, w.c);
+  w.r = w.c - w.target;
+  for (int iteration = 0;; ++iteration) {
+    summary.iterations = iteration;
+    if (!w.r.allFinite()) return finish(SolveStatus::Diverged, "non-finite residual");
+    const double r_max = w.r.lpNorm<Eigen::Infinity>();
+    if (r_max <= o.tolerance) return finish(SolveStatus::Converged, "");
+    if (iteration >= o.max_iterations) return finish(SolveStatus::MaxIterations, "");
+
+    // Newton direction: J_free dx = -r.
+    problem.evaluate_residuals_and_jacobian(x, w.c, w.J);
+    if (w.value_map.size() != static_cast<size_t>(w.J.nonZeros())) w.build_free_pattern();
+    double* free_values = w.J_free.valuePtr();
+    const double* values = w.J.valuePtr();
+    for (size_t p = 0; p < w.value_map.size(); ++p) {
+      if (w.value_map[p] >= 0) free_values[w.value_map[p]] = values[p];
+    }
+    if (!w.J_free.coeffs().allFinite()) return finish(SolveStatus::Diverged, "non-finite Jacobian entry");
+    w.lu.factorize(w.J_free);
+    if (w.lu.info() != Eigen::Success) {
+      return finish(SolveStatus::Singular, "sparse LU failed: " + w.lu.lastErrorMessage());
+    }
+    w.dx_free = w.lu.solve(w.r);
+    w.dx_free = -w.dx_free;
+    w.linear_check.noalias() = w.J_free * w.dx_free;
+    w.linear_check += w.r;
+    const double r_norm = w.r.norm();
+    const double linear_residual = w.linear_check.norm() / r_norm;
+    const double step = w.dx_free.lpNorm<Eigen::Infinity>();
+    if (!(linear_residual <= o.linear_residual_limit)) {
+      return finish(
+          SolveStatus::Singular,
+          format("ill-conditioned Jacobian: linear solve residual |J dx + r|/|r| = %.3g", linear_residual));
+    }
+    if (!(step <= o.max_step_ratio * (1.0 + x.lpNorm<Eigen::Infinity>()))) {
+      return finish(SolveStatus::Singular,
+                    format("ill-conditioned Jacobian: Newton step |dx|max = %.3g", step));
+    }
+    for (int j = 0; j < x.size(); ++j) {
+      const int col = w.reduced_column[j];
+      w.dx[j] = col >= 0 ? w.dx_free[col] : 0.0;
+    }
+
+    // Backtracking on |r|_2 (Armijo condition on the merit |r|_2 along a Newton direction).
+    double alpha = 1.0;
+    for (;;) {
+      w.x_trial = x + alpha * w.dx;
+      problem.evaluate_residuals(w.x_trial, w.c);
+      w.r_trial = w.c - w.target;
+      if (w.r_trial.allFinite() && w.r_trial.norm() <= (1.0 - o.armijo * alpha) * r_norm) break;
+      alpha *= o.backtrack;
+      if (alpha < o.min_step) {
+        problem.evaluate_residuals(x, w.c);  // report the last accepted point
+        return finish(SolveStatus::Failed,
+                      format("line search found no decrease of |r| along the Newton step (|r|max = %.3g): "
+                             "local minimum of |r| or inconsistent system",
+                             r_max));
+      }
+    }
+    x.swap(w.x_trial);
+    w.r.swap(w.r_trial);
+  }
+}
+
+}  // namespace pcr

@@ -1,0 +1,3 @@
+pcr_add_test(NAME test_problem LABELS core SOURCES ${CMAKE_CURRENT_LIST_DIR}/solve/test_problem.cpp)
+pcr_add_test(NAME test_newton LABELS core SOURCES ${CMAKE_CURRENT_LIST_DIR}/solve/test_newton.cpp)
+pcr_add_test(NAME test_ipopt LABELS core SOURCES ${CMAKE_CURRENT_LIST_DIR}/solve/test_ipopt.cpp)

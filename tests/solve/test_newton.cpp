@@ -1,0 +1,151 @@
+// Damped Newton: known solutions, singular and infeasible systems, fixed variables, misuse.
+#define BOOST_TEST_MODULE newton
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+
+#include "pcr/core/error.hpp"
+#include "pcr/solve/newton_solver.hpp"
+#include "solve/test_problems.hpp"
+
+using namespace pcr;
+using namespace pcr::test;
+
+namespace {
+
+// Circle x^2 + y^2 = 4 and line y = x: analytic roots (+-sqrt 2, +-sqrt 2).
+struct CircleLine {
+  Problem p;
+  VariableId x, y;
+  ResidualId circle, line;
+  CircleLine(double x0, double y0) {
+    x = p.add_variable_block("x", VecX::Constant(1, x0));
+    y = p.add_variable_block("y", VecX::Constant(1, y0));
+    circle = p.add_residual_block(std::make_shared<CircleBlock>(x, y, 2.0));
+    line = p.add_residual_block(std::make_shared<LineBlock>(y, x, 1.0, -1.0, 0.0));
+  }
+};
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(circle_and_line_intersection) {
+  CircleLine cl(1.0, 0.2);  // infeasible start
+  NewtonSolver newton(cl.p);
+  VecX x = cl.p.initial_values();
+  const SolveSummary s = newton.solve(x);
+  BOOST_TEST(s.converged(), s.brief_report());
+  BOOST_TEST(s.solver == "newton");
+  BOOST_TEST(s.iterations >= 1);
+  BOOST_TEST(s.residual_max_abs <= 1e-10);  // NewtonOptions::tolerance default
+  // J is well conditioned at the root (|J^-1| ~ 1), so |x - x*| <~ |c| <= 1e-10.
+  BOOST_TEST(std::abs(x[0] - std::sqrt(2.0)) <= 1e-9);
+  BOOST_TEST(std::abs(x[1] - std::sqrt(2.0)) <= 1e-9);
+  BOOST_TEST(s.residual_by_kind.size() == 2u);
+  BOOST_TEST(s.wall_time_seconds >= 0.0);
+}
+
+BOOST_AUTO_TEST_CASE(fixed_variable_and_inactive_block) {
+  CircleLine cl(1.0, 1.0);
+  cl.p.set_residual_active(cl.line, false);
+  cl.p.fix_variable(cl.x, VecX::Constant(1, 1.0));  // then y = sqrt(4 - 1)
+  NewtonSolver newton(cl.p);
+  VecX x = VecX::Constant(2, 0.5);  // the fixed entry is overwritten with its value
+  const SolveSummary s = newton.solve(x);
+  BOOST_TEST(s.converged(), s.brief_report());
+  BOOST_TEST(x[0] == 1.0);
+  BOOST_TEST(std::abs(x[1] - std::sqrt(3.0)) <= 1e-9);  // as above: |x - x*| <~ |c| / |J| with |J| ~ 3.5
+}
+
+BOOST_AUTO_TEST_CASE(broyden_tridiagonal_1000) {
+  Problem p = broyden_problem(1000);
+  NewtonSolver newton(p);
+  VecX x = p.initial_values();
+  const SolveSummary s = newton.solve(x);
+  BOOST_TEST(s.converged(), s.brief_report());
+  // Independent check of the residual, written here from the MGH formula.
+  double worst = 0.0;
+  for (int i = 0; i < 1000; ++i) {
+    const double left = i > 0 ? x[i - 1] : 0.0, right = i < 999 ? x[i + 1] : 0.0;
+    worst = std::max(worst, std::abs((3.0 - 2.0 * x[i]) * x[i] - left - 2.0 * right + 1.0));
+  }
+  BOOST_TEST(worst <= 1e-10);  // NewtonOptions::tolerance default
+  // Quadratic convergence from x = -1 (the MGH start): a handful of steps, far below max_iterations.
+  BOOST_TEST(s.iterations <= 10);
+  // Re-solving from the solution takes no step (pattern reused, nothing to do).
+  const SolveSummary again = newton.solve(x);
+  BOOST_TEST(again.converged());
+  BOOST_TEST(again.iterations == 0);
+}
+
+BOOST_AUTO_TEST_CASE(singular_jacobian_is_reported) {
+  // x + y = 1 and 2x + 2y = 2: consistent but rank 1.
+  Problem p;
+  const VariableId v = p.add_variable_block("v", VecX::Zero(2));
+  p.add_residual_block(
+      std::make_shared<LinearBlock>(v, (MatX(2, 2) << 1, 1, 2, 2).finished(), (VecX(2) << 1, 2).finished()));
+  NewtonSolver newton(p);
+  VecX x = p.initial_values();
+  const SolveSummary s = newton.solve(x);
+  BOOST_TEST((s.status == SolveStatus::Singular), s.brief_report());
+  BOOST_TEST(!s.message.empty());
+  BOOST_TEST(x.allFinite());
+}
+
+BOOST_AUTO_TEST_CASE(nearly_singular_jacobian_is_reported) {
+  // x + y = 1, x + (1 + 1e-14) y = 2: condition number ~ 4e14, the step would be ~1e14.
+  Problem p;
+  const VariableId v = p.add_variable_block("v", VecX::Zero(2));
+  p.add_residual_block(std::make_shared<LinearBlock>(v, (MatX(2, 2) << 1, 1, 1, 1 + 1e-14).finished(),
+                                                     (VecX(2) << 1, 2).finished()));
+  NewtonSolver newton(p);
+  VecX x = p.initial_values();
+  const SolveSummary s = newton.solve(x);
+  BOOST_TEST((s.status == SolveStatus::Singular), s.brief_report());
+}
+
+BOOST_AUTO_TEST_CASE(system_without_real_root_is_not_converged) {
+  Problem p;
+  const VariableId v = p.add_variable_block("x", VecX::Constant(1, 1.0));
+  p.add_residual_block(std::make_shared<SquarePlusOne>(v));
+  NewtonSolver newton(p);
+  VecX x = p.initial_values();
+  const SolveSummary s = newton.solve(x);
+  BOOST_TEST(!s.converged(), s.brief_report());
+  BOOST_TEST(s.residual_max_abs >= 1.0);  // x^2 + 1 >= 1 everywhere
+  BOOST_TEST(x.allFinite());
+}
+
+BOOST_AUTO_TEST_CASE(max_iterations_is_reported) {
+  Problem p = broyden_problem(20);
+  NewtonOptions options;
+  options.max_iterations = 1;  // one step from x = -1 cannot reach 1e-10
+  NewtonSolver newton(p, options);
+  VecX x = p.initial_values();
+  const SolveSummary s = newton.solve(x);
+  BOOST_TEST((s.status == SolveStatus::MaxIterations), s.brief_report());
+  BOOST_TEST(s.iterations == 1);
+}
+
+BOOST_AUTO_TEST_CASE(rejects_problems_newton_cannot_solve) {
+  Problem objective = hs071_problem();  // objective, bounds, inequality
+  BOOST_CHECK_THROW(NewtonSolver{objective}, InputError);
+  CircleLine non_square(1.0, 1.0);
+  non_square.p.set_residual_active(non_square.line, false);
+  BOOST_CHECK_THROW(NewtonSolver{non_square.p}, InputError);
+  Problem q;
+  const VariableId x = q.add_variable_block("x", VecX::Constant(1, 1.0));
+  auto block = std::make_shared<SquarePlusOne>(x);
+  block->set_row_bounds(VecX::Constant(1, 0.0), VecX::Constant(1, 2.0));
+  q.add_residual_block(block);
+  BOOST_CHECK_THROW(NewtonSolver{q}, InputError);
+  Problem bounded;
+  const VariableId b = bounded.add_variable_block("b", VecX::Constant(1, 0.5), VecX::Zero(1), VecX::Ones(1));
+  bounded.add_residual_block(std::make_shared<SquarePlusOne>(b));
+  BOOST_CHECK_THROW(NewtonSolver{bounded}, InputError);
+  // A structural change after construction is validated at the next solve.
+  CircleLine later(1.0, 1.0);
+  NewtonSolver newton(later.p);
+  later.p.set_residual_active(later.line, false);
+  VecX start = later.p.initial_values();
+  BOOST_CHECK_THROW(newton.solve(start), InputError);
+}
