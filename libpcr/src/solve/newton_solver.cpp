@@ -207,19 +207,27 @@ SolveSummary NewtonSolver::solve(VecX& x) {
       w.dx[j] = col >= 0 ? w.dx_free[col] : 0.0;
     }
 
-    // Backtracking on |r|_2 (Armijo condition on the merit |r|_2 along a Newton direction).
+    // Step length: accept alpha when either the residual decreases (Armijo on |r|_2) or the simplified
+    // Newton correction dx_bar = -J^-1 r(x + alpha dx), computed with the same factorisation, satisfies
+    // Deuflhard's natural monotonicity test |dx_bar| <= (1 - alpha/2) |dx| (affine invariant: not fooled
+    // by rows of very different scales, where a full step can raise |r| and still be right).
+    const double dx_norm = w.dx_free.norm();
     double alpha = 1.0;
     for (;;) {
       w.x_trial = x + alpha * w.dx;
       problem.evaluate_residuals(w.x_trial, w.c);
       w.r_trial = w.c - w.target;
-      if (w.r_trial.allFinite() && w.r_trial.norm() <= (1.0 - o.armijo * alpha) * r_norm) break;
+      if (w.r_trial.allFinite()) {
+        if (w.r_trial.norm() <= (1.0 - o.armijo * alpha) * r_norm) break;
+        w.linear_check = w.lu.solve(w.r_trial);
+        if (w.linear_check.allFinite() && w.linear_check.norm() <= (1.0 - 0.5 * alpha) * dx_norm) break;
+      }
       alpha *= o.backtrack;
       if (alpha < o.min_step) {
         problem.evaluate_residuals(x, w.c);  // report the last accepted point
         return finish(SolveStatus::Failed,
-                      format("line search found no decrease of |r| along the Newton step (|r|max = %.3g): "
-                             "local minimum of |r| or inconsistent system",
+                      format("line search found no decrease of |r| nor of the Newton correction along the "
+                             "Newton step (|r|max = %.3g): local minimum of |r| or inconsistent system",
                              r_max));
       }
     }

@@ -28,7 +28,7 @@ NewtonOptions newton_options(const KinematicsOptions& o) {
 
 IpoptOptions ipopt_options(const KinematicsOptions& o) {
   IpoptOptions i;
-  i.tolerance = o.tolerance;
+  i.tol = o.tolerance;
   i.constraint_tolerance = o.tolerance;
   i.max_iterations = 3000;
   return i;

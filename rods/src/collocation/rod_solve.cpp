@@ -6,6 +6,9 @@
 #include "pcr/core/error.hpp"
 #include "pcr/solve/ipopt_solver.hpp"
 #include "pcr/solve/newton_solver.hpp"
+#include <Eigen/SparseLU>
+
+#include "pcr/splines/basis.hpp"
 #include "pcr/splines/spline_curve.hpp"
 
 namespace pcr {
@@ -23,7 +26,7 @@ SolveSummary solve_at(const CollocationRod& rod, const RodSolveOptions& options,
     return NewtonSolver(problem, o).solve(x);
   }
   IpoptOptions o;
-  o.tolerance = options.tolerance;
+  o.tol = options.tolerance;
   o.constraint_tolerance = options.tolerance;
   o.max_iterations = options.max_iterations;
   return IpoptSolver(problem, o).solve(x);
@@ -92,20 +95,23 @@ VecX refine_solution(const RodSolution& solution, const RodDiscretization& finer
   const CollocationRod& rod = *solution.rod;
   require(finer.formulation == rod.discretization().formulation,
           "refine_solution: the formulation must stay the same (", to_string(rod.discretization().formulation), ")");
-  require(finer.degree >= rod.discretization().degree, "refine_solution: degree must not decrease (",
-          rod.discretization().degree, " -> ", finer.degree, ")");
-  require(finer.elements % rod.discretization().elements == 0, "refine_solution: elements ", finer.elements,
-          " must be a multiple of ", rod.discretization().elements);
-  const int n = rod.num_control_points(), cp = rod.control_point_size();
-  MatX points(cp, n);
-  for (int i = 0; i < n; ++i) points.col(i) = solution.x.segment(solution.variables.control_point_offset + i * cp, cp);
-  SplineCurve curve(rod.knots(), points);
-  if (finer.degree > rod.discretization().degree) curve = curve.with_elevated_degree(finer.degree - rod.discretization().degree);
-  const int parts = finer.elements / rod.discretization().elements;
-  if (parts > 1) curve = curve.with_uniform_refinement(parts);
-  const MatX& refined = curve.control_points();
-  VecX out(refined.size());
-  for (int i = 0; i < refined.cols(); ++i) out.segment(i * cp, cp) = refined.col(i);
+  // Interpolation of the solution's spline at the Greville abscissae of the new basis: exact (up to
+  // round-off) when the new space contains the old one (knot insertion), otherwise accurate to the
+  // interpolation error, which is all an initial guess needs.
+  const CollocationRod target(rod.model(), finer);
+  const std::vector<double> tau = target.knots().greville();
+  const int n_old = rod.num_control_points(), cp = rod.control_point_size();
+  MatX points(cp, n_old);
+  for (int i = 0; i < n_old; ++i) points.col(i) = solution.x.segment(solution.variables.control_point_offset + i * cp, cp);
+  const SplineCurve curve(rod.knots(), points);
+  const int n = target.num_control_points();
+  MatX values(n, cp);
+  for (int j = 0; j < n; ++j) values.row(j) = curve.evaluate(tau[j]).transpose();
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(collocation_matrix(target.knots(), tau, 0));
+  require(lu.info() == Eigen::Success, "refine_solution: Greville interpolation matrix is singular");
+  const MatX refined = lu.solve(values);  // n x cp
+  VecX out(n * cp);
+  for (int j = 0; j < n; ++j) out.segment(j * cp, cp) = refined.row(j).transpose();
   return out;
 }
 

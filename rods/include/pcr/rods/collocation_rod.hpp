@@ -7,7 +7,8 @@
 // a rod of given length, free when it is an actuation input). Equations at the Greville abscissae:
 // interior points carry the field equations, u = 0 and u = 1 the end conditions. All residuals are
 // dimensionless: forces by F0 = max(K_BT) / L0^2, moments by M0 = max(K_BT) / L0, lengths by L0
-// (the model's length), constitutive equations as strains.
+// (the model's length), constitutive equations as strains; the primal force balance (which carries
+// K_SE times the round-off of p'') by max(K_SE) / L0.
 #include <memory>
 #include <string>
 #include <vector>

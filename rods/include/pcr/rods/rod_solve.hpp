@@ -40,8 +40,9 @@ struct RodSolution {
 /// straight initial guess.
 RodSolution solve_rod(const RodModel& model, const RodSolveOptions& options = {}, const VecX* initial = nullptr);
 
-/// Control points of `solution` carried to a finer discretisation (knot insertion / degree elevation
-/// of the solution's spline, so the new initial guess is the same curve).
+/// Control points of `solution` carried to another discretisation of the same formulation, by
+/// interpolation at the new Greville abscissae (the same curve when the new space contains the old
+/// one, e.g. after knot insertion).
 VecX refine_solution(const RodSolution& solution, const RodDiscretization& finer);
 
 }  // namespace pcr

@@ -95,7 +95,9 @@ void primal_interior(const Eigen::Matrix<T, 19, 1>& z, const PointConstants& c, 
   const V3<T> n = R * sigma;
   const V3<T> e_n = R * (kappa.cross(sigma) + sigma_s) + c.f;
   const V3<T> e_m = R * (kappa.cross(chi) + chi_s) + p_s.cross(n) + c.l;
-  const double fr = c.length_scale / c.force_scale, mr = c.length_scale / c.moment_scale;
+  // Force rows in strain units (L / max K_SE): n' = R K_SE (...)' carries the round-off of p'' times
+  // K_SE, which F0 scaling would magnify by K_SE / F0 (up to 1e8 for slender rods).
+  const double fr = c.length_scale / c.k_se.maxCoeff(), mr = c.length_scale / c.moment_scale;
   for (int i = 0; i < 3; ++i) {
     r[i] = e_n[i] * fr;
     r[3 + i] = e_m[i] * mr;
