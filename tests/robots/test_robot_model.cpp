@@ -4,6 +4,8 @@
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -548,4 +550,22 @@ BOOST_AUTO_TEST_CASE(nothing_half_loaded) {
   } catch (const InputError& e) {
     BOOST_TEST(std::string(e.what()).find("/nonexistent/robot.urdf") != std::string::npos);
   }
+}
+
+BOOST_AUTO_TEST_CASE(documented_example_loads) {
+  // The annotated example of docs/model_format.md must stay a valid model.
+  std::ifstream file(std::string(PCR_MODEL_DIR) + "/../docs/model_format.md");
+  BOOST_REQUIRE(file.good());
+  std::stringstream text;
+  text << file.rdbuf();
+  const std::string doc = text.str();
+  const std::size_t begin = doc.find("```xml\n"), end = doc.find("```", begin + 7);
+  BOOST_REQUIRE(begin != std::string::npos && end != std::string::npos);
+  const RobotModel m = parse_robot_model(doc.substr(begin + 7, end - begin - 7), "model_format.md");
+  BOOST_TEST(m.rods().size() == 3u);
+  BOOST_TEST(m.inputs().size() == 3u);
+  BOOST_TEST(m.platforms()[0].mass == 0.05);
+  BOOST_TEST((m.platforms()[0].center_of_mass - Vec3(0, 0, 0.01)).norm() == 0.0);
+  BOOST_TEST(m.loads().size() == 1u);
+  BOOST_TEST((m.rods()[2].formulation == RodFormulation::Mixed && m.rods()[2].degree == 4));
 }
