@@ -2,8 +2,6 @@
 
 namespace pcr {
 
-const char* version() {
-  return "0.1.0";
-}
+const char* version() { return "0.1.0"; }
 
 }  // namespace pcr
