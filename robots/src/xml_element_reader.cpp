@@ -114,6 +114,20 @@ Vec3 XmlElementReader::vec3_or(const char* attribute, const Vec3& fallback) {
   return has(attribute) ? vec3(attribute) : fallback;
 }
 
+std::string quoted(const std::string& kind, const std::string& name) {
+  return kind + " '" + name + "'";
+}
+
+const TiXmlElement* single_child(const XmlElementReader& reader, const TiXmlElement& element,
+                                 const char* name, bool required) {
+  const TiXmlElement* child = element.FirstChildElement(name);
+  if (child == nullptr && required) reader.fail(std::string("missing element <") + name + ">");
+  if (child != nullptr && child->NextSiblingElement(name) != nullptr) {
+    reader.fail(std::string("element <") + name + "> given more than once");
+  }
+  return child;
+}
+
 void XmlElementReader::finish() const {
   for (const TiXmlAttribute* a = element_.FirstAttribute(); a != nullptr; a = a->Next()) {
     if (read_.count(a->Name()) == 0) fail(a->Name(), a->Value(), "is not allowed here");

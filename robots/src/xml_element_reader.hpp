@@ -43,4 +43,10 @@ class XmlElementReader {
   std::set<std::string> read_;
 };
 
+/// "kind 'name'", the way messages name an element.
+std::string quoted(const std::string& kind, const std::string& name);
+/// The child element `name` of element; fails through reader if it is required and missing, or repeated.
+const TiXmlElement* single_child(const XmlElementReader& reader, const TiXmlElement& element,
+                                 const char* name, bool required);
+
 }  // namespace pcr

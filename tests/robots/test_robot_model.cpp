@@ -276,16 +276,21 @@ BOOST_AUTO_TEST_CASE(forward_kinematics_by_hand) {
 <joint name="float" type="floating"><parent link="base"/><child link="platform"/>
   <origin xyz="0 0 0.3" rpy="0 0 0"/></joint>
 <joint name="mount" type="fixed"><parent link="platform"/><child link="tool"/>
-  <origin xyz="0 0 0.1" rpy="0 0 3.141592653589793"/></joint>
+  <origin xyz="0 0 0.1" rpy="0 0 3.141592653589793"/></joint><link name="wheel"/>
+<joint name="spin" type="continuous"><parent link="tip"/><child link="wheel"/>
+  <origin xyz="0 0 0.5" rpy="0 0 0"/><axis xyz="0 1 0"/></joint>
 )";
   const RobotModel m = parse_robot_model(robot(RodXml().str(), tree));
-  BOOST_TEST(m.joint_value_count() == 2);
+  BOOST_TEST(m.joint_value_count() == 3);
   BOOST_TEST(m.joints()[m.joint_index("turn")].value_index == 0);
   BOOST_TEST(m.joints()[m.joint_index("push")].value_index == 1);
-  BOOST_TEST(m.inputs().size() == 2u);  // the rod has a fixed length; both moving joints are inputs
-  const double theta = 0.3, d = 0.2;
-  VecX q(2);
-  q << theta, d;
+  BOOST_TEST(m.joints()[m.joint_index("spin")].value_index == 2);
+  BOOST_TEST(m.inputs().size() == 3u);  // the rod has a fixed length; the three moving joints are inputs
+  const ActuationInput& spin = m.inputs()[m.input_index("spin")];
+  BOOST_TEST((std::isinf(spin.lower) && spin.lower < 0 && std::isinf(spin.upper) && spin.upper > 0));
+  const double theta = 0.3, d = 0.2, phi = -2.5;
+  VecX q(3);
+  q << theta, d, phi;
   const Pose platform = Pose::from_xyz_rpy(Vec3(0.5, -0.2, 0.7), Vec3(0.1, 0.2, 0.3));
   const std::vector<Pose> platforms{platform};
   // arm: Trans(1,0,0) Rz(pi/2) Rz(theta) (the axis is normalised).
@@ -297,6 +302,10 @@ BOOST_AUTO_TEST_CASE(forward_kinematics_by_hand) {
   // tip: slide * Trans(0,0,1) Rx(pi/2).
   check_pose(m.link_pose(m.link_index("tip"), q, platforms), p_slide + Vec3(0, 0, 1),
              rotation_z(alpha) * rotation_x(M_PI / 2), kRoundoff);
+  // wheel: tip * Trans(0,0,0.5) * Ry(phi).
+  const Mat3 R_tip = rotation_z(alpha) * rotation_x(M_PI / 2);
+  check_pose(m.link_pose(m.link_index("wheel"), q, platforms),
+             p_slide + Vec3(0, 0, 1) + R_tip * Vec3(0, 0, 0.5), R_tip * rotation_y(phi), kRoundoff);
   // tool on the platform: P * Trans(0,0,0.1) Rz(pi); the platform pose is the given world pose.
   const Mat3 Rp = rotation_from_rpy(0.1, 0.2, 0.3);
   check_pose(m.link_pose(m.link_index("platform"), q, platforms), platform.position, Rp, kRoundoff);
@@ -308,7 +317,7 @@ BOOST_AUTO_TEST_CASE(forward_kinematics_by_hand) {
   // Defaults: 0 lies inside both limits.
   BOOST_TEST(m.default_joint_values().norm() == 0.0);
   // Size checks.
-  BOOST_CHECK_THROW(m.link_pose(0, VecX::Zero(3), platforms), InputError);
+  BOOST_CHECK_THROW(m.link_pose(0, VecX::Zero(2), platforms), InputError);
   BOOST_CHECK_THROW(m.link_pose(0, q, {}), InputError);
   BOOST_CHECK_THROW(m.link_pose(17, q, platforms), InputError);
 }
