@@ -578,3 +578,26 @@ BOOST_AUTO_TEST_CASE(documented_example_loads) {
   BOOST_TEST(m.loads().size() == 1u);
   BOOST_TEST((m.rods()[2].formulation == RodFormulation::Mixed && m.rods()[2].degree == 4));
 }
+
+BOOST_AUTO_TEST_CASE(rejects_bad_joint_defaults_and_input_names) {
+  const std::string slider = kPlatformTree + R"(<link name="carriage"/>
+<joint name="slide" type="prismatic"><parent link="base"/><child link="carriage"/>
+  <axis xyz="0 0 1"/><limit lower="0.1" upper="0.2" effort="1" velocity="1"/></joint>
+)";
+  RodXml rod;
+  rod.start = R"(<start link="carriage" coupling="clamped"/>)";
+  // Without pcr_joint the default is the limit nearest to 0.
+  const RobotModel m = parse_robot_model(robot(rod.str(), slider));
+  BOOST_TEST(m.inputs()[m.input_index("slide")].default_value == 0.1);
+  const RobotModel m2 =
+      parse_robot_model(robot(rod.str() + R"(<pcr_joint name="slide" default="0.15"/>)", slider));
+  BOOST_TEST(m2.inputs()[m2.input_index("slide")].default_value == 0.15);
+  check_rejected(robot(rod.str() + R"(<pcr_joint name="slide" default="0.3"/>)", slider),
+                 {"bad.urdf", "pcr_joint", "'default'", "\"0.3\"", "[0.1, 0.2]"});
+  check_rejected(robot(rod.str() + R"(<pcr_joint name="slid" default="0.15"/>)", slider),
+                 {"bad.urdf", "pcr_joint", "'name'", "\"slid\""});
+  // An actuated rod named like an actuated joint: two inputs with one name.
+  rod.name = "slide";
+  rod.length = R"(<length value="0.3" actuated="true" lower="0.2" upper="0.4"/>)";
+  check_rejected(robot(rod.str(), slider), {"bad.urdf", "actuation input name 'slide'"});
+}
