@@ -1,0 +1,176 @@
+#include "rod_element_reader.hpp"
+
+#include <tinyxml.h>
+
+#include "pcr/core/error.hpp"
+#include "xml_element_reader.hpp"
+
+namespace pcr {
+namespace {
+
+RodEndKind parse_coupling(XmlElementReader& reader) {
+  const std::string coupling = reader.text("coupling");
+  if (coupling == "clamped") return RodEndKind::Clamped;
+  if (coupling == "collar") return RodEndKind::Collar;
+  if (coupling == "spherical") return RodEndKind::Spherical;
+  if (coupling == "free") return RodEndKind::Free;
+  reader.fail("coupling", coupling, "is not a coupling (clamped, collar, spherical or free)");
+}
+
+void read_rod_end(const TiXmlElement& e, const std::string& source, const std::string& label,
+                  const UrdfTree& tree, RodAttachment& attachment, RodEnd& rod_end) {
+  XmlElementReader reader(e, source, label);
+  attachment.coupling = parse_coupling(reader);
+  if (attachment.coupling == RodEndKind::Free) {
+    for (const char* a : {"link", "xyz", "rpy"}) {
+      if (reader.has(a)) reader.fail(a, reader.text(a), "is not allowed on a free end (it is not attached)");
+    }
+    rod_end.force = reader.vec3_or("force", Vec3::Zero());
+    rod_end.moment = reader.vec3_or("moment", Vec3::Zero());
+  } else {
+    for (const char* a : {"force", "moment"}) {
+      if (reader.has(a))
+        reader.fail(a, reader.text(a), "is only allowed on a free end (use pcr_load on links)");
+    }
+    const std::string link = reader.text("link");
+    const auto it = tree.link_index.find(link);
+    if (it == tree.link_index.end()) reader.fail("link", link, "is not a link of the robot");
+    attachment.link = it->second;
+    attachment.frame =
+        Pose::from_xyz_rpy(reader.vec3_or("xyz", Vec3::Zero()), reader.vec3_or("rpy", Vec3::Zero()));
+  }
+  reader.finish();
+}
+
+Material read_material(XmlElementReader& reader) {
+  const double E = reader.positive("youngs_modulus");
+  const double density = reader.non_negative("density");
+  const bool has_G = reader.has("shear_modulus"), has_nu = reader.has("poisson_ratio");
+  if (has_G == has_nu) reader.fail("give exactly one of the attributes 'shear_modulus' and 'poisson_ratio'");
+  Material material;
+  if (has_G) {
+    material = Material{E, reader.positive("shear_modulus"), density};
+  } else {
+    const double nu = reader.number("poisson_ratio");
+    if (!(nu > -1.0 && nu < 0.5))
+      reader.fail("poisson_ratio", reader.text("poisson_ratio"), "must lie in (-1, 0.5)");
+    material = Material::from_poisson_ratio(E, nu, density);
+  }
+  reader.finish();
+  return material;
+}
+
+CrossSection read_section(XmlElementReader& reader) {
+  const std::string type = reader.text("type");
+  CrossSection section;
+  if (type == "circle") {
+    section = CrossSection::circle(reader.positive("radius"));
+  } else if (type == "rectangle") {
+    const double width = reader.positive("width");
+    section = CrossSection::rectangle(width, reader.positive("height"));
+  } else {
+    reader.fail("type", type, "is not a section type (circle or rectangle)");
+  }
+  reader.finish();
+  return section;
+}
+
+void read_length(XmlElementReader& reader, RodElement& rod) {
+  rod.length_default = reader.positive("value");
+  rod.length_actuated = reader.boolean_or("actuated", false);
+  if (!rod.length_actuated) {
+    for (const char* a : {"lower", "upper"}) {
+      if (reader.has(a)) reader.fail(a, reader.text(a), "is only allowed with actuated=\"true\"");
+    }
+    rod.length_lower = rod.length_upper = rod.length_default;
+  } else {
+    rod.length_lower = reader.positive("lower");
+    rod.length_upper = reader.positive("upper");
+    if (rod.length_lower > rod.length_upper) {
+      reader.fail("lower", reader.text("lower"), "is greater than upper = " + reader.text("upper"));
+    }
+    if (rod.length_default < rod.length_lower || rod.length_default > rod.length_upper) {
+      reader.fail("value", reader.text("value"),
+                  "(the default length) is outside [lower, upper] = [" + reader.text("lower") + ", " +
+                      reader.text("upper") + "]");
+    }
+  }
+  reader.finish();
+}
+
+void read_discretization(XmlElementReader& reader, RodElement& rod) {
+  const std::string formulation = reader.text_or("formulation", "auto");
+  if (formulation == "auto") {
+    rod.formulation = RodFormulation::Auto;
+  } else if (formulation == "primal") {
+    rod.formulation = RodFormulation::Primal;
+  } else if (formulation == "mixed") {
+    rod.formulation = RodFormulation::Mixed;
+  } else {
+    reader.fail("formulation", formulation, "is not a formulation (auto, primal or mixed)");
+  }
+  rod.degree = reader.integer_or("degree", 0);
+  if (reader.has("degree") && rod.degree < 2) reader.fail("degree", reader.text("degree"), "must be >= 2");
+  rod.elements = reader.integer_or("elements", 0);
+  if (reader.has("elements") && rod.elements < 1)
+    reader.fail("elements", reader.text("elements"), "must be >= 1");
+  reader.finish();
+}
+
+}  // namespace
+
+RodElement read_rod(const TiXmlElement& e, const std::string& source, const UrdfTree& tree) {
+  RodElement rod;
+  {
+    XmlElementReader reader(e, source, "pcr_rod");
+    rod.name = reader.text("name");
+    if (rod.name.empty()) reader.fail("name", rod.name, "is empty");
+    reader.finish();
+  }
+  const std::string label = quoted("pcr_rod", rod.name);
+  XmlElementReader element(e, source, label);
+  static const char* const known[] = {
+      "start",           "end", "material", "section", "length", "intrinsic_curvature", "discretization",
+      "distributed_load"};
+  for (const TiXmlElement* c = e.FirstChildElement(); c; c = c->NextSiblingElement()) {
+    bool ok = false;
+    for (const char* k : known) ok = ok || c->ValueStr() == k;
+    if (!ok) element.fail("unknown element <" + c->ValueStr() + ">");
+  }
+  auto child = [&](const char* name, bool required) { return single_child(element, e, name, required); };
+  read_rod_end(*child("start", true), source, label + " <start>", tree, rod.start, rod.rod.base);
+  read_rod_end(*child("end", true), source, label + " <end>", tree, rod.end, rod.rod.tip);
+  if (rod.start.coupling != RodEndKind::Clamped && rod.end.coupling != RodEndKind::Clamped) {
+    element.fail(std::string("couplings start = ") + to_string(rod.start.coupling) +
+                 ", end = " + to_string(rod.end.coupling) +
+                 " leave the rod free to move or twist; clamp at least one end");
+  }
+  if (rod.start.link >= 0 && rod.start.link == rod.end.link) {
+    element.fail("both ends are on link '" + tree.link_names[rod.start.link] +
+                 "'; a rod must join two different links");
+  }
+  XmlElementReader material(*child("material", true), source, label + " <material>");
+  XmlElementReader section(*child("section", true), source, label + " <section>");
+  rod.rod.name = rod.name;
+  rod.rod.set_material_and_section(read_material(material), read_section(section));
+  XmlElementReader length(*child("length", true), source, label + " <length>");
+  read_length(length, rod);
+  if (const TiXmlElement* c = child("intrinsic_curvature", false)) {
+    XmlElementReader reader(*c, source, label + " <intrinsic_curvature>");
+    rod.rod.intrinsic.curvature = reader.vec3("xyz");
+    reader.finish();
+  }
+  if (const TiXmlElement* c = child("discretization", false)) {
+    XmlElementReader reader(*c, source, label + " <discretization>");
+    read_discretization(reader, rod);
+  }
+  if (const TiXmlElement* c = child("distributed_load", false)) {
+    XmlElementReader reader(*c, source, label + " <distributed_load>");
+    rod.rod.loads.force_per_length = reader.vec3_or("force", Vec3::Zero());
+    rod.rod.loads.moment_per_length = reader.vec3_or("moment", Vec3::Zero());
+    reader.finish();
+  }
+  return rod;
+}
+
+}  // namespace pcr

@@ -1,0 +1,133 @@
+#include "pcr/robots/urdf_loader.hpp"
+
+#include <tinyxml.h>
+
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "pcr/core/error.hpp"
+#include "rod_element_reader.hpp"
+#include "urdf_part_reader.hpp"
+#include "xml_element_reader.hpp"
+
+namespace pcr {
+namespace {
+
+RobotModel parse_document(const std::string& xml, const std::string& source) {
+  TiXmlDocument document;
+  document.Parse(xml.c_str());
+  if (document.Error()) {
+    throw_input_error(source, ":", document.ErrorRow(), ": XML error: ", document.ErrorDesc());
+  }
+  const TiXmlElement* robot = document.RootElement();
+  if (robot == nullptr || robot->ValueStr() != "robot")
+    throw_input_error(source, ": the root element is not <robot>");
+  XmlElementReader robot_reader(*robot, source, "robot");
+  const std::string robot_name = robot_reader.text("name");
+
+  const UrdfTree tree = read_tree(*robot, source);
+  UrdfPart urdf = read_urdf_part(xml, tree, source);
+  std::vector<Link>& links = urdf.links;
+  std::vector<Joint>& joints = urdf.joints;
+  std::vector<Platform>& platforms = urdf.platforms;
+
+  // Extension elements.
+  Vec3 gravity = Vec3::Zero();
+  std::vector<RodElement> rods;
+  std::vector<ExternalLoad> loads;
+  std::map<std::string, int> rod_lines;
+  bool has_gravity = false;
+  for (const TiXmlElement* e = robot->FirstChildElement(); e; e = e->NextSiblingElement()) {
+    const std::string tag = e->ValueStr();
+    if (tag == "pcr_gravity") {
+      XmlElementReader reader(*e, source, "pcr_gravity");
+      if (has_gravity) reader.fail("given more than once");
+      has_gravity = true;
+      gravity = reader.vec3("xyz");
+      reader.finish();
+    } else if (tag == "pcr_rod") {
+      rods.push_back(read_rod(*e, source, tree));
+      if (!rod_lines.emplace(rods.back().name, e->Row()).second) {
+        XmlElementReader reader(*e, source, quoted("pcr_rod", rods.back().name));
+        reader.fail("name", rods.back().name,
+                    "is already used by the pcr_rod on line " + std::to_string(rod_lines[rods.back().name]));
+      }
+    } else if (tag == "pcr_load") {
+      XmlElementReader reader(*e, source, "pcr_load");
+      ExternalLoad load;
+      const std::string link = reader.text("link");
+      const auto it = tree.link_index.find(link);
+      if (it == tree.link_index.end()) reader.fail("link", link, "is not a link of the robot");
+      if (carrying_floating_link(tree, it->second) < 0) {
+        reader.fail("link", link, "is not carried by a platform (a load there acts on the fixed world)");
+      }
+      load.link = it->second;
+      load.point = reader.vec3_or("xyz", Vec3::Zero());
+      load.force = reader.vec3_or("force", Vec3::Zero());
+      load.torque = reader.vec3_or("torque", Vec3::Zero());
+      reader.finish();
+      loads.push_back(load);
+    } else if (tag == "pcr_joint") {
+      XmlElementReader reader(*e, source, "pcr_joint");
+      const std::string name = reader.text("name");
+      int j = 0;
+      while (j < static_cast<int>(joints.size()) && joints[j].name != name) ++j;
+      if (j == static_cast<int>(joints.size())) reader.fail("name", name, "is not a joint of the robot");
+      Joint& joint = joints[j];
+      if (joint.type == JointType::Fixed || joint.type == JointType::Floating) {
+        reader.fail("name", name,
+                    std::string("is a ") + to_string(joint.type) + " joint, which has no value");
+      }
+      const double value = reader.number("default");
+      if (joint.type != JointType::Continuous && (value < joint.lower || value > joint.upper)) {
+        std::ostringstream bounds;
+        bounds << "is outside the joint limits [" << joint.lower << ", " << joint.upper << "]";
+        reader.fail("default", reader.text("default"), bounds.str());
+      }
+      joint.default_value = value;
+      reader.finish();
+    } else if (tag.compare(0, 4, "pcr_") == 0) {
+      XmlElementReader reader(*e, source, "<" + tag + ">");
+      reader.fail("unknown pcr element (pcr_rod, pcr_gravity, pcr_load or pcr_joint)");
+    }
+  }
+  for (const Platform& platform : platforms) {
+    bool has_rod = false;
+    for (const RodElement& rod : rods) {
+      for (int link : {rod.start.link, rod.end.link}) {
+        has_rod = has_rod || (link >= 0 && carrying_floating_link(tree, link) == platform.link);
+      }
+    }
+    if (!has_rod) {
+      throw_input_error(source, ":", tree.links[platform.link]->Row(), ": ",
+                        quoted("link", tree.link_names[platform.link]), " (platform of floating joint '",
+                        tree.joint_names[tree.parent_joint[platform.link]],
+                        "'): no pcr_rod is attached to it, so its pose is undetermined");
+    }
+  }
+
+  // Cross-element checks (well-posedness, platform hold) live in RobotModel; prefix the file name.
+  try {
+    return RobotModel(robot_name, std::move(links), std::move(joints), std::move(platforms), std::move(rods),
+                      std::move(loads), gravity);
+  } catch (const InputError& e) {
+    throw InputError(source + ": " + e.what());
+  }
+}
+
+}  // namespace
+
+RobotModel parse_robot_model(const std::string& xml, const std::string& source_name) {
+  return parse_document(xml, source_name);
+}
+
+RobotModel load_robot_model(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw_input_error(path, ": cannot open the robot model file");
+  std::ostringstream text;
+  text << file.rdbuf();
+  return parse_document(text.str(), path);
+}
+
+}  // namespace pcr
