@@ -1,5 +1,6 @@
 #include "demo_basis.hpp"
 
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <ostream>
@@ -77,6 +78,8 @@ int run_demo_basis(std::ostream& out, std::ostream& err, const std::string& out_
   }
   if (!out_dir.empty()) {
     const std::string path = out_dir + "/basis.csv";
+    std::error_code ignored;  // a failure shows up when the file is written
+    std::filesystem::create_directories(out_dir, ignored);
     if (!write_basis_csv(path, knots)) {
       err << "pcr demo: cannot write " << path << "\n";
       return 1;
