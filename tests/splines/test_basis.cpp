@@ -227,3 +227,35 @@ BOOST_AUTO_TEST_CASE(collocation_matrix_holds_the_basis_values) {
   for (Eigen::Index r = 0; r < R.rows(); ++r) BOOST_TEST(std::abs(R.row(r).sum() - 1.0) < 1e-14);
   BOOST_TEST(throws_input_error_naming([&] { collocation_matrix(knots, tau, -1); }, {"derivative = -1"}));
 }
+
+BOOST_AUTO_TEST_CASE(single_element_basis_is_bernstein_also_beyond_the_stack_buffers) {
+  // On one element with open knots the B-splines are the Bernstein polynomials
+  // B_i(u) = C(p,i) u^i (1-u)^(p-i), B_i' = p (B_{i-1,p-1} - B_{i,p-1}) (The NURBS Book ch. 1, eq. 2.7).
+  // Degree 30 exercises the heap scratch path (degree > 24).
+  auto bernstein = [](int p, int i, double u) {
+    if (i < 0 || i > p) return 0.0;
+    double binomial = 1.0;
+    for (int k = 1; k <= i; ++k) binomial = binomial * (p - i + k) / k;
+    return binomial * std::pow(u, i) * std::pow(1.0 - u, p - i);
+  };
+  for (int p : {3, 24, 25, 30}) {
+    const KnotVector knots = KnotVector::open_uniform(p, 1);
+    for (double u : sample_points()) {
+      const BasisDerivatives basis = basis_derivatives(knots, u, 1);
+      BOOST_TEST(basis.first == 0);
+      std::vector<double> derivative(p + 1);
+      double scale = 1.0;  // size of the reference derivatives, for a relative tolerance
+      for (int i = 0; i <= p; ++i) {
+        derivative[i] = p * (bernstein(p - 1, i - 1, u) - bernstein(p - 1, i, u));
+        scale = std::max(scale, std::abs(derivative[i]));
+      }
+      for (int i = 0; i <= p; ++i) {
+        // Each side is a product/sum of O(p) rounded factors: relative error ~ p eps <= 30 * 2.2e-16.
+        // 1e-13 (absolute, values <= 1; relative to the derivative scale) is ~15 times that.
+        BOOST_TEST(std::abs(basis.values(0, i) - bernstein(p, i, u)) < 1e-13);
+        BOOST_TEST(std::abs(basis.values(1, i) - derivative[i]) < 1e-13 * scale,
+                   "p = " << p << ", u = " << u);
+      }
+    }
+  }
+}
