@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "pcr/splines/basis.hpp"
@@ -53,10 +54,13 @@ std::vector<double> sample_points() {
   return u;
 }
 
-// A priori size of the d-th derivative: each derivative of a degree-p B-spline gains a factor of at
-// most about p / (shortest element) (eq. 2.7 with knot differences >= the shortest element).
-double derivative_scale(int p, double min_span, int d) {
-  return std::pow(2.0 * p / min_span, d);
+// Size of the d-th derivatives at u from the independent reference: max(1, max_i |N_i^(d)(u)|).
+// Tolerances below are relative to it, since the d-th derivative grows like (p / element)^d.
+double reference_scale(const KnotVector& knots, double u, int d) {
+  double scale = 1.0;
+  for (int i = 0; i < knots.num_basis(); ++i)
+    scale = std::max(scale, std::abs(cox_de_boor(knots.knots(), i, knots.degree(), u, d)));
+  return scale;
 }
 
 }  // namespace
@@ -74,16 +78,17 @@ BOOST_AUTO_TEST_CASE(basis_matches_cox_de_boor_with_partition_of_unity_and_compa
       BOOST_TEST(std::abs(basis.values.row(0).sum() - 1.0) < 1e-14);
       BOOST_TEST(basis.values.row(0).minCoeff() >= 0.0);
       for (int d = 0; d <= p; ++d) {
-        const double scale = derivative_scale(p, c.min_span, d);
-        // Derivatives of a partition of unity sum to zero; round-off relative to the scale as above.
-        if (d > 0) BOOST_TEST(std::abs(basis.values.row(d).sum()) < 1e-13 * scale);
+        const double scale = reference_scale(knots, u, d);
+        // Derivatives of a partition of unity sum to zero; p+1 terms with O(p eps) relative error each
+        // (measured <= 1.5e-15 relative for p <= 8), so 1e-14 relative.
+        if (d > 0) BOOST_TEST(std::abs(basis.values.row(d).sum()) < 1e-14 * scale);
         for (int i = 0; i < n; ++i) {
           const double reference = cox_de_boor(knots.knots(), i, p, u, d);
           const bool active = i >= basis.first && i <= basis.first + p;
           const double value = active ? basis.values(d, i - basis.first) : 0.0;
-          // Both evaluate O(2^p) products of knot ratios; with cancellation the relative error stays
-          // below 2^p * eps ~ 6e-14 for p = 8 (relative to the scale); 1e-12 leaves a margin of ~20.
-          BOOST_TEST(std::abs(value - reference) < 1e-12 * scale,
+          // Both sides are sums of O(p) rounded products: relative error a few p eps (measured <= 1.5e-15,
+          // i.e. 7 eps, for p <= 8); 1e-14 relative = 45 eps.
+          BOOST_TEST(std::abs(value - reference) < 1e-14 * scale,
                      "p = " << p << ", u = " << u << ", i = " << i << ", d = " << d << ": " << value << " vs "
                             << reference);
         }
@@ -109,10 +114,13 @@ BOOST_AUTO_TEST_CASE(derivatives_match_central_differences) {
       BOOST_TEST(plus.first == at.first);
       BOOST_TEST(minus.first == at.first);
       for (int d = 1; d <= max_d; ++d) {
-        // Central difference of the (d-1)-th derivative: truncation h^2/6 |N^(d+2)| ~ h^2 (2p/min_span)^2
-        // / 6 * scale_d <= 1e-7 scale_d (p = 8, span 0.1), round-off eps scale_{d-1} / h <= 1e-10 scale_d;
-        // the tolerance 1e-6 scale_d bounds both with a margin of 10.
-        const double tol = 1e-6 * derivative_scale(p, c.min_span, d);
+        // Central difference of the (d-1)-th derivative. Truncation h^2/6 |N^(d+2)|: each derivative gains
+        // a factor <= 2p / min_span (eq. 2.7), so h^2/6 (2p/min_span)^2 scale_d (4e-9 scale_d for p = 8).
+        // Round-off: a few eps |N^(d-1)| / h, with |N^(d-1)| <= scale_d (scale >= 1 and grows with d).
+        // Tolerance: 5 times their sum.
+        const double growth = 2.0 * p / c.min_span, eps = std::numeric_limits<double>::epsilon();
+        const double truncation = h * h / 6 * growth * growth, rounding = 4 * eps / h;
+        const double tol = 5 * (truncation + rounding) * reference_scale(knots, u, d);
         for (int j = 0; j <= p; ++j) {
           const double fd = (plus.values(d - 1, j) - minus.values(d - 1, j)) / (2 * h);
           BOOST_TEST(std::abs(at.values(d, j) - fd) < tol, "p = " << p << ", u = " << u << ", d = " << d);
@@ -166,11 +174,11 @@ BOOST_AUTO_TEST_CASE(rational_basis_matches_the_quotient_rule_on_cox_de_boor) {
         const double R0 = A0 / W[0];
         const double R1 = (A1 - W[1] * R0) / W[0];
         const double R2 = (A2 - 2 * W[1] * R1 - W[2] * R0) / W[0];
-        // Weights within a factor 10 of each other: the quotient-rule terms stay within ~10x the
-        // B-spline scale; 1e-12 relative as in the B-spline comparison.
-        BOOST_TEST(std::abs(R.values(0, j) - R0) < 1e-12);
-        BOOST_TEST(std::abs(R.values(1, j) - R1) < 1e-12 * 10 * derivative_scale(p, kNonuniformMinSpan, 1));
-        BOOST_TEST(std::abs(R.values(2, j) - R2) < 1e-12 * 100 * derivative_scale(p, kNonuniformMinSpan, 2));
+        // Weights within a factor 10 of each other: the quotient-rule terms stay within ~10^d times the
+        // B-spline scale; rounding a few eps per term, so 1e-14 relative to that (as for B-splines).
+        BOOST_TEST(std::abs(R.values(0, j) - R0) < 1e-14);
+        BOOST_TEST(std::abs(R.values(1, j) - R1) < 1e-14 * 10 * reference_scale(knots, u, 1));
+        BOOST_TEST(std::abs(R.values(2, j) - R2) < 1e-14 * 100 * reference_scale(knots, u, 2));
       }
     }
   }
@@ -178,7 +186,8 @@ BOOST_AUTO_TEST_CASE(rational_basis_matches_the_quotient_rule_on_cox_de_boor) {
   const KnotVector knots = KnotVector::open_uniform(3, 4);
   const BasisDerivatives R = rational_basis_derivatives(knots, VecX::Constant(7, 2.5), 0.4, 2);
   const BasisDerivatives N = basis_derivatives(knots, 0.4, 2);
-  // Multiplying and dividing by 2.5 plus subtracting zero-sum terms: a few eps of the scale.
+  // Multiplying and dividing by 2.5 plus subtracting W' = sum of zero-sum terms: a few eps of the
+  // second-derivative scale (p^2 / h^2 ~ 150), so 1e-12 absolute.
   BOOST_TEST((R.values - N.values).cwiseAbs().maxCoeff() < 1e-12);
   // Bad weights are named.
   BOOST_TEST(throws_input_error_naming([&] { rational_basis_derivatives(knots, VecX::Ones(6), 0.4, 1); },
@@ -204,9 +213,9 @@ BOOST_AUTO_TEST_CASE(collocation_matrix_holds_the_basis_values) {
         const bool active = i >= basis.first && i <= basis.first + 3;
         BOOST_TEST(dense(r, i) == (active ? basis.values(derivative, i - basis.first) : 0.0));
         // Independent reference; tolerance as in the Cox-de Boor comparison above.
-        const double scale = derivative_scale(3, kNonuniformMinSpan, derivative);
+        const double scale = reference_scale(knots, tau[r], derivative);
         BOOST_TEST(std::abs(dense(r, i) - cox_de_boor(knots.knots(), i, 3, tau[r], derivative)) <
-                   1e-12 * scale);
+                   1e-14 * scale);
       }
       // Rows of the value matrix sum to 1 (partition of unity, O(p eps)).
       if (derivative == 0) BOOST_TEST(std::abs(dense.row(r).sum() - 1.0) < 1e-14);
@@ -217,4 +226,36 @@ BOOST_AUTO_TEST_CASE(collocation_matrix_holds_the_basis_values) {
   const MatX R = MatX(collocation_matrix(knots, tau, 0, &w));
   for (Eigen::Index r = 0; r < R.rows(); ++r) BOOST_TEST(std::abs(R.row(r).sum() - 1.0) < 1e-14);
   BOOST_TEST(throws_input_error_naming([&] { collocation_matrix(knots, tau, -1); }, {"derivative = -1"}));
+}
+
+BOOST_AUTO_TEST_CASE(single_element_basis_is_bernstein_also_beyond_the_stack_buffers) {
+  // On one element with open knots the B-splines are the Bernstein polynomials
+  // B_i(u) = C(p,i) u^i (1-u)^(p-i), B_i' = p (B_{i-1,p-1} - B_{i,p-1}) (The NURBS Book ch. 1, eq. 2.7).
+  // Degree 30 exercises the heap scratch path (degree > 24).
+  auto bernstein = [](int p, int i, double u) {
+    if (i < 0 || i > p) return 0.0;
+    double binomial = 1.0;
+    for (int k = 1; k <= i; ++k) binomial = binomial * (p - i + k) / k;
+    return binomial * std::pow(u, i) * std::pow(1.0 - u, p - i);
+  };
+  for (int p : {3, 24, 25, 30}) {
+    const KnotVector knots = KnotVector::open_uniform(p, 1);
+    for (double u : sample_points()) {
+      const BasisDerivatives basis = basis_derivatives(knots, u, 1);
+      BOOST_TEST(basis.first == 0);
+      std::vector<double> derivative(p + 1);
+      double scale = 1.0;  // size of the reference derivatives, for a relative tolerance
+      for (int i = 0; i <= p; ++i) {
+        derivative[i] = p * (bernstein(p - 1, i - 1, u) - bernstein(p - 1, i, u));
+        scale = std::max(scale, std::abs(derivative[i]));
+      }
+      for (int i = 0; i <= p; ++i) {
+        // Each side is a product/sum of O(p) rounded factors: relative error ~ p eps <= 30 * 2.2e-16.
+        // 1e-13 (absolute, values <= 1; relative to the derivative scale) is ~15 times that.
+        BOOST_TEST(std::abs(basis.values(0, i) - bernstein(p, i, u)) < 1e-13);
+        BOOST_TEST(std::abs(basis.values(1, i) - derivative[i]) < 1e-13 * scale,
+                   "p = " << p << ", u = " << u);
+      }
+    }
+  }
 }

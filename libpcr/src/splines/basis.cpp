@@ -37,7 +37,8 @@ void ders_basis_funs(const std::vector<double>& xi, int span, double u, int p, i
     N(j, j) = saved;
   }
   for (int j = 0; j <= p; ++j) ders(0, j) = N(j, p);
-  // Derivatives (eq. 2.9): N^(k)_{r} = p!/(p-k)! sum_j a_{k,j} N_{r+j, p-k}, with a_{k,j} by recurrence.
+  // Derivatives (The NURBS Book sec. 2.3): N^(k)_{r} = p!/(p-k)! sum_j a_{k,j} N_{r+j, p-k}, with a_{k,j} by
+  // recurrence.
   const int n = std::min(num_derivatives, p);
   for (int r = 0; r <= p; ++r) {
     int s1 = 0, s2 = 1;
