@@ -52,11 +52,11 @@ const char* to_string(JointType type) {
   return "unknown";
 }
 
-const char* to_string(RodFormulation formulation) {
+const char* to_string(RodFormulationHint formulation) {
   switch (formulation) {
-    case RodFormulation::Auto: return "auto";
-    case RodFormulation::Primal: return "primal";
-    case RodFormulation::Mixed: return "mixed";
+    case RodFormulationHint::Auto: return "auto";
+    case RodFormulationHint::Primal: return "primal";
+    case RodFormulationHint::Mixed: return "mixed";
   }
   return "unknown";
 }

@@ -101,11 +101,11 @@ void read_length(XmlElementReader& reader, RodElement& rod) {
 void read_discretization(XmlElementReader& reader, RodElement& rod) {
   const std::string formulation = reader.text_or("formulation", "auto");
   if (formulation == "auto") {
-    rod.formulation = RodFormulation::Auto;
+    rod.formulation = RodFormulationHint::Auto;
   } else if (formulation == "primal") {
-    rod.formulation = RodFormulation::Primal;
+    rod.formulation = RodFormulationHint::Primal;
   } else if (formulation == "mixed") {
-    rod.formulation = RodFormulation::Mixed;
+    rod.formulation = RodFormulationHint::Mixed;
   } else {
     reader.fail("formulation", formulation, "is not a formulation (auto, primal or mixed)");
   }

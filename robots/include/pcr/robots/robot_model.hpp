@@ -54,8 +54,8 @@ struct RodAttachment {
   RodEndKind coupling = RodEndKind::Free;
 };
 
-enum class RodFormulation { Auto, Primal, Mixed };
-const char* to_string(RodFormulation formulation);
+enum class RodFormulationHint { Auto, Primal, Mixed };
+const char* to_string(RodFormulationHint formulation);
 
 struct RodElement {
   std::string name;
@@ -68,7 +68,7 @@ struct RodElement {
   RodAttachment end;    ///< s = L
   bool length_actuated = false;
   double length_lower = 0.0, length_upper = 0.0, length_default = 0.0;  ///< [m]
-  RodFormulation formulation = RodFormulation::Auto;  ///< discretisation hints; 0 = solver's choice
+  RodFormulationHint formulation = RodFormulationHint::Auto;  ///< discretisation hints; 0 = solver's choice
   int degree = 0;
   int elements = 0;
 };
