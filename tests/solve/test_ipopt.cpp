@@ -185,3 +185,37 @@ BOOST_AUTO_TEST_CASE(bad_options_throw) {
   options.linear_solver = "no_such_solver";
   BOOST_CHECK_THROW(IpoptSolver(p, options), InputError);
 }
+
+BOOST_AUTO_TEST_CASE(bound_changes_between_solves_are_honoured) {
+  // Circle and line from (1, 0.2): the positive root; then bounds x, y <= -0.1 leave only the negative one.
+  Problem p;
+  const VariableId x = p.add_variable_block("x", VecX::Constant(1, 1.0));
+  const VariableId y = p.add_variable_block("y", VecX::Constant(1, 0.2));
+  p.add_residual_block(std::make_shared<CircleBlock>(x, y, 2.0));
+  p.add_residual_block(std::make_shared<LineBlock>(y, x, 1.0, -1.0, 0.0));
+  IpoptSolver ipopt(p);
+  VecX v = p.initial_values();
+  BOOST_TEST(ipopt.solve(v).converged());
+  BOOST_TEST(std::abs(v[0] - std::sqrt(2.0)) <= 1e-7);  // as in circle_and_line_from_an_infeasible_start
+  p.set_variable_bounds(x, VecX::Constant(1, -10.0), VecX::Constant(1, -0.1));
+  p.set_variable_bounds(y, VecX::Constant(1, -10.0), VecX::Constant(1, -0.1));
+  v = p.initial_values();
+  const SolveSummary s = ipopt.solve(v);
+  BOOST_TEST(s.converged(), s.brief_report());
+  BOOST_TEST(std::abs(v[0] + std::sqrt(2.0)) <= 1e-7);
+  BOOST_TEST(std::abs(v[1] + std::sqrt(2.0)) <= 1e-7);
+}
+
+BOOST_AUTO_TEST_CASE(extra_options_are_passed_and_checked) {
+  Problem p = hs071_problem();
+  IpoptOptions options;
+  options.extra_options = {{"mu_strategy", "adaptive"}, {"max_iter", "1"}, {"bound_push", "0.001"}};
+  IpoptSolver ipopt(p, options);
+  VecX x = p.initial_values();
+  // max_iter 1 from extra_options overrides max_iterations: HS071 needs more than one iteration.
+  BOOST_TEST((ipopt.solve(x).status == SolveStatus::MaxIterations));
+  options.extra_options = {{"no_such_option", "1"}};
+  BOOST_CHECK_THROW(IpoptSolver(p, options), InputError);
+  options.extra_options = {{"max_iter", "many"}};
+  BOOST_CHECK_THROW(IpoptSolver(p, options), InputError);
+}

@@ -55,25 +55,27 @@ class LineBlock : public ResidualBlock {
 /// Touches {x_i, x_{i-1} (if any), x_{i+1} (if any)}.
 class BroydenRow : public ResidualBlock {
  public:
-  BroydenRow(int i, const std::vector<VariableId>& x)
+  /// scale multiplies the row (a badly scaled variant for scaling studies; the roots do not change).
+  BroydenRow(int i, const std::vector<VariableId>& x, double scale = 1.0)
       : ResidualBlock("test.broyden", "broyden_" + std::to_string(i), 1, touched(i, x)),
         has_left_(i > 0),
-        has_right_(i + 1 < static_cast<int>(x.size())) {}
+        has_right_(i + 1 < static_cast<int>(x.size())),
+        scale_(scale) {}
   void evaluate(const double* const* v, double* c, double* const* J) const override {
     const double xi = v[0][0];
     const double left = has_left_ ? v[1][0] : 0.0;
     const double right = has_right_ ? v[has_left_ ? 2 : 1][0] : 0.0;
-    c[0] = (3.0 - 2.0 * xi) * xi - left - 2.0 * right + 1.0;
+    c[0] = scale_ * ((3.0 - 2.0 * xi) * xi - left - 2.0 * right + 1.0);
     if (!J) return;
-    if (J[0]) J[0][0] = 3.0 - 4.0 * xi;
-    if (has_left_ && J[1]) J[1][0] = -1.0;
-    if (has_right_ && J[has_left_ ? 2 : 1]) J[has_left_ ? 2 : 1][0] = -2.0;
+    if (J[0]) J[0][0] = scale_ * (3.0 - 4.0 * xi);
+    if (has_left_ && J[1]) J[1][0] = -scale_;
+    if (has_right_ && J[has_left_ ? 2 : 1]) J[has_left_ ? 2 : 1][0] = -2.0 * scale_;
   }
   bool provides_hessian() const override { return true; }
   void evaluate_hessian(const double* const*, const double* w, double* H) const override {
     const int n = 1 + has_left_ + has_right_;
     for (int i = 0; i < n * n; ++i) H[i] = 0.0;
-    H[0] = -4.0 * w[0];
+    H[0] = -4.0 * scale_ * w[0];
   }
 
  private:
@@ -84,15 +86,18 @@ class BroydenRow : public ResidualBlock {
     return ids;
   }
   bool has_left_, has_right_;
+  double scale_;
 };
 
-/// Broyden tridiagonal problem of size n, one scalar variable block per unknown, start x = -1 (MGH).
-inline Problem broyden_problem(int n) {
+/// Broyden tridiagonal problem of size n, one scalar variable block per unknown, start x = -1 (MGH);
+/// every odd row multiplied by odd_row_scale (1: the original problem).
+inline Problem broyden_problem(int n, double odd_row_scale = 1.0) {
   Problem p;
   std::vector<VariableId> x;
   for (int i = 0; i < n; ++i)
     x.push_back(p.add_variable_block("x" + std::to_string(i), VecX::Constant(1, -1.0)));
-  for (int i = 0; i < n; ++i) p.add_residual_block(std::make_shared<BroydenRow>(i, x));
+  for (int i = 0; i < n; ++i)
+    p.add_residual_block(std::make_shared<BroydenRow>(i, x, i % 2 ? odd_row_scale : 1.0));
   return p;
 }
 

@@ -2,6 +2,7 @@
 #include "pcr/solve/ipopt_solver.hpp"
 
 #include <coin/IpIpoptApplication.hpp>
+#include <coin/IpRegOptions.hpp>
 #include <coin/IpSolveStatistics.hpp>
 #include <coin/IpTNLP.hpp>
 
@@ -9,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 
 #include "pcr/core/error.hpp"
@@ -260,6 +262,9 @@ IpoptSolver::IpoptSolver(const Problem& problem, IpoptOptions options)
   Impl& w = *impl_;
   w.app = IpoptApplicationFactory();
   w.app->RethrowNonIpoptException(false);
+  // Checked against the registered settings first: Ipopt would print its own complaint to stdout.
+  require(w.app->RegOptions()->GetOption("linear_solver")->IsValidStringSetting(o.linear_solver),
+          "IpoptOptions: linear_solver = '", o.linear_solver, "' is not available in this Ipopt");
   Ipopt::OptionsList& opts = *w.app->Options();
   bool ok =
       opts.SetStringValue("sb", "yes") && opts.SetIntegerValue("print_level", o.print_level) &&
@@ -274,6 +279,22 @@ IpoptSolver::IpoptSolver(const Problem& problem, IpoptOptions options)
       // such as c >= 25 may be violated by 2.5e-7 > constr_viol_tol: keep the bounds exact.
       opts.SetNumericValue("bound_relax_factor", 0.0);
   require(ok, "IpoptSolver: Ipopt rejected an option (linear_solver = '", o.linear_solver, "'?)");
+  for (const auto& [name, value] : o.extra_options) {
+    const Ipopt::SmartPtr<const Ipopt::RegisteredOption> option = w.app->RegOptions()->GetOption(name);
+    require(Ipopt::IsValid(option), "IpoptOptions::extra_options: unknown Ipopt option '", name, "'");
+    char* end = nullptr;
+    bool set = false;
+    if (option->Type() == Ipopt::OT_Integer) {
+      const long integer = std::strtol(value.c_str(), &end, 10);
+      set = !value.empty() && *end == '\0' && opts.SetIntegerValue(name, static_cast<Index>(integer));
+    } else if (option->Type() == Ipopt::OT_Number) {
+      const double number = std::strtod(value.c_str(), &end);
+      set = !value.empty() && *end == '\0' && opts.SetNumericValue(name, number);
+    } else {
+      set = option->IsValidStringSetting(value) && opts.SetStringValue(name, value);  // quiet check first
+    }
+    require(set, "IpoptOptions::extra_options: Ipopt rejected option '", name, "' = '", value, "'");
+  }
   const Ipopt::ApplicationReturnStatus status = w.app->Initialize("");
   require(status == Ipopt::Solve_Succeeded,
           "IpoptSolver: Ipopt initialisation failed: ", ipopt_status_name(status));

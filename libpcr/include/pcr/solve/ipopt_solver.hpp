@@ -10,6 +10,8 @@
 // one process (not even with different IpoptSolver objects).
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "pcr/core/types.hpp"
 #include "pcr/solve/problem.hpp"
@@ -37,6 +39,9 @@ struct IpoptOptions {
   double warm_start_mu = 1e-6;                ///< "mu_init" for warm-started solves
   IpoptScaling scaling = IpoptScaling::None;  ///< chosen by bench_solve (README "Solvers")
   std::string linear_solver = "mumps";        ///< "linear_solver"
+  /// Any other Ipopt option as (name, value), parsed by the option's registered type (integer, number,
+  /// string); applied last, so it may override the fields above. Unknown or rejected: InputError.
+  std::vector<std::pair<std::string, std::string>> extra_options;
 };
 
 class IpoptSolver {
