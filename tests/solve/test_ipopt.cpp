@@ -57,10 +57,20 @@ BOOST_AUTO_TEST_CASE(hs071_limited_memory) {
   Problem p = hs071_problem();
   IpoptOptions options;
   options.hessian = IpoptHessian::LimitedMemory;
-  options.scaling = IpoptScaling::GradientBased;
+  options.scaling = IpoptScaling::None;  // the default is gradient-based: cover the other path
   IpoptSolver ipopt(p, options);
   VecX x = p.initial_values();
   check_hs071(x, ipopt.solve(x));
+}
+
+BOOST_AUTO_TEST_CASE(hs071_with_a_badly_scaled_objective) {
+  // f multiplied by 1e4: same minimiser; the objective value is compared after dividing by 1e4.
+  Problem p = hs071_problem(1e4);
+  IpoptSolver ipopt(p);
+  VecX x = p.initial_values();
+  SolveSummary s = ipopt.solve(x);
+  s.objective /= 1e4;
+  check_hs071(x, s);
 }
 
 BOOST_AUTO_TEST_CASE(hs071_warm_start_needs_fewer_iterations) {

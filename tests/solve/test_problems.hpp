@@ -104,25 +104,30 @@ inline Problem broyden_problem(int n, double odd_row_scale = 1.0) {
 /// Hock & Schittkowski problem 71, objective x1 x4 (x1 + x2 + x3) + x3 over one block of size 4.
 class Hs071Objective : public ObjectiveTerm {
  public:
-  explicit Hs071Objective(VariableId x) : ObjectiveTerm("hs071.objective", {x}) {}
+  /// scale multiplies the objective (a badly scaled variant for scaling studies; same minimiser).
+  explicit Hs071Objective(VariableId x, double scale = 1.0)
+      : ObjectiveTerm("hs071.objective", {x}), s_(scale) {}
   int expected_variable_size(int) const override { return 4; }
   double evaluate(const double* const* v, double* const* g) const override {
     const double* x = v[0];
     if (g && g[0]) {
-      g[0][0] = x[3] * (2.0 * x[0] + x[1] + x[2]);
-      g[0][1] = x[0] * x[3];
-      g[0][2] = x[0] * x[3] + 1.0;
-      g[0][3] = x[0] * (x[0] + x[1] + x[2]);
+      g[0][0] = s_ * x[3] * (2.0 * x[0] + x[1] + x[2]);
+      g[0][1] = s_ * x[0] * x[3];
+      g[0][2] = s_ * (x[0] * x[3] + 1.0);
+      g[0][3] = s_ * x[0] * (x[0] + x[1] + x[2]);
     }
-    return x[0] * x[3] * (x[0] + x[1] + x[2]) + x[2];
+    return s_ * (x[0] * x[3] * (x[0] + x[1] + x[2]) + x[2]);
   }
   bool provides_hessian() const override { return true; }
   void evaluate_hessian(const double* const* v, double* H) const override {
     const double* x = v[0];
     const double h[16] = {2 * x[3], x[3], x[3], 2 * x[0] + x[1] + x[2], x[3], 0,    0, x[0], x[3],
                           0,        0,    x[0], 2 * x[0] + x[1] + x[2], x[0], x[0], 0};
-    for (int i = 0; i < 16; ++i) H[i] = h[i];
+    for (int i = 0; i < 16; ++i) H[i] = s_ * h[i];
   }
+
+ private:
+  double s_;
 };
 
 /// x1 x2 x3 x4 >= 25.
@@ -173,12 +178,13 @@ class Hs071Sphere : public ResidualBlock {
   }
 };
 
-/// HS071 with bounds 1 <= x <= 5 and the published start (1, 5, 5, 1) (infeasible: sum of squares 52).
-inline Problem hs071_problem() {
+/// HS071 with bounds 1 <= x <= 5 and the published start (1, 5, 5, 1) (infeasible: sum of squares 52);
+/// objective_scale multiplies the objective (1: the published problem).
+inline Problem hs071_problem(double objective_scale = 1.0) {
   Problem p;
   const VariableId x = p.add_variable_block("x", (VecX(4) << 1, 5, 5, 1).finished(), VecX::Constant(4, 1.0),
                                             VecX::Constant(4, 5.0));
-  p.add_objective_term(std::make_shared<Hs071Objective>(x));
+  p.add_objective_term(std::make_shared<Hs071Objective>(x, objective_scale));
   p.add_residual_block(std::make_shared<Hs071Product>(x));
   p.add_residual_block(std::make_shared<Hs071Sphere>(x));
   return p;

@@ -219,6 +219,12 @@ class ProblemNlp : public Ipopt::TNLP {
 
   bool has_final = false;
 
+  /// Forget the per-point caches (a new solve may revisit the last point of the previous one).
+  void begin_solve() {
+    loaded_ = false;
+    has_final = false;
+  }
+
  private:
   // Copies Ipopt's point into x_ (Problem takes a VecX) and invalidates the caches at a new point.
   void load(Index n, const Number* x, bool new_x) {
@@ -352,7 +358,7 @@ SolveSummary IpoptSolver::solve(VecX& x) {
   opts.SetNumericValue("warm_start_bound_push", 1e-9);
   opts.SetNumericValue("warm_start_mult_bound_push", 1e-9);
   opts.SetNumericValue("warm_start_slack_bound_push", 1e-9);
-  nlp.has_final = false;
+  nlp.begin_solve();
   Ipopt::SmartPtr<Ipopt::TNLP> tnlp = Ipopt::GetRawPtr(w.nlp);
   const Ipopt::ApplicationReturnStatus status =
       same_structure ? w.app->ReOptimizeTNLP(tnlp) : w.app->OptimizeTNLP(tnlp);
