@@ -57,10 +57,20 @@ BOOST_AUTO_TEST_CASE(hs071_limited_memory) {
   Problem p = hs071_problem();
   IpoptOptions options;
   options.hessian = IpoptHessian::LimitedMemory;
-  options.scaling = IpoptScaling::GradientBased;
+  options.scaling = IpoptScaling::None;  // the default is gradient-based: cover the other path
   IpoptSolver ipopt(p, options);
   VecX x = p.initial_values();
   check_hs071(x, ipopt.solve(x));
+}
+
+BOOST_AUTO_TEST_CASE(hs071_with_a_badly_scaled_objective) {
+  // f multiplied by 1e4: same minimiser; the objective value is compared after dividing by 1e4.
+  Problem p = hs071_problem(1e4);
+  IpoptSolver ipopt(p);
+  VecX x = p.initial_values();
+  SolveSummary s = ipopt.solve(x);
+  s.objective /= 1e4;
+  check_hs071(x, s);
 }
 
 BOOST_AUTO_TEST_CASE(hs071_warm_start_needs_fewer_iterations) {
@@ -183,5 +193,39 @@ BOOST_AUTO_TEST_CASE(bad_options_throw) {
   BOOST_CHECK_THROW(IpoptSolver(p, options), InputError);
   options = IpoptOptions{};
   options.linear_solver = "no_such_solver";
+  BOOST_CHECK_THROW(IpoptSolver(p, options), InputError);
+}
+
+BOOST_AUTO_TEST_CASE(bound_changes_between_solves_are_honoured) {
+  // Circle and line from (1, 0.2): the positive root; then bounds x, y <= -0.1 leave only the negative one.
+  Problem p;
+  const VariableId x = p.add_variable_block("x", VecX::Constant(1, 1.0));
+  const VariableId y = p.add_variable_block("y", VecX::Constant(1, 0.2));
+  p.add_residual_block(std::make_shared<CircleBlock>(x, y, 2.0));
+  p.add_residual_block(std::make_shared<LineBlock>(y, x, 1.0, -1.0, 0.0));
+  IpoptSolver ipopt(p);
+  VecX v = p.initial_values();
+  BOOST_TEST(ipopt.solve(v).converged());
+  BOOST_TEST(std::abs(v[0] - std::sqrt(2.0)) <= 1e-7);  // as in circle_and_line_from_an_infeasible_start
+  p.set_variable_bounds(x, VecX::Constant(1, -10.0), VecX::Constant(1, -0.1));
+  p.set_variable_bounds(y, VecX::Constant(1, -10.0), VecX::Constant(1, -0.1));
+  v = p.initial_values();
+  const SolveSummary s = ipopt.solve(v);
+  BOOST_TEST(s.converged(), s.brief_report());
+  BOOST_TEST(std::abs(v[0] + std::sqrt(2.0)) <= 1e-7);
+  BOOST_TEST(std::abs(v[1] + std::sqrt(2.0)) <= 1e-7);
+}
+
+BOOST_AUTO_TEST_CASE(extra_options_are_passed_and_checked) {
+  Problem p = hs071_problem();
+  IpoptOptions options;
+  options.extra_options = {{"mu_strategy", "adaptive"}, {"max_iter", "1"}, {"bound_push", "0.001"}};
+  IpoptSolver ipopt(p, options);
+  VecX x = p.initial_values();
+  // max_iter 1 from extra_options overrides max_iterations: HS071 needs more than one iteration.
+  BOOST_TEST((ipopt.solve(x).status == SolveStatus::MaxIterations));
+  options.extra_options = {{"no_such_option", "1"}};
+  BOOST_CHECK_THROW(IpoptSolver(p, options), InputError);
+  options.extra_options = {{"max_iter", "many"}};
   BOOST_CHECK_THROW(IpoptSolver(p, options), InputError);
 }

@@ -307,3 +307,27 @@ BOOST_AUTO_TEST_CASE(summary_reports_status_and_figures) {
   s.wall_time_seconds = 0.21e-3;
   BOOST_TEST(s.brief_report() == "newton: converged in 4 iterations, |c|max = 3.1e-12, 0.21 ms");
 }
+
+BOOST_AUTO_TEST_CASE(hessian_checker_passes_right_and_catches_wrong_hessians) {
+  const std::vector<VecX> x{(VecX(4) << 1.2, 4.1, 3.3, 1.7).finished()};
+  const pcr::test::Hs071Product product(0);
+  const JacobianCheckResult ok = check_block_hessian(product, x, VecX::Constant(1, -0.7));
+  BOOST_TEST(ok.passed, ok.to_string());
+  BOOST_TEST(ok.entries_checked == 16);
+  // A block whose Hessian forgets the weight: wrong unless the weight is 1.
+  class UnweightedCircle : public CircleBlock {
+   public:
+    using CircleBlock::CircleBlock;
+    void evaluate_hessian(const double* const*, const double*, double* H) const override {
+      H[0] = 2.0, H[1] = 0.0, H[2] = 0.0, H[3] = 2.0;
+    }
+  };
+  const UnweightedCircle circle(0, 1, 2.0);
+  const std::vector<VecX> xy{VecX::Constant(1, 0.4), VecX::Constant(1, -1.3)};
+  BOOST_TEST(check_block_hessian(circle, xy, VecX::Constant(1, 1.0)).passed);
+  const JacobianCheckResult bad = check_block_hessian(circle, xy, VecX::Constant(1, 3.0));
+  BOOST_TEST(!bad.passed);
+  BOOST_TEST(std::abs(bad.numeric - 6.0) <= 1e-8);  // d(2 w x)/dx = 2 w = 6; FD of a linear function
+  BOOST_CHECK_THROW(check_block_hessian(pcr::test::SquarePlusOne(0), {VecX::Ones(1)}, VecX::Ones(1)),
+                    InputError);
+}

@@ -55,25 +55,27 @@ class LineBlock : public ResidualBlock {
 /// Touches {x_i, x_{i-1} (if any), x_{i+1} (if any)}.
 class BroydenRow : public ResidualBlock {
  public:
-  BroydenRow(int i, const std::vector<VariableId>& x)
+  /// scale multiplies the row (a badly scaled variant for scaling studies; the roots do not change).
+  BroydenRow(int i, const std::vector<VariableId>& x, double scale = 1.0)
       : ResidualBlock("test.broyden", "broyden_" + std::to_string(i), 1, touched(i, x)),
         has_left_(i > 0),
-        has_right_(i + 1 < static_cast<int>(x.size())) {}
+        has_right_(i + 1 < static_cast<int>(x.size())),
+        scale_(scale) {}
   void evaluate(const double* const* v, double* c, double* const* J) const override {
     const double xi = v[0][0];
     const double left = has_left_ ? v[1][0] : 0.0;
     const double right = has_right_ ? v[has_left_ ? 2 : 1][0] : 0.0;
-    c[0] = (3.0 - 2.0 * xi) * xi - left - 2.0 * right + 1.0;
+    c[0] = scale_ * ((3.0 - 2.0 * xi) * xi - left - 2.0 * right + 1.0);
     if (!J) return;
-    if (J[0]) J[0][0] = 3.0 - 4.0 * xi;
-    if (has_left_ && J[1]) J[1][0] = -1.0;
-    if (has_right_ && J[has_left_ ? 2 : 1]) J[has_left_ ? 2 : 1][0] = -2.0;
+    if (J[0]) J[0][0] = scale_ * (3.0 - 4.0 * xi);
+    if (has_left_ && J[1]) J[1][0] = -scale_;
+    if (has_right_ && J[has_left_ ? 2 : 1]) J[has_left_ ? 2 : 1][0] = -2.0 * scale_;
   }
   bool provides_hessian() const override { return true; }
   void evaluate_hessian(const double* const*, const double* w, double* H) const override {
     const int n = 1 + has_left_ + has_right_;
     for (int i = 0; i < n * n; ++i) H[i] = 0.0;
-    H[0] = -4.0 * w[0];
+    H[0] = -4.0 * scale_ * w[0];
   }
 
  private:
@@ -84,40 +86,48 @@ class BroydenRow : public ResidualBlock {
     return ids;
   }
   bool has_left_, has_right_;
+  double scale_;
 };
 
-/// Broyden tridiagonal problem of size n, one scalar variable block per unknown, start x = -1 (MGH).
-inline Problem broyden_problem(int n) {
+/// Broyden tridiagonal problem of size n, one scalar variable block per unknown, start x = -1 (MGH);
+/// every odd row multiplied by odd_row_scale (1: the original problem).
+inline Problem broyden_problem(int n, double odd_row_scale = 1.0) {
   Problem p;
   std::vector<VariableId> x;
   for (int i = 0; i < n; ++i)
     x.push_back(p.add_variable_block("x" + std::to_string(i), VecX::Constant(1, -1.0)));
-  for (int i = 0; i < n; ++i) p.add_residual_block(std::make_shared<BroydenRow>(i, x));
+  for (int i = 0; i < n; ++i)
+    p.add_residual_block(std::make_shared<BroydenRow>(i, x, i % 2 ? odd_row_scale : 1.0));
   return p;
 }
 
 /// Hock & Schittkowski problem 71, objective x1 x4 (x1 + x2 + x3) + x3 over one block of size 4.
 class Hs071Objective : public ObjectiveTerm {
  public:
-  explicit Hs071Objective(VariableId x) : ObjectiveTerm("hs071.objective", {x}) {}
+  /// scale multiplies the objective (a badly scaled variant for scaling studies; same minimiser).
+  explicit Hs071Objective(VariableId x, double scale = 1.0)
+      : ObjectiveTerm("hs071.objective", {x}), s_(scale) {}
   int expected_variable_size(int) const override { return 4; }
   double evaluate(const double* const* v, double* const* g) const override {
     const double* x = v[0];
     if (g && g[0]) {
-      g[0][0] = x[3] * (2.0 * x[0] + x[1] + x[2]);
-      g[0][1] = x[0] * x[3];
-      g[0][2] = x[0] * x[3] + 1.0;
-      g[0][3] = x[0] * (x[0] + x[1] + x[2]);
+      g[0][0] = s_ * x[3] * (2.0 * x[0] + x[1] + x[2]);
+      g[0][1] = s_ * x[0] * x[3];
+      g[0][2] = s_ * (x[0] * x[3] + 1.0);
+      g[0][3] = s_ * x[0] * (x[0] + x[1] + x[2]);
     }
-    return x[0] * x[3] * (x[0] + x[1] + x[2]) + x[2];
+    return s_ * (x[0] * x[3] * (x[0] + x[1] + x[2]) + x[2]);
   }
   bool provides_hessian() const override { return true; }
   void evaluate_hessian(const double* const* v, double* H) const override {
     const double* x = v[0];
     const double h[16] = {2 * x[3], x[3], x[3], 2 * x[0] + x[1] + x[2], x[3], 0,    0, x[0], x[3],
                           0,        0,    x[0], 2 * x[0] + x[1] + x[2], x[0], x[0], 0};
-    for (int i = 0; i < 16; ++i) H[i] = h[i];
+    for (int i = 0; i < 16; ++i) H[i] = s_ * h[i];
   }
+
+ private:
+  double s_;
 };
 
 /// x1 x2 x3 x4 >= 25.
@@ -168,12 +178,13 @@ class Hs071Sphere : public ResidualBlock {
   }
 };
 
-/// HS071 with bounds 1 <= x <= 5 and the published start (1, 5, 5, 1) (infeasible: sum of squares 52).
-inline Problem hs071_problem() {
+/// HS071 with bounds 1 <= x <= 5 and the published start (1, 5, 5, 1) (infeasible: sum of squares 52);
+/// objective_scale multiplies the objective (1: the published problem).
+inline Problem hs071_problem(double objective_scale = 1.0) {
   Problem p;
   const VariableId x = p.add_variable_block("x", (VecX(4) << 1, 5, 5, 1).finished(), VecX::Constant(4, 1.0),
                                             VecX::Constant(4, 5.0));
-  p.add_objective_term(std::make_shared<Hs071Objective>(x));
+  p.add_objective_term(std::make_shared<Hs071Objective>(x, objective_scale));
   p.add_residual_block(std::make_shared<Hs071Product>(x));
   p.add_residual_block(std::make_shared<Hs071Sphere>(x));
   return p;

@@ -2,6 +2,7 @@
 #include "pcr/solve/ipopt_solver.hpp"
 
 #include <coin/IpIpoptApplication.hpp>
+#include <coin/IpRegOptions.hpp>
 #include <coin/IpSolveStatistics.hpp>
 #include <coin/IpTNLP.hpp>
 
@@ -9,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 
 #include "pcr/core/error.hpp"
@@ -217,6 +219,12 @@ class ProblemNlp : public Ipopt::TNLP {
 
   bool has_final = false;
 
+  /// Forget the per-point caches (a new solve may revisit the last point of the previous one).
+  void begin_solve() {
+    loaded_ = false;
+    has_final = false;
+  }
+
  private:
   // Copies Ipopt's point into x_ (Problem takes a VecX) and invalidates the caches at a new point.
   void load(Index n, const Number* x, bool new_x) {
@@ -260,6 +268,9 @@ IpoptSolver::IpoptSolver(const Problem& problem, IpoptOptions options)
   Impl& w = *impl_;
   w.app = IpoptApplicationFactory();
   w.app->RethrowNonIpoptException(false);
+  // Checked against the registered settings first: Ipopt would print its own complaint to stdout.
+  require(w.app->RegOptions()->GetOption("linear_solver")->IsValidStringSetting(o.linear_solver),
+          "IpoptOptions: linear_solver = '", o.linear_solver, "' is not available in this Ipopt");
   Ipopt::OptionsList& opts = *w.app->Options();
   bool ok =
       opts.SetStringValue("sb", "yes") && opts.SetIntegerValue("print_level", o.print_level) &&
@@ -274,6 +285,22 @@ IpoptSolver::IpoptSolver(const Problem& problem, IpoptOptions options)
       // such as c >= 25 may be violated by 2.5e-7 > constr_viol_tol: keep the bounds exact.
       opts.SetNumericValue("bound_relax_factor", 0.0);
   require(ok, "IpoptSolver: Ipopt rejected an option (linear_solver = '", o.linear_solver, "'?)");
+  for (const auto& [name, value] : o.extra_options) {
+    const Ipopt::SmartPtr<const Ipopt::RegisteredOption> option = w.app->RegOptions()->GetOption(name);
+    require(Ipopt::IsValid(option), "IpoptOptions::extra_options: unknown Ipopt option '", name, "'");
+    char* end = nullptr;
+    bool set = false;
+    if (option->Type() == Ipopt::OT_Integer) {
+      const long integer = std::strtol(value.c_str(), &end, 10);
+      set = !value.empty() && *end == '\0' && opts.SetIntegerValue(name, static_cast<Index>(integer));
+    } else if (option->Type() == Ipopt::OT_Number) {
+      const double number = std::strtod(value.c_str(), &end);
+      set = !value.empty() && *end == '\0' && opts.SetNumericValue(name, number);
+    } else {
+      set = option->IsValidStringSetting(value) && opts.SetStringValue(name, value);  // quiet check first
+    }
+    require(set, "IpoptOptions::extra_options: Ipopt rejected option '", name, "' = '", value, "'");
+  }
   const Ipopt::ApplicationReturnStatus status = w.app->Initialize("");
   require(status == Ipopt::Solve_Succeeded,
           "IpoptSolver: Ipopt initialisation failed: ", ipopt_status_name(status));
@@ -331,7 +358,7 @@ SolveSummary IpoptSolver::solve(VecX& x) {
   opts.SetNumericValue("warm_start_bound_push", 1e-9);
   opts.SetNumericValue("warm_start_mult_bound_push", 1e-9);
   opts.SetNumericValue("warm_start_slack_bound_push", 1e-9);
-  nlp.has_final = false;
+  nlp.begin_solve();
   Ipopt::SmartPtr<Ipopt::TNLP> tnlp = Ipopt::GetRawPtr(w.nlp);
   const Ipopt::ApplicationReturnStatus status =
       same_structure ? w.app->ReOptimizeTNLP(tnlp) : w.app->OptimizeTNLP(tnlp);

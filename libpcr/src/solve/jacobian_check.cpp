@@ -109,6 +109,67 @@ JacobianCheckResult check_block_jacobian(const ResidualBlock& block, const std::
   return result;
 }
 
+JacobianCheckResult check_block_hessian(const ResidualBlock& block, const std::vector<VecX>& values,
+                                        const VecX& weights, const JacobianCheckOptions& options) {
+  check_options(options);
+  require(block.provides_hessian(), "check_block_hessian: block '", block.name(), "' provides no Hessian");
+  const auto& ids = block.variables();
+  require(values.size() == ids.size(), "check_block_hessian: block '", block.name(), "' touches ", ids.size(),
+          " variable blocks, got ", values.size(), " values");
+  require(weights.size() == block.num_rows(), "check_block_hessian: block '", block.name(),
+          "': ", weights.size(), " weights for ", block.num_rows(), " rows");
+  const int rows = block.num_rows();
+  std::vector<VecX> x = values;
+  std::vector<const double*> value_ptrs(ids.size());
+  std::vector<int> start(ids.size() + 1, 0);  // offset of variable k in the stacked local vector
+  for (size_t k = 0; k < ids.size(); ++k) {
+    value_ptrs[k] = x[k].data();
+    start[k + 1] = start[k] + static_cast<int>(values[k].size());
+  }
+  const int n = start.back();
+  // g(x) = J(x)^T weights over the stacked variables.
+  std::vector<RowMajorMatX> jacobians(ids.size());
+  std::vector<double*> jacobian_ptrs(ids.size());
+  VecX c(rows);
+  auto weighted_gradient = [&]() {
+    VecX g(n);
+    for (size_t k = 0; k < ids.size(); ++k) {
+      jacobians[k].resize(rows, values[k].size());
+      jacobian_ptrs[k] = jacobians[k].data();
+    }
+    block.evaluate(value_ptrs.data(), c.data(), jacobian_ptrs.data());
+    for (size_t k = 0; k < ids.size(); ++k)
+      g.segment(start[k], values[k].size()) = jacobians[k].transpose() * weights;
+    return g;
+  };
+  RowMajorMatX H = RowMajorMatX::Constant(n, n, std::nan(""));
+  block.evaluate_hessian(value_ptrs.data(), weights.data(), H.data());
+
+  JacobianCheckResult result;
+  result.block_name = block.name();
+  result.block_kind = block.kind();
+  EntryJudge judge{options, result};
+  for (size_t k = 0; k < ids.size(); ++k) {
+    for (int j = 0; j < x[k].size(); ++j) {
+      const double x0 = x[k][j], h = step_for(x0, options);
+      x[k][j] = x0 + h;
+      const VecX g_plus = weighted_gradient();
+      x[k][j] = x0 - h;
+      const VecX g_minus = weighted_gradient();
+      x[k][j] = x0;
+      for (int i = 0; i < n; ++i) {
+        if (judge.consider(H(i, start[k] + j), (g_plus[i] - g_minus[i]) / (2.0 * h))) {
+          result.row = result.global_row = i;
+          result.variable_index = static_cast<int>(k);
+          result.variable = ids[k];
+          result.column = j;
+        }
+      }
+    }
+  }
+  return result;
+}
+
 JacobianCheckResult check_problem_jacobian(const Problem& problem, const VecX& x_in,
                                            const JacobianCheckOptions& options) {
   check_options(options);

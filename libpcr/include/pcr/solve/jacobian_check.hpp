@@ -41,6 +41,12 @@ struct JacobianCheckResult {
 JacobianCheckResult check_block_jacobian(const ResidualBlock& block, const std::vector<VecX>& values,
                                          const JacobianCheckOptions& options = {});
 
+/// Second derivatives of a block that provides_hessian(): its Hessian of sum_i weights[i] c_i against
+/// central differences of J(x)^T weights. Reported entries: row = Hessian row, variable_index/column
+/// = Hessian column (touched variable k, column in it). Throws InputError if the block has no Hessian.
+JacobianCheckResult check_block_hessian(const ResidualBlock& block, const std::vector<VecX>& values,
+                                        const VecX& weights, const JacobianCheckOptions& options = {});
+
 /// The whole Jacobian of the active rows of problem at x (every column, fixed variables included) and
 /// the gradient of the objective (reported with kind "objective"). Costs 2 num_variables() evaluations.
 JacobianCheckResult check_problem_jacobian(const Problem& problem, const VecX& x,
