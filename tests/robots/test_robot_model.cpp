@@ -187,7 +187,7 @@ BOOST_AUTO_TEST_CASE(planar_three_rod) {
   BOOST_TEST(m.platforms().size() == 1u);
   BOOST_TEST(m.inputs().size() == 3u);
   for (const RodElement& rod : m.rods()) {
-    BOOST_TEST((rod.start.coupling == RodEndKind::Clamped && rod.end.coupling == RodEndKind::Clamped));
+    BOOST_TEST((rod.start.coupling == RodEndKind::Clamped && rod.end.coupling == RodEndKind::Spherical));
     // Straight and stress-free at the defaults: tip = base + L d3(base), same frame at both ends, in y = 0.
     const Vec3 d3 = rotation_matrix(rod.rod.base.orientation).col(2);
     BOOST_TEST((rod.rod.tip.position - rod.rod.base.position - rod.rod.length * d3).norm() < kWritten);

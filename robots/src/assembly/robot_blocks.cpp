@@ -1,5 +1,7 @@
 #include "robot_blocks.hpp"
 
+#include <algorithm>
+
 #include "pcr/math/dual.hpp"
 #include "pcr/math/so3.hpp"
 #include "pcr/rods/collocation/end_equations.hpp"
@@ -129,16 +131,13 @@ void PlatformBalanceBlock::evaluate(const double* const* values, double* residua
 
 // ---------------------------------------------------------------------------------------------------
 namespace {
-int target_rows(TargetMode mode) { return mode == TargetMode::Pose ? 6 : 3; }
-const char* target_kind(TargetMode mode) {
-  return mode == TargetMode::Pose ? "target.pose" : mode == TargetMode::Position ? "target.position" : "target.orientation";
-}
+int target_rows(const PoseComponents& c) { return static_cast<int>(std::count(c.begin(), c.end(), true)); }
 }  // namespace
 
 PoseTargetBlock::PoseTargetBlock(const std::string& name, VariableId platform, VariableId target, const Pose& offset,
-                                 TargetMode mode, double length_scale)
-    : ResidualBlock(target_kind(mode), name, target_rows(mode), {platform, target}), offset_(offset), mode_(mode),
-      length_scale_(length_scale) {}
+                                 const PoseComponents& components, double length_scale)
+    : ResidualBlock("target.pose", name, target_rows(components), {platform, target}), offset_(offset),
+      components_(components), length_scale_(length_scale) {}
 
 void PoseTargetBlock::evaluate(const double* const* values, double* residual, double* const* jacobians) const {
   using D = Dual<14>;
@@ -149,22 +148,22 @@ void PoseTargetBlock::evaluate(const double* const* values, double* residual, do
   }
   const V3<D> x = z.segment<3>(0), xt = z.segment<3>(7);
   const V4<D> Q = z.segment<4>(3), Qt = z.segment<4>(10);
-  D r[6];
-  int rows = 0;
-  if (mode_ != TargetMode::Orientation) {
-    const V3<D> xf = x + rotation(Q) * offset_.position.cast<D>();
-    for (int i = 0; i < 3; ++i) r[rows++] = (xf[i] - xt[i]) / length_scale_;
+  const V3<D> xf = x + rotation(Q) * offset_.position.cast<D>();
+  const V4<D> Qf = quat_product<D>(Q, offset_.orientation.cast<D>());
+  const V3<D> e = conj_product_vec<D>(Qt, Qf) * 2.0;
+  D all[6];
+  for (int i = 0; i < 3; ++i) {
+    all[i] = (xf[i] - xt[i]) / length_scale_;
+    all[3 + i] = e[i];
   }
-  if (mode_ != TargetMode::Position) {
-    const V4<D> Qf = quat_product<D>(Q, offset_.orientation.cast<D>());
-    const V3<D> e = conj_product_vec<D>(Qt, Qf) * 2.0;
-    for (int i = 0; i < 3; ++i) r[rows++] = e[i];
-  }
-  for (int i = 0; i < rows; ++i) {
-    residual[i] = r[i].a;
+  int row = 0;
+  for (int i = 0; i < 6; ++i) {
+    if (!components_[i]) continue;
+    residual[row] = all[i].a;
     for (int b = 0; b < 2; ++b)
       if (jacobians && jacobians[b])
-        for (int k = 0; k < 7; ++k) jacobians[b][i * 7 + k] = r[i].v[7 * b + k];
+        for (int k = 0; k < 7; ++k) jacobians[b][row * 7 + k] = all[i].v[7 * b + k];
+    ++row;
   }
 }
 

@@ -4,6 +4,7 @@
 //    the target frame = link pose * attachment, DESIGN.md §1);
 //  - PlatformBalanceBlock: force and moment balance of a platform about its origin, and |Q|^2 = 1;
 //  - PoseTargetBlock: IK target on a platform-carried frame (position and/or orientation).
+#include <array>
 #include <vector>
 
 #include "link_frame.hpp"
@@ -57,20 +58,21 @@ class PlatformBalanceBlock final : public ResidualBlock {
   double force_scale_, moment_scale_;
 };
 
-enum class TargetMode { Pose, Position, Orientation };
+/// Selected pose components: position x, y, z (world) and rotation about x, y, z (target frame).
+using PoseComponents = std::array<bool, 6>;
 
-/// IK target: (x_f - x_t) / length_scale (3 rows, unless orientation only) and
-/// 2 vec(conj(Q_t) (x) Q_f) (3 rows, unless position only), where (x_f, Q_f) = platform pose * offset
+/// IK target: the selected rows of (x_f - x_t) / length_scale and 2 vec(conj(Q_t) (x) Q_f) (the
+/// rotation from target to reached frame, to first order), where (x_f, Q_f) = platform pose * offset
 /// and the target (x_t, Q_t) is a variable block of its own (fixed by the IK at each solve).
 class PoseTargetBlock final : public ResidualBlock {
  public:
-  PoseTargetBlock(const std::string& name, VariableId platform, VariableId target, const Pose& offset, TargetMode mode,
-                  double length_scale);
+  PoseTargetBlock(const std::string& name, VariableId platform, VariableId target, const Pose& offset,
+                  const PoseComponents& components, double length_scale);
   void evaluate(const double* const* values, double* residual, double* const* jacobians) const override;
 
  private:
   Pose offset_;
-  TargetMode mode_;
+  PoseComponents components_;
   double length_scale_;
 };
 

@@ -1,5 +1,6 @@
 #include "pcr/robots/kinematics.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <sstream>
 
@@ -261,11 +262,15 @@ InverseKinematics::InverseKinematics(std::shared_ptr<const RobotModel> model, co
     const VariableId tv = problem.add_variable_block("target." + t.link, z);
     problem.fix_variable(tv, z);
     target_variables_.push_back(tv);
-    const assembly::TargetMode mode = t.mode == LinkTarget::Mode::Pose       ? assembly::TargetMode::Pose
-                                      : t.mode == LinkTarget::Mode::Position ? assembly::TargetMode::Position
-                                                                             : assembly::TargetMode::Orientation;
+    assembly::PoseComponents components = t.components;
+    for (int i = 0; i < 3; ++i) {
+      components[i] = components[i] && t.mode != LinkTarget::Mode::Orientation;
+      components[3 + i] = components[3 + i] && t.mode != LinkTarget::Mode::Position;
+    }
+    require(std::count(components.begin(), components.end(), true) > 0, "inverse kinematics: target for '", t.link,
+            "' selects no pose component");
     problem.add_residual_block(std::make_shared<assembly::PoseTargetBlock>(
-        "target." + t.link, assembly_.platform_variable(platform), tv, offset, mode, assembly_.length_scale()));
+        "target." + t.link, assembly_.platform_variable(platform), tv, offset, components, assembly_.length_scale()));
   }
   // Square problem: inputs free (no bounds: Newton checks them afterwards).
   const int n_in = static_cast<int>(m.inputs().size());

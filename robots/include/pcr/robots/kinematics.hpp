@@ -8,6 +8,7 @@
 //    partial targets) Ipopt minimises the distance to the reference inputs subject to all equations.
 //  - Derivatives by the implicit function theorem on the assembled Jacobian.
 // Poses are world-frame; rotations of poses in derivatives are world-frame rotation vectors.
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -71,11 +72,14 @@ class ForwardKinematics {
   std::shared_ptr<Solvers> solvers_;
 };
 
-/// A target on a link carried by a platform.
+/// A target on a link carried by a platform. `mode` selects position (x, y, z, world frame) and/or
+/// orientation (rotation about x, y, z of the target frame); `components` can switch single ones off,
+/// for robots with fewer inputs than 6 per platform (e.g. a planar robot: x, z and rotation about y).
 struct LinkTarget {
   std::string link;
   enum class Mode { Pose, Position, Orientation } mode = Mode::Pose;
   Pose pose;
+  std::array<bool, 6> components{{true, true, true, true, true, true}};
 };
 
 class InverseKinematics {
