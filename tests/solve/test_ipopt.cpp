@@ -185,6 +185,17 @@ BOOST_AUTO_TEST_CASE(incompatible_constraints_are_not_converged) {
   BOOST_TEST(s.residual_max_abs >= 0.5 - 1e-8);
 }
 
+BOOST_AUTO_TEST_CASE(non_finite_start_is_not_converged) {
+  Problem p;
+  const VariableId v = p.add_variable_block("x", VecX::Constant(1, -1.0));  // sqrt(-1): NaN
+  p.add_residual_block(std::make_shared<SquareRootBlock>(v));
+  IpoptSolver ipopt(p);
+  VecX x = p.initial_values();
+  const SolveSummary s = ipopt.solve(x);
+  BOOST_TEST(!s.converged(), s.brief_report());
+  BOOST_TEST(!s.message.empty());
+}
+
 BOOST_AUTO_TEST_CASE(max_iterations_is_reported) {
   Problem p = hs071_problem();
   IpoptOptions options;

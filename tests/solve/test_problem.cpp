@@ -268,7 +268,9 @@ BOOST_AUTO_TEST_CASE(problem_checker_locates_the_wrong_block) {
   BOOST_TEST(r.block_name == "bad_one");
   BOOST_TEST(r.global_row == sp.p.row_offset(bad));
   BOOST_TEST(r.variable == sp.a);
+  BOOST_TEST(r.variable_name == "a");
   BOOST_TEST(r.column == 2);
+  BOOST_TEST(r.to_string().find("'bad_one'") != std::string::npos, r.to_string());
 }
 
 BOOST_AUTO_TEST_CASE(problem_checker_covers_the_objective_gradient) {
