@@ -17,14 +17,22 @@ namespace {
 // Hock & Schittkowski (1981), problem 71: published optimum (8 significant digits).
 constexpr double kHs071Objective = 17.0140173;
 const double kHs071Solution[4] = {1.0, 4.7429994, 3.8211503, 1.3794082};
-// Published values carry 8 significant digits: agreement to 1e-6 (absolute, values of order 1-20).
+// The 8-digit published values are accurate to a few 1e-7 only (x3 = 3.8211503 against 3.82114998 below):
+// agreement to 1e-6 absolute (values of order 1-20).
 constexpr double kPublishedDigits = 1e-6;
+// 9-digit minimiser printed with the Ipopt C++ example (as quoted in ipoptr's tests/hs071_nlp.R):
+// rounding 5e-9, plus Ipopt's tol 1e-8 on the KKT error times a moderate condition number: 1e-7.
+const double kHs071Solution9[4] = {1.00000000, 4.74299963, 3.82114998, 1.37940829};
+constexpr double kNineDigits = 1e-7;
 
 void check_hs071(const VecX& x, const SolveSummary& s) {
   BOOST_TEST(s.converged(), s.brief_report());
   BOOST_TEST(s.residual_max_abs <= 1e-8);  // IpoptOptions::constraint_tolerance default
   BOOST_TEST(std::abs(s.objective - kHs071Objective) <= kPublishedDigits);
-  for (int i = 0; i < 4; ++i) BOOST_TEST(std::abs(x[i] - kHs071Solution[i]) <= kPublishedDigits, "x" << i);
+  for (int i = 0; i < 4; ++i) {
+    BOOST_TEST(std::abs(x[i] - kHs071Solution[i]) <= kPublishedDigits, "x" << i);
+    BOOST_TEST(std::abs(x[i] - kHs071Solution9[i]) <= kNineDigits, "x" << i);
+  }
 }
 
 }  // namespace
@@ -173,7 +181,19 @@ BOOST_AUTO_TEST_CASE(incompatible_constraints_are_not_converged) {
   VecX x = p.initial_values();
   const SolveSummary s = ipopt.solve(x);
   BOOST_TEST(!s.converged(), s.brief_report());
-  BOOST_TEST(s.residual_max_abs >= 0.5 - 1e-8);  // min over x of max |x+y-1|, |x+y-2| is 0.5
+  // max(|x+y-1|, |x+y-2|) >= 0.5 for every x: exact bound, 1e-8 slack for round-off only.
+  BOOST_TEST(s.residual_max_abs >= 0.5 - 1e-8);
+}
+
+BOOST_AUTO_TEST_CASE(non_finite_start_is_not_converged) {
+  Problem p;
+  const VariableId v = p.add_variable_block("x", VecX::Constant(1, -1.0));  // sqrt(-1): NaN
+  p.add_residual_block(std::make_shared<SquareRootBlock>(v));
+  IpoptSolver ipopt(p);
+  VecX x = p.initial_values();
+  const SolveSummary s = ipopt.solve(x);
+  BOOST_TEST(!s.converged(), s.brief_report());
+  BOOST_TEST(!s.message.empty());
 }
 
 BOOST_AUTO_TEST_CASE(max_iterations_is_reported) {
@@ -212,7 +232,7 @@ BOOST_AUTO_TEST_CASE(bound_changes_between_solves_are_honoured) {
   v = p.initial_values();
   const SolveSummary s = ipopt.solve(v);
   BOOST_TEST(s.converged(), s.brief_report());
-  BOOST_TEST(std::abs(v[0] + std::sqrt(2.0)) <= 1e-7);
+  BOOST_TEST(std::abs(v[0] + std::sqrt(2.0)) <= 1e-7);  // as above
   BOOST_TEST(std::abs(v[1] + std::sqrt(2.0)) <= 1e-7);
 }
 

@@ -115,6 +115,22 @@ BOOST_AUTO_TEST_CASE(system_without_real_root_is_not_converged) {
   BOOST_TEST(x.allFinite());
 }
 
+BOOST_AUTO_TEST_CASE(non_finite_residual_is_reported_as_diverged) {
+  Problem p;
+  const VariableId v = p.add_variable_block("x", VecX::Constant(1, -1.0));  // sqrt(-1): NaN
+  p.add_residual_block(std::make_shared<SquareRootBlock>(v));
+  NewtonSolver newton(p);
+  VecX x = p.initial_values();
+  const SolveSummary s = newton.solve(x);
+  BOOST_TEST((s.status == SolveStatus::Diverged), s.brief_report());
+  BOOST_TEST(std::isinf(s.residual_max_abs));  // a NaN row counts as an infinite violation
+  // From x = 1 the same block converges to x = 4 (sqrt(4) = 2).
+  x[0] = 1.0;
+  const SolveSummary ok = newton.solve(x);
+  BOOST_TEST(ok.converged(), ok.brief_report());
+  BOOST_TEST(std::abs(x[0] - 4.0) <= 1e-9);  // |dx| = |c| / |c'| = 4 |c| <= 4e-10
+}
+
 BOOST_AUTO_TEST_CASE(max_iterations_is_reported) {
   Problem p = broyden_problem(20);
   NewtonOptions options;

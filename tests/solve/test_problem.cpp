@@ -11,6 +11,9 @@
 #include "pcr/solve/solve_summary.hpp"
 #include "solve/test_problems.hpp"
 
+// Heap allocations counted by the operator new of allocation_counter.cpp.
+extern long g_allocations;
+
 using namespace pcr;
 using pcr::test::BroydenRow;
 using pcr::test::CircleBlock;
@@ -113,6 +116,25 @@ BOOST_AUTO_TEST_CASE(pattern_is_built_once_and_values_are_written_in_place) {
   BOOST_TEST(J.valuePtr() == values);
   BOOST_TEST(J.innerIndexPtr() == columns);
   BOOST_TEST(J.coeff(0, 0) == x[4]);  // d(a0 b1)/d(a0) = b1 at the new point
+}
+
+BOOST_AUTO_TEST_CASE(evaluation_does_not_allocate_once_sized) {
+  Problem p = pcr::test::hs071_problem();
+  VecX x = p.initial_values(), c, g;
+  SparseRowMajor J, H;
+  const VecX lambda = VecX::Ones(2);
+  const long at_start = g_allocations;
+  p.evaluate_residuals_and_jacobian(x, c, J);  // first calls size c, J, g, H and build the patterns
+  p.evaluate_objective(x, &g);
+  p.evaluate_hessian(x, 1.0, lambda, H);
+  BOOST_TEST(g_allocations > at_start);  // the counter sees these allocations
+  x[1] = 4.5;
+  const long before = g_allocations;
+  p.evaluate_residuals(x, c);
+  p.evaluate_residuals_and_jacobian(x, c, J);
+  p.evaluate_objective(x, &g);
+  p.evaluate_hessian(x, 1.0, lambda, H);
+  BOOST_TEST(g_allocations == before);
 }
 
 BOOST_AUTO_TEST_CASE(inactive_blocks_contribute_no_rows) {
@@ -246,7 +268,9 @@ BOOST_AUTO_TEST_CASE(problem_checker_locates_the_wrong_block) {
   BOOST_TEST(r.block_name == "bad_one");
   BOOST_TEST(r.global_row == sp.p.row_offset(bad));
   BOOST_TEST(r.variable == sp.a);
+  BOOST_TEST(r.variable_name == "a");
   BOOST_TEST(r.column == 2);
+  BOOST_TEST(r.to_string().find("'bad_one'") != std::string::npos, r.to_string());
 }
 
 BOOST_AUTO_TEST_CASE(problem_checker_covers_the_objective_gradient) {

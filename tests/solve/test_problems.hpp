@@ -200,6 +200,16 @@ class SquarePlusOne : public ResidualBlock {
   }
 };
 
+/// sqrt(x) - 2: not finite for x < 0 (to test how solvers report non-finite values).
+class SquareRootBlock : public ResidualBlock {
+ public:
+  explicit SquareRootBlock(VariableId x) : ResidualBlock("test.sqrt", "sqrt", 1, {x}) {}
+  void evaluate(const double* const* v, double* c, double* const* J) const override {
+    c[0] = std::sqrt(v[0][0]) - 2.0;
+    if (J && J[0]) J[0][0] = 0.5 / std::sqrt(v[0][0]);
+  }
+};
+
 /// A rows x n linear block A x - b over one variable block.
 class LinearBlock : public ResidualBlock {
  public:

@@ -203,6 +203,7 @@ JacobianCheckResult check_problem_jacobian(const Problem& problem, const VecX& x
     x[j] = x0;
     auto record_column = [&]() {
       result.variable = block_of[j];
+      result.variable_name = problem.variable(block_of[j]).name;
       result.column = column_in[j];
     };
     for (int i = 0; i < m; ++i) {

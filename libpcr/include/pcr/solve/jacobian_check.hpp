@@ -28,7 +28,8 @@ struct JacobianCheckResult {
   int global_row = -1;
   int variable_index = -1;  ///< position k in the block's variables()
   VariableId variable = -1;
-  int column = -1;  ///< column within that variable block
+  std::string variable_name;  ///< filled by the problem check (a lone block does not know the names)
+  int column = -1;            ///< column within that variable block
   double analytic = 0.0, numeric = 0.0, abs_error = 0.0, rel_error = 0.0;
   double worst_ratio = 0.0;  ///< error / allowed error of the worst entry (passed iff <= 1)
 

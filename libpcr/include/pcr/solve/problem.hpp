@@ -64,7 +64,8 @@ class Problem {
   /// First row of an active residual block in c(x); -1 when inactive.
   int row_offset(ResidualId id) const;
   bool has_objective() const;
-  /// Changes whenever rows, blocks or activity change (solvers re-analyse their pattern when it does).
+  /// Changes whenever blocks are added, activity changes or a variable is fixed / un-fixed (solvers
+  /// re-analyse their pattern when it does; bound values alone do not change it).
   std::uint64_t structure_version() const;
   /// Non-zeros of the Jacobian pattern of the active rows.
   int jacobian_nonzeros() const;
@@ -75,7 +76,10 @@ class Problem {
   VecX initial_values() const;
   /// c(x), size num_rows().
   void evaluate_residuals(const VecX& x, VecX& c) const;
-  /// c(x) and its Jacobian in the fixed pattern (J keeps its pattern between calls).
+  /// c(x) and its Jacobian in the fixed pattern (J keeps its pattern between calls). J is row-major
+  /// because each block's dense row-major Jacobian then lands as one contiguous run per row (a copy per
+  /// block row through precomputed positions); solvers needing another layout map values once.
+  /// Neither evaluation allocates once c and J have their sizes (same structure_version()).
   void evaluate_residuals_and_jacobian(const VecX& x, VecX& c,
                                        Eigen::SparseMatrix<double, Eigen::RowMajor>& J) const;
   /// f(x) and optionally its gradient (size num_variables()).
