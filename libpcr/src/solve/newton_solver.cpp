@@ -29,7 +29,6 @@ struct NewtonSolver::Impl {
   std::uint64_t version = 0;  // problem structure the workspace was built for
 
   std::vector<int> reduced_column;  // global column -> free column, -1 for a fixed one
-  VecX fixed_values;                // value of every fixed column (others unused)
   VecX target;                      // c_l = c_u of every row
   SparseRowMajor J;                 // full Jacobian in the problem's pattern
   SparseColMajor J_free;            // free columns, column-major for SparseLU
@@ -48,16 +47,12 @@ void NewtonSolver::Impl::prepare() {
   require(!problem.has_objective(), "NewtonSolver: the problem has objective terms (use IpoptSolver)");
   const int n = problem.num_variables(), m = problem.num_rows();
   reduced_column.assign(n, -1);
-  fixed_values = VecX::Zero(n);
   int n_free = 0;
   for (VariableId v = 0; v < problem.num_variable_blocks(); ++v) {
     const VariableBlock& b = problem.variable(v);
     const bool fixed = problem.variable_fixed(v);
     for (int j = 0; j < b.size; ++j) {
-      if (fixed) {
-        fixed_values[b.offset + j] = b.lower[j];
-        continue;
-      }
+      if (fixed) continue;
       require(std::isinf(b.lower[j]) && std::isinf(b.upper[j]), "NewtonSolver: variable block '", b.name,
               "' entry ", j, " has bounds [", b.lower[j], ", ", b.upper[j],
               "] (Newton ignores bounds; use IpoptSolver)");
@@ -139,8 +134,11 @@ SolveSummary NewtonSolver::solve(VecX& x) {
   const Problem& problem = w.problem;
   require(x.size() == problem.num_variables(), "NewtonSolver::solve: x has size ", x.size(), ", expected ",
           problem.num_variables());
-  for (int j = 0; j < x.size(); ++j) {
-    if (w.reduced_column[j] < 0) x[j] = w.fixed_values[j];
+  // Fixed values may change between solves without a structure change (Problem::fix_variable).
+  for (VariableId v = 0; v < problem.num_variable_blocks(); ++v) {
+    if (!problem.variable_fixed(v)) continue;
+    const VariableBlock& b = problem.variable(v);
+    x.segment(b.offset, b.size) = b.lower;
   }
 
   SolveSummary summary;

@@ -353,8 +353,8 @@ void Problem::fix_variable(VariableId id, const VecX& value) {
   v.initial = value;
   v.lower = value;
   v.upper = value;
+  if (!m.fixed[id]) ++m.version;  // the set of unknowns changed (re-fixing only changes the value)
   m.fixed[id] = 1;
-  ++m.version;  // the set of unknowns changed
 }
 
 bool Problem::variable_fixed(VariableId id) const {

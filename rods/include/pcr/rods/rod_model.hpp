@@ -35,7 +35,7 @@ struct CrossSection {
 /// Kind of condition at a rod end (DESIGN.md §1; Dirichlet = kinematic, Neumann = loads).
 enum class RodEndKind {
   Clamped,    ///< p = position, R = R(orientation)                           (Dirichlet)
-  Collar,     ///< p = position, d3 parallel to R(orientation) e3, m . d3 = 0 (free in torsion)
+  Collar,     ///< p = position, d3 parallel to R(orientation) e3, m . d3 = moment . d3 (free in torsion)
   Spherical,  ///< p = position, m = applied moment (0 for a pin)
   Free        ///< applied force and moment (dead loads)                    (Neumann)
 };

@@ -17,7 +17,8 @@ struct EndTarget {
   M3<T> frame;
 };
 
-/// Prescribed n, m at an end (load factor and signs applied); used by spherical and free ends.
+/// Prescribed n, m at an end (load factor and signs applied); used by collar (torsion), spherical and
+/// free ends.
 struct EndLoads {
   Vec3 n_bar = Vec3::Zero(), m_bar = Vec3::Zero();
 };
@@ -33,12 +34,13 @@ void end_conditions(RodEndKind kind, const EndTarget<T>& target, const EndLoads&
       for (int i = 0; i < 4; ++i) r[3 + i] = q[i] - target.orientation[i];
       return;
     case RodEndKind::Collar: {
-      // d3 stays perpendicular to the two frame axes across the collar axis; free torsion: m . d3 = 0.
+      // d3 stays perpendicular to the two frame axes across the collar axis; free in torsion: only
+      // the applied torsional moment is transmitted, (m - m_bar) . d3 = 0 (0 for a plain collar).
       const V3<T> d3 = rotation(q).col(2);
       for (int i = 0; i < 3; ++i) r[i] = (p[i] - target.position[i]) / L0;
       r[3] = d3.dot(target.frame.col(0));
       r[4] = d3.dot(target.frame.col(1));
-      r[5] = m.dot(d3) / M0;
+      r[5] = (m - loads.m_bar.cast<T>()).dot(d3) / M0;
       r[6] = q.squaredNorm() - 1.0;
       return;
     }
