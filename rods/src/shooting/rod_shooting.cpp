@@ -4,6 +4,9 @@
 #include <chrono>
 #include <cmath>
 #include <sstream>
+#include <vector>
+#include <cstdio>
+#include <cstdlib>
 
 #include "pcr/core/error.hpp"
 #include "shooting_ends.hpp"
@@ -49,6 +52,10 @@ namespace {
 void check_options(const ShootingOptions& o) {
   require(std::isfinite(o.residual_tolerance) && o.residual_tolerance > 0.0,
           "shooting: residual_tolerance must be positive, got ", o.residual_tolerance);
+  require(std::isfinite(o.max_step) && o.max_step > 0.0, "shooting: max_step must be positive, got ", o.max_step);
+  require(o.stall_window >= 0, "shooting: stall_window must be >= 0, got ", o.stall_window);
+  require(o.stall_ratio > 0.0 && o.stall_ratio <= 1.0, "shooting: stall_ratio must lie in (0, 1], got ",
+          o.stall_ratio);
   require(o.max_iterations >= 1, "shooting: max_iterations must be >= 1, got ", o.max_iterations);
   require(o.initial_load_increment > 0.0 && o.initial_load_increment <= 1.0,
           "shooting: initial_load_increment must lie in (0, 1], got ", o.initial_load_increment);
@@ -70,11 +77,16 @@ struct Evaluation {
 class ShootingProblem {
  public:
   ShootingProblem(const RodModel& model, const IntegratorOptions& integrator)
-      : model_(model), ode_(model), integrator_(integrator), scale_(shooting::residual_scale(model.tip, ode_)) {}
+      : model_(model),
+        ode_(model),
+        integrator_(integrator),
+        scale_(shooting::residual_scale(model.tip, ode_)),
+        unknown_scale_(shooting::unknown_scale(model.base, ode_)) {}
 
   const RodModel& model() const { return model_; }
   const RodOde& ode() const { return ode_; }
   const Vec6& scale() const { return scale_; }
+  const Vec6& unknown_scale() const { return unknown_scale_; }
 
   Evaluation evaluate(const RodStateVector& y0) const {
     Evaluation e;
@@ -82,6 +94,9 @@ class ShootingProblem {
     shooting::base_tangents(model_.base, y0, Y);
     const IntegrationReport report = integrate_rod(ode_, 0.0, model_.length, Y, integrator_);
     e.steps = report.steps;
+    if (std::getenv("PCR_SHOOTING_DEBUG"))
+      fprintf(stderr, "eval steps %d rej %d ok %d |m0| %g msg %s\n", report.steps, report.rejected_steps,
+              int(report.success), y0.segment<3>(10).norm(), report.message.c_str());
     if (!report.success || !Y.allFinite()) {
       e.message = report.success ? "non-finite tip state" : report.message;
       return e;
@@ -99,6 +114,7 @@ class ShootingProblem {
   RodOde ode_;
   IntegratorOptions integrator_;
   Vec6 scale_;
+  Vec6 unknown_scale_;
 };
 
 struct NewtonOutcome {
@@ -120,8 +136,10 @@ NewtonOutcome solve_newton(const ShootingProblem& problem, RodStateVector& y0, c
     return out;
   }
   double mu = 1e-3;  // LM damping relative to diag(J^T J)
+  std::vector<double> history;  // |r| per iteration, for stall detection
   while (true) {
     const double r_norm = current.residual.norm();
+    history.push_back(r_norm);
     if (current.residual.cwiseAbs().maxCoeff() <= o.residual_tolerance) {
       out.status = SolveStatus::Converged;
       break;
@@ -131,13 +149,32 @@ NewtonOutcome solve_newton(const ShootingProblem& problem, RodStateVector& y0, c
       out.message = "max_iterations reached";
       break;
     }
+    // Stalled (e.g. at a local minimum of |r| with no root nearby): hand over to load stepping.
+    const int window = o.stall_window;
+    if (window > 0 && static_cast<int>(history.size()) > window &&
+        r_norm > o.stall_ratio * history[history.size() - 1 - window]) {
+      std::ostringstream msg;
+      msg << "stalled: |r| = " << r_norm << " fell by less than a factor " << o.stall_ratio << " in " << window
+          << " iterations";
+      out.status = SolveStatus::Failed;
+      out.message = msg.str();
+      break;
+    }
     ++out.iterations;
     bool accepted = false;
+    // Trust-region-like cap: no unknown moves by more than max_step of its scale per step.
+    auto capped = [&](Vec6 dz) {
+      const double size = dz.cwiseQuotient(problem.unknown_scale()).cwiseAbs().maxCoeff();
+      if (size > o.max_step) dz *= o.max_step / size;
+      return dz;
+    };
     auto try_step = [&](const Vec6& dz, double sufficient_decrease) {
       if (!dz.allFinite()) return false;
       RodStateVector y_trial = y0;
       shooting::retract_base(base, dz, y_trial);
       Evaluation trial = problem.evaluate(y_trial);
+      if (std::getenv("PCR_SHOOTING_DEBUG"))
+        fprintf(stderr, "  trial |dz| %g r %g -> %g\n", dz.norm(), r_norm, trial.residual.norm());
       if (!trial.ok || !(trial.residual.norm() < (1.0 - sufficient_decrease) * r_norm)) return false;
       y0 = y_trial;
       current = std::move(trial);
@@ -146,18 +183,27 @@ NewtonOutcome solve_newton(const ShootingProblem& problem, RodStateVector& y0, c
     const Eigen::PartialPivLU<Mat6> lu(current.jacobian);
     const double rcond = lu.rcond();
     if (rcond > 1e-14) {
-      const Vec6 dz = -lu.solve(current.residual);
-      for (double alpha = 1.0; alpha >= 1.0 / 64 && !accepted; alpha *= 0.5)
+      const Vec6 dz = capped(-lu.solve(current.residual));
+      for (double alpha = 1.0; alpha >= 1.0 / 16 && !accepted; alpha *= 0.5)
         accepted = try_step(alpha * dz, 1e-4 * alpha);
     }
     if (!accepted && o.levenberg_marquardt) {
       const Mat6 JtJ = current.jacobian.transpose() * current.jacobian;
       const Vec6 g = current.jacobian.transpose() * current.residual;
       const Vec6 d = JtJ.diagonal().cwiseMax(1e-12 * std::max(1.0, JtJ.diagonal().maxCoeff()));
-      for (int k = 0; k < 12 && !accepted; ++k) {
+      auto lm_step = [&](double damping) {
         Mat6 A = JtJ;
-        A.diagonal() += mu * d;
-        accepted = try_step(-A.ldlt().solve(g), 0.0);
+        A.diagonal() += damping * d;
+        return Vec6(-A.ldlt().solve(g));
+      };
+      auto step_size = [&](const Vec6& dz) {
+        return dz.cwiseQuotient(problem.unknown_scale()).cwiseAbs().maxCoeff();
+      };
+      for (int k = 0; k < 30 && !accepted; ++k) {
+        // Raise the damping until the step fits in the cap (cheap: no integration), then try it.
+        Vec6 dz = lm_step(mu);
+        while (step_size(dz) > o.max_step && mu < 1e12) dz = lm_step(mu *= 4.0);
+        accepted = try_step(dz, 0.0);
         mu = accepted ? std::max(mu / 3.0, 1e-12) : mu * 4.0;
       }
     }
@@ -218,16 +264,27 @@ ShootingSolution solve_rod_shooting(const RodModel& model, const ShootingOptions
     const RodStateVector* tip_ptr = interpolate_tip ? &tip_free : nullptr;
     double lambda_done = 0.0, increment = options.initial_load_increment;
     RodStateVector y_done = shooting::initial_base_guess(shooting::model_at_load(model, 0.0, tip_ptr));
-    bool first = true;
+    bool first = true, have_previous = false;
+    double lambda_previous = 0.0;
+    RodStateVector y_previous = y_done;
     while (lambda_done < 1.0 && summary.load_steps < options.max_load_steps) {
       const double lambda = std::min(1.0, lambda_done + increment);
       const RodModel loaded = shooting::model_at_load(model, lambda, tip_ptr);
       RodStateVector y = first ? shooting::initial_base_guess(loaded) : y_done;
+      if (have_previous) {
+        // Secant predictor on the vector parts (p, n, m); the orientation is kept.
+        const double t = (lambda - lambda_done) / (lambda_done - lambda_previous);
+        y.head<3>() += t * (y_done.head<3>() - y_previous.head<3>());
+        y.tail<6>() += t * (y_done.tail<6>() - y_previous.tail<6>());
+      }
       shooting::enforce_base(loaded.base, y);
       const NewtonOutcome step = solve_newton(ShootingProblem(loaded, integrator), y, options);
       summary.iterations += step.iterations;
       ++summary.load_steps;
       if (step.status == SolveStatus::Converged) {
+        have_previous = !first;
+        lambda_previous = lambda_done;
+        y_previous = y_done;
         lambda_done = lambda;
         y_done = y;
         first = false;

@@ -251,5 +251,17 @@ Vec6 residual_scale(const RodEnd& tip, const RodOde& ode) {
   return scale;
 }
 
+Vec6 unknown_scale(const RodEnd& base, const RodOde& ode) {
+  const double L = ode.length_scale(), F = ode.force_scale(), M = ode.moment_scale();
+  Vec6 scale = Vec6::Ones();
+  switch (base.kind) {
+    case RodEndKind::Clamped: scale << F, F, F, M, M, M; break;
+    case RodEndKind::Collar: scale << F, F, F, M, M, 1; break;
+    case RodEndKind::Spherical: scale << F, F, F, 1, 1, 1; break;
+    case RodEndKind::Free: scale << L, L, L, 1, 1, 1; break;
+  }
+  return scale;
+}
+
 }  // namespace shooting
 }  // namespace pcr

@@ -40,11 +40,18 @@ struct ShootingOptions {
   double rel_tol = 1e-10;
   double abs_tol = 1e-12;  ///< relative to L, F_c = max(K_BT) / L^2, M_c = F_c L (see IntegratorOptions)
   double min_step_fraction = 1e-12;
-  int max_integration_steps = 1000000;
+  int max_integration_steps = 100000;
   /// Convergence: max-abs of the residuals divided by L (positions), 1 (directions), F_c (forces), M_c
   /// (moments) at most this.
   double residual_tolerance = 1e-10;
   int max_iterations = 50;  ///< per load step
+  /// Largest change of any base unknown per iteration, in units of its scale (F_c, M_c, L or 1 rad):
+  /// keeps Newton from jumping to a rod curled into many loops when the Jacobian is nearly singular.
+  double max_step = 2.0;
+  /// A solve stops as stalled when the scaled residual norm fell by less than a factor stall_ratio over
+  /// the last stall_window iterations (0 = never): load stepping then takes over.
+  int stall_window = 4;
+  double stall_ratio = 0.9;
   bool levenberg_marquardt = true;
   bool load_stepping = true;
   double initial_load_increment = 0.25;  ///< first lambda increment after a failed full-load solve
