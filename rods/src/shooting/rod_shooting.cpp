@@ -5,8 +5,6 @@
 #include <cmath>
 #include <sstream>
 #include <vector>
-#include <cstdio>
-#include <cstdlib>
 
 #include "pcr/core/error.hpp"
 #include "shooting_ends.hpp"
@@ -94,9 +92,6 @@ class ShootingProblem {
     shooting::base_tangents(model_.base, y0, Y);
     const IntegrationReport report = integrate_rod(ode_, 0.0, model_.length, Y, integrator_);
     e.steps = report.steps;
-    if (std::getenv("PCR_SHOOTING_DEBUG"))
-      fprintf(stderr, "eval steps %d rej %d ok %d |m0| %g msg %s\n", report.steps, report.rejected_steps,
-              int(report.success), y0.segment<3>(10).norm(), report.message.c_str());
     if (!report.success || !Y.allFinite()) {
       e.message = report.success ? "non-finite tip state" : report.message;
       return e;
@@ -173,8 +168,6 @@ NewtonOutcome solve_newton(const ShootingProblem& problem, RodStateVector& y0, c
       RodStateVector y_trial = y0;
       shooting::retract_base(base, dz, y_trial);
       Evaluation trial = problem.evaluate(y_trial);
-      if (std::getenv("PCR_SHOOTING_DEBUG"))
-        fprintf(stderr, "  trial |dz| %g r %g -> %g\n", dz.norm(), r_norm, trial.residual.norm());
       if (!trial.ok || !(trial.residual.norm() < (1.0 - sufficient_decrease) * r_norm)) return false;
       y0 = y_trial;
       current = std::move(trial);
