@@ -42,7 +42,9 @@ ShootingOptions tight_options() {
   return o;
 }
 
-double max_abs(const Vec3& v) { return v.cwiseAbs().maxCoeff(); }
+double max_abs(const Vec3& v) {
+  return v.cwiseAbs().maxCoeff();
+}
 
 bool all_finite(const RodState& x) {
   return x.p.allFinite() && x.q.allFinite() && x.n.allFinite() && x.m.allFinite();
@@ -54,8 +56,8 @@ constexpr double kTightIntegration = 1e-9;
 
 // ---- R2: Bisshopp & Drucker elastica by elliptic integrals (independent of the solver) -----------
 // Tip angle phi0 from sqrt(alpha) = K(k) - F(psi1, k), k = sin(pi/4 + phi0/2), sin psi1 = 1/(sqrt2 k);
-// then x/L = sqrt(2 sin(phi0) / alpha) (along the undeformed axis), y/L = 1 - 2 (E(k) - E(psi1, k)) / sqrt(alpha)
-// (Bisshopp & Drucker 1945, Q. Appl. Math. 3(3), eqs. for the cantilever with a tip force).
+// then x/L = sqrt(2 sin(phi0) / alpha) (along the undeformed axis), y/L = 1 - 2 (E(k) - E(psi1, k)) /
+// sqrt(alpha) (Bisshopp & Drucker 1945, Q. Appl. Math. 3(3), eqs. for the cantilever with a tip force).
 struct Elastica {
   double x, y, angle;
 };
@@ -140,13 +142,12 @@ BOOST_AUTO_TEST_CASE(r1_end_moment_gives_exact_arc) {
 // ---- R2: Bisshopp-Drucker table --------------------------------------------------------------------
 BOOST_AUTO_TEST_CASE(r2_bisshopp_drucker_table) {
   // alpha, (L - x_tip)/L, y_tip/L, tip angle (scenes/README.md R2).
-  const double table[14][4] = {{0.2, 0.00265, 0.06636, 0.0996}, {0.4, 0.01035, 0.13098, 0.1972},
-                               {0.6, 0.02249, 0.19235, 0.2907}, {0.8, 0.03817, 0.24945, 0.3791},
-                               {1, 0.05643, 0.30172, 0.4614},   {1.5, 0.10794, 0.41098, 0.6395},
-                               {2, 0.16064, 0.49346, 0.7818},   {3, 0.25442, 0.60325, 0.9860},
-                               {4, 0.32894, 0.66996, 1.1212},   {5, 0.38763, 0.71379, 1.2154},
-                               {6, 0.43459, 0.74457, 1.2837},   {8, 0.50483, 0.78498, 1.3744},
-                               {10, 0.55500, 0.81061, 1.4303},  {15, 0.63529, 0.84772, 1.5018}};
+  const double table[14][4] = {
+      {0.2, 0.00265, 0.06636, 0.0996}, {0.4, 0.01035, 0.13098, 0.1972}, {0.6, 0.02249, 0.19235, 0.2907},
+      {0.8, 0.03817, 0.24945, 0.3791}, {1, 0.05643, 0.30172, 0.4614},   {1.5, 0.10794, 0.41098, 0.6395},
+      {2, 0.16064, 0.49346, 0.7818},   {3, 0.25442, 0.60325, 0.9860},   {4, 0.32894, 0.66996, 1.1212},
+      {5, 0.38763, 0.71379, 1.2154},   {6, 0.43459, 0.74457, 1.2837},   {8, 0.50483, 0.78498, 1.3744},
+      {10, 0.55500, 0.81061, 1.4303},  {15, 0.63529, 0.84772, 1.5018}};
   for (const auto& row : table) {
     const double alpha = row[0];
     const ShootingSolution sol = solve_rod_shooting(bisshopp_drucker(alpha), tight_options());
@@ -200,7 +201,8 @@ BOOST_AUTO_TEST_CASE(r3_end_moment_gives_exact_helix) {
     // Relative to the length (135): the 1e-9 integration bound times L for positions; angles are
     // relative to the total turning k L ~ 12.6 rad, so 1e-9 times that.
     BOOST_TEST(worst_p < kTightIntegration * L, to_string(method) << " position error " << worst_p);
-    BOOST_TEST(worst_R < kTightIntegration * kappa.norm() * L, to_string(method) << " angle error " << worst_R);
+    BOOST_TEST(worst_R < kTightIntegration * kappa.norm() * L, to_string(method)
+                                                                   << " angle error " << worst_R);
     // Radius 10, pitch 25, two coils: the tip is 50 above the base on the helix axis direction.
     const Vec3 axis = kappa.normalized();
     BOOST_TEST(std::abs(sol.tip.p.dot(axis) - 50.0) < 1e-6);  // the published values carry 9 digits
@@ -228,9 +230,10 @@ BOOST_AUTO_TEST_CASE(every_pairing_converges_to_the_same_equilibrium) {
   struct Case {
     RodEndKind base, tip;
   };
-  const Case cases[] = {{RodEndKind::Clamped, RodEndKind::Clamped},   {RodEndKind::Clamped, RodEndKind::Collar},
-                        {RodEndKind::Clamped, RodEndKind::Spherical}, {RodEndKind::Collar, RodEndKind::Clamped},
-                        {RodEndKind::Spherical, RodEndKind::Clamped}, {RodEndKind::Free, RodEndKind::Clamped}};
+  const Case cases[] = {
+      {RodEndKind::Clamped, RodEndKind::Clamped},   {RodEndKind::Clamped, RodEndKind::Collar},
+      {RodEndKind::Clamped, RodEndKind::Spherical}, {RodEndKind::Collar, RodEndKind::Clamped},
+      {RodEndKind::Spherical, RodEndKind::Clamped}, {RodEndKind::Free, RodEndKind::Clamped}};
   for (const Case& c : cases) {
     RodModel rod = ref_model;
     rod.base.kind = c.base;
@@ -318,7 +321,8 @@ BOOST_AUTO_TEST_CASE(gravity_cantilever_base_wrench_balances_the_loads) {
   // geometric nonlinearity changes it by O(theta_tip^2) ~ 0.5 %: allow 2 %.
   const double EI = rod.bending_torsion_stiffness[0], w = rod.mass_per_length * 9.81;
   const double linear = w * std::pow(rod.length, 4) / (8 * EI) + 0.05 * std::pow(rod.length, 3) / (3 * EI);
-  BOOST_TEST(std::abs(-sol.tip.p.z() - linear) < 0.02 * linear, "tip z " << sol.tip.p.z() << " linear " << linear);
+  BOOST_TEST(std::abs(-sol.tip.p.z() - linear) < 0.02 * linear,
+             "tip z " << sol.tip.p.z() << " linear " << linear);
   const Vec3 f = rod.distributed_force();
   const double L = rod.length;
   // Forces: base reaction + tip force + total weight = 0 (n' = -f is integrated exactly: roundoff).
@@ -412,8 +416,8 @@ BOOST_AUTO_TEST_CASE(rk4_error_decreases_as_n_to_the_minus_4) {
   for (size_t i = 0; i + 1 < errors.size(); ++i) {
     const double order = std::log2(errors[i] / errors[i + 1]);
     // Classical RK4 has order 4; +-0.3 allows the pre-asymptotic range at N = 10.
-    BOOST_TEST(std::abs(order - 4.0) < 0.3, "order between N = " << (10 << i) << " and " << (20 << i) << ": "
-                                                                    << order);
+    BOOST_TEST(std::abs(order - 4.0) < 0.3,
+               "order between N = " << (10 << i) << " and " << (20 << i) << ": " << order);
   }
 }
 
@@ -426,7 +430,8 @@ BOOST_AUTO_TEST_CASE(dense_output_matches_stored_steps_and_a_direct_integration)
   BOOST_TEST_REQUIRE(sol.s.size() == sol.states.size());
   BOOST_TEST(sol.s.front() == 0.0);
   BOOST_TEST(sol.s.back() == 1.0);
-  for (size_t i = 0; i < sol.s.size(); i += 7) BOOST_TEST(max_abs(sol.at(sol.s[i]).p - sol.states[i].p) == 0.0);
+  for (size_t i = 0; i < sol.s.size(); i += 7)
+    BOOST_TEST(max_abs(sol.at(sol.s[i]).p - sol.states[i].p) == 0.0);
   // At s = 0.37: integrate the ODE directly from the base with tight Dormand-Prince up to 0.37.
   const RodOde ode(rod);
   RodStateVector y = sol.base.to_vector();
@@ -442,7 +447,8 @@ BOOST_AUTO_TEST_CASE(dense_output_matches_stored_steps_and_a_direct_integration)
   BOOST_CHECK_THROW(sol.at(-0.1), InputError);
 }
 
-// ---- warm start --------------------------------------------------------------------------------------------
+// ---- warm start
+// --------------------------------------------------------------------------------------------
 BOOST_AUTO_TEST_CASE(warm_start_needs_fewer_iterations) {
   const ShootingSolution cold = solve_rod_shooting(bisshopp_drucker(3.0), tight_options());
   const ShootingSolution near = solve_rod_shooting(bisshopp_drucker(3.05), tight_options(), &cold);
@@ -496,7 +502,8 @@ BOOST_AUTO_TEST_CASE(bad_input_throws_input_error) {
   o.residual_tolerance = 0.0;
   BOOST_CHECK_THROW(solve_rod_shooting(bisshopp_drucker(1.0), o), InputError);
   RodStateVector y = RodState().to_vector();
-  BOOST_CHECK_THROW(integrate_rod(RodOde(bisshopp_drucker(1.0)), 1.0, 0.5, y, IntegratorOptions()), InputError);
+  BOOST_CHECK_THROW(integrate_rod(RodOde(bisshopp_drucker(1.0)), 1.0, 0.5, y, IntegratorOptions()),
+                    InputError);
 }
 
 BOOST_AUTO_TEST_CASE(non_converging_solve_reports_status_without_nan) {

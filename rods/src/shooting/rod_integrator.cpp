@@ -81,8 +81,12 @@ void record(RodTrajectory* trajectory, double s, const RodStateWithTangents& Y) 
   trajectory->y.push_back(Y.col(0));
 }
 
-RodStateVector state_of(const RodStateVector& y) { return y; }
-RodStateVector state_of(const RodStateWithTangents& Y) { return Y.col(0); }
+RodStateVector state_of(const RodStateVector& y) {
+  return y;
+}
+RodStateVector state_of(const RodStateWithTangents& Y) {
+  return Y.col(0);
+}
 
 std::string failure(const char* what, double s) {
   std::ostringstream out;
@@ -91,14 +95,16 @@ std::string failure(const char* what, double s) {
 }
 
 void check_options(const RodOde& ode, double s0, double s1, const IntegratorOptions& o) {
-  require(std::isfinite(s0) && std::isfinite(s1) && s1 >= s0, "integrate_rod: need finite s0 <= s1, got s0 = ", s0,
-          ", s1 = ", s1);
+  require(std::isfinite(s0) && std::isfinite(s1) && s1 >= s0,
+          "integrate_rod: need finite s0 <= s1, got s0 = ", s0, ", s1 = ", s1);
   (void)ode;
   if (o.method == IntegratorMethod::RK4) {
     require(o.rk4_steps >= 1, "integrate_rod: rk4_steps must be >= 1, got ", o.rk4_steps);
   } else {
-    require(std::isfinite(o.rel_tol) && o.rel_tol > 0.0, "integrate_rod: rel_tol must be positive, got ", o.rel_tol);
-    require(std::isfinite(o.abs_tol) && o.abs_tol > 0.0, "integrate_rod: abs_tol must be positive, got ", o.abs_tol);
+    require(std::isfinite(o.rel_tol) && o.rel_tol > 0.0, "integrate_rod: rel_tol must be positive, got ",
+            o.rel_tol);
+    require(std::isfinite(o.abs_tol) && o.abs_tol > 0.0, "integrate_rod: abs_tol must be positive, got ",
+            o.abs_tol);
     require(o.min_step_fraction > 0.0 && o.min_step_fraction < 1.0,
             "integrate_rod: min_step_fraction must lie in (0, 1), got ", o.min_step_fraction);
     require(o.max_steps >= 1, "integrate_rod: max_steps must be >= 1, got ", o.max_steps);

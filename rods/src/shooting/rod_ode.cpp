@@ -15,11 +15,15 @@ Quat multiply_pure(const Quat& a, const Vec3& u) {
 }
 
 // R(q) = R_unit(q) / |q|^2 without the input check (q is never zero along a solution).
-Mat3 rotation_of(const Quat& q) { return rotation_unit_form(q) / q.squaredNorm(); }
+Mat3 rotation_of(const Quat& q) {
+  return rotation_unit_form(q) / q.squaredNorm();
+}
 
 }  // namespace
 
-Mat3 RodState::R() const { return rotation_matrix(q); }
+Mat3 RodState::R() const {
+  return rotation_matrix(q);
+}
 
 RodStateVector RodState::to_vector() const {
   RodStateVector y;
@@ -97,7 +101,8 @@ void RodOde::derivative(double s, const RodStateWithTangents& Y, RodStateWithTan
     const Quat dq = Y.col(j).segment<4>(RodStateIndex::q);
     const Vec3 dn = Y.col(j).segment<3>(RodStateIndex::n), dm = Y.col(j).segment<3>(RodStateIndex::m);
     // dR = R hat(omega), omega = 2 vec(conj(q) (x) dq) / |q|^2 (the radial part of dq drops out).
-    const Vec3 omega = (2.0 / q2) * (q[0] * dq.tail<3>() - dq[0] * q.tail<3>() - q.tail<3>().cross(dq.tail<3>()));
+    const Vec3 omega =
+        (2.0 / q2) * (q[0] * dq.tail<3>() - dq[0] * q.tail<3>() - q.tail<3>().cross(dq.tail<3>()));
     const Vec3 dv = compliance_se_.cwiseProduct(n_body.cross(omega) + R.transpose() * dn);
     const Vec3 du = compliance_bt_.cwiseProduct(m_body.cross(omega) + R.transpose() * dm);
     const Vec3 ddp = R * (omega.cross(v) + dv);

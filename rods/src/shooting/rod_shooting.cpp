@@ -26,10 +26,11 @@ IntegratorOptions ShootingOptions::integrator_options() const {
 }
 
 RodState ShootingSolution::at(double s_query) const {
-  require(ode_ && !s.empty(), "ShootingSolution::at: no stored trajectory (store_trajectory was off or the solve ",
+  require(ode_ && !s.empty(),
+          "ShootingSolution::at: no stored trajectory (store_trajectory was off or the solve ",
           "did not produce one)");
-  require(std::isfinite(s_query) && s_query >= 0.0 && s_query <= ode_->length(), "ShootingSolution::at: s = ",
-          s_query, " outside [0, ", ode_->length(), "]");
+  require(std::isfinite(s_query) && s_query >= 0.0 && s_query <= ode_->length(),
+          "ShootingSolution::at: s = ", s_query, " outside [0, ", ode_->length(), "]");
   // Last stored step at or before s_query, then one step of the solve's method.
   const auto it = std::upper_bound(s.begin(), s.end(), s_query);
   const size_t i = it == s.begin() ? 0 : static_cast<size_t>(it - s.begin()) - 1;
@@ -50,7 +51,8 @@ namespace {
 void check_options(const ShootingOptions& o) {
   require(std::isfinite(o.residual_tolerance) && o.residual_tolerance > 0.0,
           "shooting: residual_tolerance must be positive, got ", o.residual_tolerance);
-  require(std::isfinite(o.max_step) && o.max_step > 0.0, "shooting: max_step must be positive, got ", o.max_step);
+  require(std::isfinite(o.max_step) && o.max_step > 0.0, "shooting: max_step must be positive, got ",
+          o.max_step);
   require(o.stall_window >= 0, "shooting: stall_window must be >= 0, got ", o.stall_window);
   require(o.stall_ratio > 0.0 && o.stall_ratio <= 1.0, "shooting: stall_ratio must lie in (0, 1], got ",
           o.stall_ratio);
@@ -68,6 +70,7 @@ struct Evaluation {
   std::string message;
   Vec6 residual = Vec6::Zero();  ///< scaled
   Mat6 jacobian = Mat6::Zero();  ///< scaled
+  bool has_jacobian = false;
   RodStateVector tip;
   int steps = 0;
 };
@@ -86,19 +89,28 @@ class ShootingProblem {
   const Vec6& scale() const { return scale_; }
   const Vec6& unknown_scale() const { return unknown_scale_; }
 
-  Evaluation evaluate(const RodStateVector& y0) const {
+  // The residual at a base state, and its Jacobian (variational equations, ~6x the cost) if asked.
+  Evaluation evaluate(const RodStateVector& y0, bool with_jacobian) const {
     Evaluation e;
-    RodStateWithTangents Y;
-    shooting::base_tangents(model_.base, y0, Y);
-    const IntegrationReport report = integrate_rod(ode_, 0.0, model_.length, Y, integrator_);
+    e.has_jacobian = with_jacobian;
+    IntegrationReport report;
+    if (with_jacobian) {
+      RodStateWithTangents Y;
+      shooting::base_tangents(model_.base, y0, Y);
+      report = integrate_rod(ode_, 0.0, model_.length, Y, integrator_);
+      e.tip = Y.col(0);
+      if (report.success && Y.allFinite())
+        e.jacobian = scale_.cwiseInverse().asDiagonal() * shooting::tip_residual_jacobian(model_.tip, Y);
+    } else {
+      e.tip = y0;
+      report = integrate_rod(ode_, 0.0, model_.length, e.tip, integrator_);
+    }
     e.steps = report.steps;
-    if (!report.success || !Y.allFinite()) {
+    if (!report.success || !e.tip.allFinite()) {
       e.message = report.success ? "non-finite tip state" : report.message;
       return e;
     }
-    e.tip = Y.col(0);
     e.residual = shooting::tip_residual(model_.tip, e.tip).cwiseQuotient(scale_);
-    e.jacobian = scale_.cwiseInverse().asDiagonal() * shooting::tip_residual_jacobian(model_.tip, Y);
     e.ok = e.residual.allFinite() && e.jacobian.allFinite();
     if (!e.ok) e.message = "non-finite residual";
     return e;
@@ -124,13 +136,13 @@ struct NewtonOutcome {
 NewtonOutcome solve_newton(const ShootingProblem& problem, RodStateVector& y0, const ShootingOptions& o) {
   NewtonOutcome out;
   const RodEnd& base = problem.model().base;
-  Evaluation current = problem.evaluate(y0);
+  Evaluation current = problem.evaluate(y0, false);
   if (!current.ok) {
     out.status = SolveStatus::Failed;
     out.message = "integration failed at the initial guess: " + current.message;
     return out;
   }
-  double mu = 1e-3;  // LM damping relative to diag(J^T J)
+  double mu = 1e-3;             // LM damping relative to diag(J^T J)
   std::vector<double> history;  // |r| per iteration, for stall detection
   while (true) {
     const double r_norm = current.residual.norm();
@@ -149,13 +161,21 @@ NewtonOutcome solve_newton(const ShootingProblem& problem, RodStateVector& y0, c
     if (window > 0 && static_cast<int>(history.size()) > window &&
         r_norm > o.stall_ratio * history[history.size() - 1 - window]) {
       std::ostringstream msg;
-      msg << "stalled: |r| = " << r_norm << " fell by less than a factor " << o.stall_ratio << " in " << window
-          << " iterations";
+      msg << "stalled: |r| = " << r_norm << " fell by less than a factor " << o.stall_ratio << " in "
+          << window << " iterations";
       out.status = SolveStatus::Failed;
       out.message = msg.str();
       break;
     }
     ++out.iterations;
+    if (!current.has_jacobian) {
+      current = problem.evaluate(y0, true);
+      if (!current.ok) {
+        out.status = SolveStatus::Failed;
+        out.message = "integration of the variational equations failed: " + current.message;
+        break;
+      }
+    }
     bool accepted = false;
     // Trust-region-like cap: no unknown moves by more than max_step of its scale per step.
     auto capped = [&](Vec6 dz) {
@@ -167,7 +187,7 @@ NewtonOutcome solve_newton(const ShootingProblem& problem, RodStateVector& y0, c
       if (!dz.allFinite()) return false;
       RodStateVector y_trial = y0;
       shooting::retract_base(base, dz, y_trial);
-      Evaluation trial = problem.evaluate(y_trial);
+      Evaluation trial = problem.evaluate(y_trial, false);  // the Jacobian only once accepted
       if (!trial.ok || !(trial.residual.norm() < (1.0 - sufficient_decrease) * r_norm)) return false;
       y0 = y_trial;
       current = std::move(trial);
@@ -241,7 +261,8 @@ ShootingSolution solve_rod_shooting(const RodModel& model, const ShootingOptions
   // Full load first, from the warm start or the straight-rod guess.
   const ShootingProblem full(model, integrator);
   RodStateVector y0 = warm_start ? warm_start->base.to_vector() : shooting::initial_base_guess(model);
-  if (!y0.allFinite() || y0.segment<4>(RodStateIndex::q).norm() < 1e-12) y0 = shooting::initial_base_guess(model);
+  if (!y0.allFinite() || y0.segment<4>(RodStateIndex::q).norm() < 1e-12)
+    y0 = shooting::initial_base_guess(model);
   shooting::enforce_base(model.base, y0);
   NewtonOutcome outcome = solve_newton(full, y0, options);
   summary.iterations = outcome.iterations;
@@ -252,8 +273,9 @@ ShootingSolution solve_rod_shooting(const RodModel& model, const ShootingOptions
     // Continuation in the load factor: lambda from 0 to 1, increments doubled after a success and
     // halved after a failure, each solve warm-started from the last converged one.
     RodStateVector tip_free;
-    const bool interpolate_tip =
-        model.base.kind == RodEndKind::Clamped && model.tip.kind != RodEndKind::Free && unloaded_tip(model, integrator, tip_free);
+    const bool interpolate_tip = model.base.kind == RodEndKind::Clamped &&
+                                 model.tip.kind != RodEndKind::Free &&
+                                 unloaded_tip(model, integrator, tip_free);
     const RodStateVector* tip_ptr = interpolate_tip ? &tip_free : nullptr;
     double lambda_done = 0.0, increment = options.initial_load_increment;
     RodStateVector y_done = shooting::initial_base_guess(shooting::model_at_load(model, 0.0, tip_ptr));
@@ -316,8 +338,8 @@ ShootingSolution solve_rod_shooting(const RodModel& model, const ShootingOptions
   solution.method_ = options.integrator;
   RodStateVector y = y0;
   RodTrajectory trajectory;
-  const IntegrationReport report =
-      integrate_rod(*solution.ode_, 0.0, model.length, y, integrator, options.store_trajectory ? &trajectory : nullptr);
+  const IntegrationReport report = integrate_rod(*solution.ode_, 0.0, model.length, y, integrator,
+                                                 options.store_trajectory ? &trajectory : nullptr);
   solution.base = RodState::from_vector(y0);
   if (report.success && y.allFinite()) {
     solution.tip = RodState::from_vector(y);
@@ -333,9 +355,11 @@ ShootingSolution solve_rod_shooting(const RodModel& model, const ShootingOptions
     solution.tip = solution.base;
     summary.residual_max_abs = summary.residual_scaled_max_abs = std::numeric_limits<double>::max();
     if (summary.status == SolveStatus::Converged) summary.status = SolveStatus::Failed;
-    summary.message += (summary.message.empty() ? "" : "; ") + std::string("final integration failed: ") + report.message;
+    summary.message +=
+        (summary.message.empty() ? "" : "; ") + std::string("final integration failed: ") + report.message;
   }
-  summary.wall_time_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+  summary.wall_time_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
   return solution;
 }
 

@@ -9,9 +9,13 @@ namespace pcr {
 namespace shooting {
 namespace {
 
-Quat times_pure(const Quat& a, const Vec3& u) { return quat_multiply(a, Quat(0.0, u[0], u[1], u[2])); }
+Quat times_pure(const Quat& a, const Vec3& u) {
+  return quat_multiply(a, Quat(0.0, u[0], u[1], u[2]));
+}
 
-bool prescribes_pose(RodEndKind kind) { return kind != RodEndKind::Free; }
+bool prescribes_pose(RodEndKind kind) {
+  return kind != RodEndKind::Free;
+}
 
 }  // namespace
 
@@ -110,7 +114,8 @@ RodStateVector initial_base_guess(const RodModel& model) {
         x.p = tip.position - L * d3_tip;
       } else {
         const Vec3 chord = tip.position - base.position;
-        x.q = chord.norm() > 1e-12 * L ? quat_multiply(quat_between(d3_tip, chord.normalized()), q_tip) : q_tip;
+        x.q =
+            chord.norm() > 1e-12 * L ? quat_multiply(quat_between(d3_tip, chord.normalized()), q_tip) : q_tip;
       }
     }
   }
@@ -134,9 +139,7 @@ void base_tangents(const RodEnd& base, const RodStateVector& y0, RodStateWithTan
         Y.col(1 + j).segment<3>(RodStateIndex::n) = e;
         Y.col(4 + j).segment<3>(RodStateIndex::m) = e;
         break;
-      case RodEndKind::Collar:
-        Y.col(1 + j).segment<3>(RodStateIndex::n) = e;
-        break;
+      case RodEndKind::Collar: Y.col(1 + j).segment<3>(RodStateIndex::n) = e; break;
       case RodEndKind::Spherical:
         Y.col(1 + j).segment<3>(RodStateIndex::n) = e;
         rotation_column(4 + j, e);

@@ -65,8 +65,8 @@ struct ShootingOptions {
 class ShootingSolution {
  public:
   ShootingSummary summary;
-  RodState base;  ///< state at s = 0 (the converged unknowns, or the last iterate)
-  RodState tip;   ///< state at s = L
+  RodState base;                 ///< state at s = 0 (the converged unknowns, or the last iterate)
+  RodState tip;                  ///< state at s = L
   std::vector<double> s;         ///< accepted integration steps (if store_trajectory)
   std::vector<RodState> states;  ///< state at each s
 
@@ -82,7 +82,8 @@ class ShootingSolution {
   Mat3 tip_orientation() const { return tip.R(); }
 
  private:
-  friend ShootingSolution solve_rod_shooting(const RodModel&, const ShootingOptions&, const ShootingSolution*);
+  friend ShootingSolution solve_rod_shooting(const RodModel&, const ShootingOptions&,
+                                             const ShootingSolution*);
   std::shared_ptr<const RodOde> ode_;
   IntegratorMethod method_ = IntegratorMethod::DormandPrince;
 };
