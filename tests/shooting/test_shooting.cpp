@@ -16,6 +16,8 @@
 #include "pcr/math/so3.hpp"
 #include "pcr/rods/shooting/rod_integrator.hpp"
 #include "pcr/rods/shooting/rod_shooting.hpp"
+// The solver's private end conditions, to check their Jacobians against finite differences.
+#include "../../rods/src/shooting/shooting_ends.hpp"
 
 using namespace pcr;
 
@@ -388,6 +390,84 @@ BOOST_AUTO_TEST_CASE(tangents_match_finite_differences) {
   }
 }
 
+// ---- the shooting Jacobian of every pairing against finite differences ------------------------------------
+BOOST_AUTO_TEST_CASE(shooting_jacobian_matches_finite_differences_for_every_pairing) {
+  const RodEndKind kinds[] = {RodEndKind::Clamped, RodEndKind::Collar, RodEndKind::Spherical,
+                              RodEndKind::Free};
+  std::mt19937 rng(7);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  auto random_vec = [&]() { return Vec3(normal(rng), normal(rng), normal(rng)); };
+  for (RodEndKind base_kind : kinds) {
+    for (RodEndKind tip_kind : kinds) {
+      if (base_kind != RodEndKind::Clamped && tip_kind != RodEndKind::Clamped) continue;
+      RodModel rod = cantilever(1.0, Vec3(1.0, 1.3, 0.9), Vec3(40, 50, 80));
+      rod.base.kind = base_kind;
+      rod.tip.kind = tip_kind;
+      rod.loads.force_per_length = 0.5 * random_vec();
+      rod.base.orientation = quat_from_rotation_vector(0.5 * random_vec());
+      rod.base.moment = 0.3 * random_vec();
+      rod.base.force = 0.3 * random_vec();
+      rod.tip.orientation = quat_from_rotation_vector(0.5 * random_vec());
+      rod.tip.position = Vec3(0.2, 0.1, 0.8);
+      rod.tip.moment = 0.3 * random_vec();
+      rod.tip.force = 0.3 * random_vec();
+      const RodOde ode(rod);
+      RodState guess;
+      guess.p = 0.1 * random_vec();
+      guess.q = quat_from_rotation_vector(0.4 * random_vec());
+      guess.n = random_vec();
+      guess.m = random_vec();
+      RodStateVector y0 = guess.to_vector();
+      shooting::enforce_base(rod.base, y0);
+      IntegratorOptions o;
+      o.method = IntegratorMethod::RK4;  // fixed steps: the map is smooth in the unknowns
+      o.rk4_steps = 40;
+      RodStateWithTangents Y;
+      shooting::base_tangents(rod.base, y0, Y);
+      BOOST_TEST_REQUIRE(integrate_rod(ode, 0.0, 1.0, Y, o).success);
+      const shooting::Mat6 J = shooting::tip_residual_jacobian(rod.tip, Y);
+      for (int j = 0; j < 6; ++j) {
+        const double eps = 1e-6;
+        shooting::Vec6 dz = shooting::Vec6::Zero();
+        dz[j] = eps;
+        RodStateVector a = y0, b = y0;
+        shooting::retract_base(rod.base, dz, a);
+        shooting::retract_base(rod.base, -dz, b);
+        integrate_rod(ode, 0.0, 1.0, a, o);
+        integrate_rod(ode, 0.0, 1.0, b, o);
+        const shooting::Vec6 fd =
+            (shooting::tip_residual(rod.tip, a) - shooting::tip_residual(rod.tip, b)) / (2 * eps);
+        // Central differences: eps^2 truncation and 1e-16 / eps roundoff on entries of size ~1-10.
+        BOOST_TEST(
+            (fd - J.col(j)).cwiseAbs().maxCoeff() < 1e-7 * std::max(1.0, J.col(j).cwiseAbs().maxCoeff()),
+            to_string(base_kind) << "-" << to_string(tip_kind) << " column " << j << ": fd " << fd.transpose()
+                                 << " vs " << J.col(j).transpose());
+      }
+    }
+  }
+}
+
+// ---- a tip turned by a half turn: U-shaped rod
+// -------------------------------------------------------------
+BOOST_AUTO_TEST_CASE(u_shaped_rod_reaches_a_tip_flipped_by_pi) {
+  // Base clamped at 0 along e3, tip at (0.4, 0, 0) pointing down (-e3): the rod bends into a U. By
+  // symmetry about the plane x = 0.2, the midpoint s = L/2 lies on it with the tangent along +e1.
+  for (RodEndKind tip_kind : {RodEndKind::Clamped, RodEndKind::Collar}) {
+    RodModel rod = cantilever(1.0, Vec3(1, 1, 1), Vec3(100, 100, 100));
+    rod.tip.kind = tip_kind;
+    rod.tip.position = Vec3(0.4, 0.0, 0.0);
+    rod.tip.orientation = quat_from_rotation(rotation_y(M_PI));
+    const ShootingSolution sol = solve_rod_shooting(rod, tight_options());
+    BOOST_TEST_REQUIRE(sol.summary.converged(), sol.summary.brief_report());
+    BOOST_TEST(max_abs(sol.tip.p - rod.tip.position) < kTightIntegration);
+    BOOST_TEST(sol.tip.R().col(2).dot(Vec3(0, 0, -1)) > 1.0 - 1e-12);  // pointing down, not up
+    const RodState mid = sol.at(0.5);
+    // The symmetry holds to the integration accuracy.
+    BOOST_TEST(std::abs(mid.p.x() - 0.2) < kTightIntegration, "mid " << mid.p.transpose());
+    BOOST_TEST(mid.R().col(2).dot(Vec3::UnitX()) > 1.0 - kTightIntegration);
+  }
+}
+
 // ---- RK4 converges with order 4 --------------------------------------------------------------------------
 BOOST_AUTO_TEST_CASE(rk4_error_decreases_as_n_to_the_minus_4) {
   // Precurved, gravity-loaded, tip-loaded cantilever (no closed form): reference by Dormand-Prince at
@@ -529,8 +609,18 @@ BOOST_AUTO_TEST_CASE(integration_failure_is_reported) {
   BOOST_TEST(sol.summary.message.find("max_steps") != std::string::npos, sol.summary.message);
   BOOST_TEST(all_finite(sol.base));
   BOOST_TEST(all_finite(sol.tip));
-  RodStateVector y = RodState().to_vector();
+  // Minimum step guard: a step floor of half the rod cannot meet rel_tol = 1e-12 on a bent rod.
   IntegratorOptions io;
+  io.rel_tol = 1e-12;
+  io.min_step_fraction = 0.5;
+  RodState bent;
+  bent.m = Vec3(5, 0, 0);
+  RodStateVector y = bent.to_vector();
+  const IntegrationReport floor = integrate_rod(RodOde(bisshopp_drucker(2.0)), 0.0, 1.0, y, io);
+  BOOST_TEST(!floor.success);
+  BOOST_TEST(floor.message.find("underflow") != std::string::npos, floor.message);
+  y = RodState().to_vector();
+  io = IntegratorOptions();
   io.max_steps = 3;
   io.rel_tol = 1e-12;
   const IntegrationReport report = integrate_rod(RodOde(bisshopp_drucker(2.0)), 0.0, 1.0, y, io);

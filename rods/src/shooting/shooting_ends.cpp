@@ -184,21 +184,42 @@ void retract_base(const RodEnd& base, const Vec6& dz, RodStateVector& y0) {
   }
 }
 
+namespace {
+
+// q_e = conj(q_bar) (x) q (unit, sign chosen with w >= 0): the rotation R_bar^T R. Its vector part is
+// sin(theta/2) times the axis, zero only at R = R_bar (unlike vee(R_bar^T R - R^T R_bar), which also
+// vanishes at half turns and would let Newton stop at a tip flipped by pi).
+Quat orientation_error(const Quat& q_bar, const Quat& q) {
+  Quat e = quat_multiply(quat_conjugate(q_bar.normalized()), q.normalized());
+  if (e[0] < 0.0) e = -e;
+  return e;
+}
+
+// Collar axis error for b = R_bar^T d3 (d3 in the prescribed frame): the first two components of
+// 2 vec(quaternion taking e3 to b) = g (e3 x b), g = 2 / sqrt(2 (1 + b_z)); zero only at b = e3
+// (the first two components of b alone also vanish at b = -e3).
+double axis_error_gain(const Vec3& b) {
+  return std::sqrt(2.0 / std::max(1.0 + b[2], 1e-12));
+}
+Eigen::Vector2d axis_error(const Vec3& b) {
+  return axis_error_gain(b) * Eigen::Vector2d(-b[1], b[0]);
+}
+
+}  // namespace
+
 Vec6 tip_residual(const RodEnd& tip, const RodStateVector& y) {
   const Vec3 p = y.segment<3>(RodStateIndex::p), n = y.segment<3>(RodStateIndex::n),
              m = y.segment<3>(RodStateIndex::m);
   const Mat3 R = rotation_matrix(y.segment<4>(RodStateIndex::q));
   Vec6 r = Vec6::Zero();
   switch (tip.kind) {
-    case RodEndKind::Clamped: {
-      const Mat3 R_bar = rotation_matrix(tip.orientation);
-      r << p - tip.position, 0.5 * vee(R_bar.transpose() * R - R.transpose() * R_bar);
+    case RodEndKind::Clamped:
+      r << p - tip.position,
+          2.0 * orientation_error(tip.orientation, y.segment<4>(RodStateIndex::q)).tail<3>();
       break;
-    }
     case RodEndKind::Collar: {
-      const Mat3 R_bar = rotation_matrix(tip.orientation);
-      const Vec3 d3 = R.col(2);
-      r << p - tip.position, (R_bar.transpose() * d3).head<2>(), (m - tip.moment).dot(d3);
+      const Vec3 b = rotation_matrix(tip.orientation).transpose() * R.col(2);
+      r << p - tip.position, axis_error(b), (m - tip.moment).dot(R.col(2));
       break;
     }
     case RodEndKind::Spherical: r << p - tip.position, m - tip.moment; break;
@@ -212,7 +233,9 @@ Mat6 tip_residual_jacobian(const RodEnd& tip, const RodStateWithTangents& Y) {
   const Vec3 m = Y.col(0).segment<3>(RodStateIndex::m);
   const Mat3 R = rotation_matrix(q);
   const Mat3 R_bar = rotation_matrix(tip.orientation);
-  const Mat3 A = R_bar.transpose() * R;
+  const Quat q_error = orientation_error(tip.orientation, q);
+  const Vec3 b = R_bar.transpose() * R.col(2);
+  const double g = axis_error_gain(b);
   const Quat q_conj(q[0], -q[1], -q[2], -q[3]);
   Mat6 J;
   for (int j = 0; j < 6; ++j) {
@@ -223,15 +246,16 @@ Mat6 tip_residual_jacobian(const RodEnd& tip, const RodStateWithTangents& Y) {
         2.0 * quat_multiply(q_conj, Quat(col.segment<4>(RodStateIndex::q))).tail<3>() / q.squaredNorm();
     Vec6 dr = Vec6::Zero();
     switch (tip.kind) {
-      case RodEndKind::Clamped: {
-        // d(1/2 vee(A - A^T)) with dA = A hat(omega).
-        const Mat3 dA = A * hat(omega);
-        dr << dp, 0.5 * vee(dA - dA.transpose());
+      case RodEndKind::Clamped:
+        // d(2 vec(q_e)) with dq_e = q_e (x) [0, omega / 2].
+        dr << dp, q_error[0] * omega + q_error.tail<3>().cross(omega);
         break;
-      }
       case RodEndKind::Collar: {
         const Vec3 dd3 = R * omega.cross(Vec3::UnitZ());
-        dr << dp, (R_bar.transpose() * dd3).head<2>(), dm.dot(R.col(2)) + (m - tip.moment).dot(dd3);
+        const Vec3 db = R_bar.transpose() * dd3;
+        const double dg = -0.5 * g / std::max(1.0 + b[2], 1e-12) * db[2];
+        dr << dp, g * Eigen::Vector2d(-db[1], db[0]) + dg * Eigen::Vector2d(-b[1], b[0]),
+            dm.dot(R.col(2)) + (m - tip.moment).dot(dd3);
         break;
       }
       case RodEndKind::Spherical: dr << dp, dm; break;

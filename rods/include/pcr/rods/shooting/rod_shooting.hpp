@@ -12,8 +12,11 @@
 //   spherical: n(0), rotation R(0) <- R(0) exp(hat(theta))   (p given, m(0) = -moment)
 //   free:      p(0), rotation theta                          (n(0) = -force, m(0) = -moment)
 // Residuals by tip kind (6), with the sign convention of RodEnd (n(L) = force, m(L) = moment):
-//   clamped:   p(L) - p_bar, 1/2 vee(R_bar^T R - R^T R_bar)
-//   collar:    p(L) - p_bar, first two components of R_bar^T d3, (m(L) - moment) . d3
+//   clamped:   p(L) - p_bar, 2 vec(q_e), q_e = conj(q_bar) (x) q with w >= 0 (= sin(theta/2) axis of
+//              R_bar^T R: zero only at R = R_bar, unlike vee(R_bar^T R - R^T R_bar) that also vanishes
+//              at half turns)
+//   collar:    p(L) - p_bar, first two components of g (e3 x b), b = R_bar^T d3, g = 2 / sqrt(2 (1 + b_z))
+//              (the smallest rotation from d3_bar to d3; zero only for d3 = +d3_bar), (m(L) - moment) . d3
 //   spherical: p(L) - p_bar, m(L) - moment
 //   free:      n(L) - force, m(L) - moment
 // Every pairing that RodModel::validate accepts is supported (at least one end clamped). A collar
