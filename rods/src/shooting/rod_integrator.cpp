@@ -54,7 +54,8 @@ void rk4_step(const RodOde& ode, double s, double h, State& y, State& k1, State&
 struct DormandPrinceStages {
   template <typename State>
   static void step(const RodOde& ode, double s, double h, const State& y, const State& k1, State& k2,
-                   State& k3, State& k4, State& k5, State& k6, State& k7, State& tmp, State& y_new) {
+                   State& k3, State& k4, State& k5, State& k6, State& k7, State& tmp, State& y_new,
+                   bool last_stage = true) {
     tmp = y + h * (a21 * k1);
     ode.derivative(s + c2 * h, tmp, k2);
     tmp = y + h * (a31 * k1 + a32 * k2);
@@ -66,7 +67,7 @@ struct DormandPrinceStages {
     tmp = y + h * (a61 * k1 + a62 * k2 + a63 * k3 + a64 * k4 + a65 * k5);
     ode.derivative(s + h, tmp, k6);
     y_new = y + h * (b1 * k1 + b3 * k3 + b4 * k4 + b5 * k5 + b6 * k6);
-    ode.derivative(s + h, y_new, k7);
+    if (last_stage) ode.derivative(s + h, y_new, k7);  // for the error estimate and FSAL
   }
 };
 
@@ -232,7 +233,49 @@ IntegrationReport integrate(const RodOde& ode, double s0, double s1, State& y, c
   return integrate_dormand_prince(ode, s0, s1, y, o, trajectory);
 }
 
+template <typename State>
+IntegrationReport integrate_mesh(const RodOde& ode, const std::vector<double>& mesh, State& y,
+                                 IntegratorMethod method, RodTrajectory* trajectory) {
+  require(!mesh.empty(), "integrate_rod_on_mesh: empty mesh");
+  for (size_t i = 0; i < mesh.size(); ++i)
+    require(std::isfinite(mesh[i]) && (i == 0 || mesh[i] > mesh[i - 1]),
+            "integrate_rod_on_mesh: mesh must be finite and strictly increasing, got s[", i, "] = ", mesh[i]);
+  IntegrationReport report;
+  record(trajectory, mesh[0], y);
+  State k1, k2, k3, k4, k5, k6, k7, tmp, y_new;
+  for (size_t i = 0; i + 1 < mesh.size(); ++i) {
+    const double s = mesh[i], h = mesh[i + 1] - mesh[i];
+    if (method == IntegratorMethod::RK4) {
+      rk4_step(ode, s, h, y, k1, k2, k3, k4, tmp);
+    } else {
+      ode.derivative(s, y, k1);
+      DormandPrinceStages::step(ode, s, h, y, k1, k2, k3, k4, k5, k6, k7, tmp, y_new, false);
+      y = y_new;
+    }
+    normalise(y);
+    if (!y.allFinite()) {
+      report.success = false;
+      report.message = failure("non-finite state", mesh[i + 1]);
+      return report;
+    }
+    ++report.steps;
+    record(trajectory, mesh[i + 1], y);
+  }
+  return report;
+}
+
 }  // namespace
+
+IntegrationReport integrate_rod_on_mesh(const RodOde& ode, const std::vector<double>& mesh, RodStateVector& y,
+                                        IntegratorMethod method, RodTrajectory* trajectory) {
+  return integrate_mesh(ode, mesh, y, method, trajectory);
+}
+
+IntegrationReport integrate_rod_on_mesh(const RodOde& ode, const std::vector<double>& mesh,
+                                        RodStateWithTangents& Y, IntegratorMethod method,
+                                        RodTrajectory* trajectory) {
+  return integrate_mesh(ode, mesh, Y, method, trajectory);
+}
 
 const char* to_string(IntegratorMethod method) {
   return method == IntegratorMethod::RK4 ? "rk4" : "dormand_prince";
@@ -257,7 +300,7 @@ RodStateVector rod_single_step(const RodOde& ode, double s0, double h, const Rod
     return x;
   }
   ode.derivative(s0, x, k1);
-  DormandPrinceStages::step(ode, s0, h, x, k1, k2, k3, k4, k5, k6, k7, tmp, y_new);
+  DormandPrinceStages::step(ode, s0, h, x, k1, k2, k3, k4, k5, k6, k7, tmp, y_new, false);
   normalise(y_new);
   return y_new;
 }

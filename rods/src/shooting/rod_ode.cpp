@@ -1,6 +1,9 @@
 #include "pcr/rods/shooting/rod_ode.hpp"
 
 #include "pcr/math/quaternion.hpp"
+#include "pcr/math/so3.hpp"
+
+#include <algorithm>
 
 namespace pcr {
 namespace {
@@ -51,9 +54,16 @@ RodOde::RodOde(const RodModel& model, double load_factor) {
   eps0_ = model.intrinsic.shear_extension;
   kappa0_ = model.intrinsic.curvature;
   if (model.intrinsic.varying) varying_ = std::make_shared<IntrinsicStrains>(model.intrinsic);
-  force_scale_ = model.bending_torsion_stiffness.maxCoeff() / (length_ * length_);
+  // Characteristic force and moment: the bending scale EI/L^2, EI/L, or the applied loads if larger
+  // (then round-off in n and m grows with the loads, and tolerances must follow).
+  const double bending = model.bending_torsion_stiffness.maxCoeff() / (length_ * length_);
+  const double forces = model.base.force.norm() + model.tip.force.norm() + f_.norm() * length_;
+  const double moments = model.base.moment.norm() + model.tip.moment.norm() + l_.norm() * length_;
+  bending_force_scale_ = bending;
+  force_scale_ = std::max(bending, load_factor * forces);
+  moment_scale_ = std::max(bending * length_, load_factor * moments + force_scale_ * length_);
   state_scale_ << Vec3::Constant(length_), Quat::Ones(), Vec3::Constant(force_scale_),
-      Vec3::Constant(force_scale_ * length_);
+      Vec3::Constant(moment_scale_);
 }
 
 void RodOde::intrinsic_at(double s, Vec3& eps0, Vec3& kappa0) const {
@@ -96,21 +106,38 @@ void RodOde::derivative(double s, const RodStateWithTangents& Y, RodStateWithTan
   dYds.col(0).segment<3>(RodStateIndex::n) = -f_;
   dYds.col(0).segment<3>(RodStateIndex::m) = -dp.cross(n) - l_;
 
-  const Quat q_conj(q[0], -q[1], -q[2], -q[3]);
-  for (int j = 1; j <= kRodTangentCount; ++j) {
-    const Quat dq = Y.col(j).segment<4>(RodStateIndex::q);
-    const Vec3 dn = Y.col(j).segment<3>(RodStateIndex::n), dm = Y.col(j).segment<3>(RodStateIndex::m);
-    // dR = R hat(omega), omega = 2 vec(conj(q) (x) dq) / |q|^2 (the radial part of dq drops out).
-    const Vec3 omega =
-        (2.0 / q2) * (q[0] * dq.tail<3>() - dq[0] * q.tail<3>() - q.tail<3>().cross(dq.tail<3>()));
-    const Vec3 dv = compliance_se_.cwiseProduct(n_body.cross(omega) + R.transpose() * dn);
-    const Vec3 du = compliance_bt_.cwiseProduct(m_body.cross(omega) + R.transpose() * dm);
-    const Vec3 ddp = R * (omega.cross(v) + dv);
-    dYds.col(j).segment<3>(RodStateIndex::p) = ddp;
-    dYds.col(j).segment<4>(RodStateIndex::q) = 0.5 * (multiply_pure(dq, u) + multiply_pure(q, du));
-    dYds.col(j).segment<3>(RodStateIndex::n).setZero();
-    dYds.col(j).segment<3>(RodStateIndex::m) = -(ddp.cross(n) + dp.cross(dn));
-  }
+  // All six tangents at once (3x6 blocks): omega = (2/|q|^2) G(q) dq with
+  // G(q) dq = vec(conj(q) (x) dq) = q_w dq_v - dq_w q_v - q_v x dq_v.
+  using Block36 = Eigen::Matrix<double, 3, kRodTangentCount>;
+  using Block46 = Eigen::Matrix<double, 4, kRodTangentCount>;
+  const Vec3 qv = q.tail<3>();
+  Eigen::Matrix<double, 3, 4> G;
+  G.col(0) = -qv;
+  G.rightCols<3>() = q[0] * Mat3::Identity() - hat(qv);
+  const auto dQ = Y.block<4, kRodTangentCount>(RodStateIndex::q, 1);
+  const auto dN = Y.block<3, kRodTangentCount>(RodStateIndex::n, 1);
+  const auto dM = Y.block<3, kRodTangentCount>(RodStateIndex::m, 1);
+  const Block36 omega = (2.0 / q2) * G * dQ;
+  const Mat3 Rt = R.transpose();
+  // n_body x omega = hat(n_body) omega; omega x v = -hat(v) omega.
+  const Block36 dv = compliance_se_.asDiagonal() * (hat(n_body) * omega + Rt * dN);
+  const Block36 du = compliance_bt_.asDiagonal() * (hat(m_body) * omega + Rt * dM);
+  const Block36 ddp = R * (dv - hat(v) * omega);
+  // dq (x) [0, u] = P(u) dq (right multiplication), q (x) [0, du] = Lq du (left multiplication).
+  Eigen::Matrix4d P;
+  P << 0, -u[0], -u[1], -u[2],  //
+      u[0], 0, u[2], -u[1],     //
+      u[1], -u[2], 0, u[0],     //
+      u[2], u[1], -u[0], 0;
+  Eigen::Matrix<double, 4, 3> Lq;
+  Lq.row(0) = -qv.transpose();
+  Lq.bottomRows<3>() = q[0] * Mat3::Identity() + hat(qv);
+  const Block46 ddq = 0.5 * (P * dQ + Lq * du);
+  dYds.block<3, kRodTangentCount>(RodStateIndex::p, 1) = ddp;
+  dYds.block<4, kRodTangentCount>(RodStateIndex::q, 1) = ddq;
+  dYds.block<3, kRodTangentCount>(RodStateIndex::n, 1).setZero();
+  // dm' = -(dp' x n + p' x dn) = hat(n) dp' - hat(p') dn.
+  dYds.block<3, kRodTangentCount>(RodStateIndex::m, 1) = hat(n) * ddp - hat(dp) * dN;
 }
 
 }  // namespace pcr

@@ -59,6 +59,8 @@ void check_options(const ShootingOptions& o) {
   require(o.max_iterations >= 1, "shooting: max_iterations must be >= 1, got ", o.max_iterations);
   require(o.initial_load_increment > 0.0 && o.initial_load_increment <= 1.0,
           "shooting: initial_load_increment must lie in (0, 1], got ", o.initial_load_increment);
+  require(o.max_load_increment >= o.initial_load_increment && o.max_load_increment <= 1.0,
+          "shooting: max_load_increment must lie in [initial_load_increment, 1], got ", o.max_load_increment);
   require(o.min_load_increment > 0.0 && o.min_load_increment <= o.initial_load_increment,
           "shooting: min_load_increment must lie in (0, initial_load_increment], got ", o.min_load_increment);
   require(o.max_load_steps >= 1, "shooting: max_load_steps must be >= 1, got ", o.max_load_steps);
@@ -71,6 +73,7 @@ struct Evaluation {
   Vec6 residual = Vec6::Zero();  ///< scaled
   Mat6 jacobian = Mat6::Zero();  ///< scaled
   bool has_jacobian = false;
+  std::vector<double> mesh;  ///< accepted steps of an adaptive integration (empty otherwise)
   RodStateVector tip;
   int steps = 0;
 };
@@ -90,21 +93,30 @@ class ShootingProblem {
   const Vec6& unknown_scale() const { return unknown_scale_; }
 
   // The residual at a base state, and its Jacobian (variational equations, ~6x the cost) if asked.
-  Evaluation evaluate(const RodStateVector& y0, bool with_jacobian) const {
+  // Dormand-Prince: on the given mesh if any (no error control), else adaptively, returning the
+  // accepted steps in e.mesh.
+  Evaluation evaluate(const RodStateVector& y0, bool with_jacobian, const std::vector<double>* mesh) const {
     Evaluation e;
     e.has_jacobian = with_jacobian;
     IntegrationReport report;
+    const bool on_mesh = mesh && integrator_.method == IntegratorMethod::DormandPrince;
+    RodTrajectory trajectory;
+    RodTrajectory* record =
+        (!on_mesh && integrator_.method == IntegratorMethod::DormandPrince) ? &trajectory : nullptr;
     if (with_jacobian) {
       RodStateWithTangents Y;
       shooting::base_tangents(model_.base, y0, Y);
-      report = integrate_rod(ode_, 0.0, model_.length, Y, integrator_);
+      report = on_mesh ? integrate_rod_on_mesh(ode_, *mesh, Y, integrator_.method)
+                       : integrate_rod(ode_, 0.0, model_.length, Y, integrator_, record);
       e.tip = Y.col(0);
       if (report.success && Y.allFinite())
         e.jacobian = scale_.cwiseInverse().asDiagonal() * shooting::tip_residual_jacobian(model_.tip, Y);
     } else {
       e.tip = y0;
-      report = integrate_rod(ode_, 0.0, model_.length, e.tip, integrator_);
+      report = on_mesh ? integrate_rod_on_mesh(ode_, *mesh, e.tip, integrator_.method)
+                       : integrate_rod(ode_, 0.0, model_.length, e.tip, integrator_, record);
     }
+    e.mesh = std::move(trajectory.s);
     e.steps = report.steps;
     if (!report.success || !e.tip.allFinite()) {
       e.message = report.success ? "non-finite tip state" : report.message;
@@ -128,7 +140,8 @@ struct NewtonOutcome {
   SolveStatus status = SolveStatus::Failed;
   int iterations = 0;
   std::string message;
-  Evaluation last;  ///< at the returned base state
+  Evaluation last;           ///< at the returned base state
+  std::vector<double> mesh;  ///< the frozen Dormand-Prince mesh (empty if none)
 };
 
 // Newton with backtracking line search on |r|^2; Levenberg-Marquardt (Marquardt's scaling
@@ -136,7 +149,15 @@ struct NewtonOutcome {
 NewtonOutcome solve_newton(const ShootingProblem& problem, RodStateVector& y0, const ShootingOptions& o) {
   NewtonOutcome out;
   const RodEnd& base = problem.model().base;
-  Evaluation current = problem.evaluate(y0, false);
+  // Dormand-Prince: once close to the root, the step sequence is frozen so that the shooting map is
+  // smooth and Newton converges to round-off. The mesh was chosen adaptively for an iterate within
+  // freeze_mesh_below of the root, so it suits the answer as well as a fresh adaptive one would
+  // (a fresh one differs at the level of the integration tolerance, by discrete step events).
+  const bool adaptive = o.integrator == IntegratorMethod::DormandPrince;
+  std::vector<double>& mesh = out.mesh;
+  bool frozen = false;
+  auto mesh_in_use = [&]() { return frozen ? &mesh : nullptr; };
+  Evaluation current = problem.evaluate(y0, false, nullptr);
   if (!current.ok) {
     out.status = SolveStatus::Failed;
     out.message = "integration failed at the initial guess: " + current.message;
@@ -146,8 +167,13 @@ NewtonOutcome solve_newton(const ShootingProblem& problem, RodStateVector& y0, c
   std::vector<double> history;  // |r| per iteration, for stall detection
   while (true) {
     const double r_norm = current.residual.norm();
+    const double r_max = current.residual.cwiseAbs().maxCoeff();
     history.push_back(r_norm);
-    if (current.residual.cwiseAbs().maxCoeff() <= o.residual_tolerance) {
+    if (adaptive && !frozen && r_max <= o.freeze_mesh_below && !current.mesh.empty()) {
+      mesh = current.mesh;  // current was integrated adaptively on exactly this mesh
+      frozen = true;
+    }
+    if (r_max <= o.residual_tolerance) {
       out.status = SolveStatus::Converged;
       break;
     }
@@ -169,7 +195,7 @@ NewtonOutcome solve_newton(const ShootingProblem& problem, RodStateVector& y0, c
     }
     ++out.iterations;
     if (!current.has_jacobian) {
-      current = problem.evaluate(y0, true);
+      current = problem.evaluate(y0, true, mesh_in_use());
       if (!current.ok) {
         out.status = SolveStatus::Failed;
         out.message = "integration of the variational equations failed: " + current.message;
@@ -187,7 +213,7 @@ NewtonOutcome solve_newton(const ShootingProblem& problem, RodStateVector& y0, c
       if (!dz.allFinite()) return false;
       RodStateVector y_trial = y0;
       shooting::retract_base(base, dz, y_trial);
-      Evaluation trial = problem.evaluate(y_trial, false);  // the Jacobian only once accepted
+      Evaluation trial = problem.evaluate(y_trial, false, mesh_in_use());  // the Jacobian once accepted
       if (!trial.ok || !(trial.residual.norm() < (1.0 - sufficient_decrease) * r_norm)) return false;
       y0 = y_trial;
       current = std::move(trial);
@@ -279,31 +305,22 @@ ShootingSolution solve_rod_shooting(const RodModel& model, const ShootingOptions
     const RodStateVector* tip_ptr = interpolate_tip ? &tip_free : nullptr;
     double lambda_done = 0.0, increment = options.initial_load_increment;
     RodStateVector y_done = shooting::initial_base_guess(shooting::model_at_load(model, 0.0, tip_ptr));
-    bool first = true, have_previous = false;
-    double lambda_previous = 0.0;
-    RodStateVector y_previous = y_done;
+    // No secant predictor: it overshoots on concave load paths (Bisshopp-Drucker m(0) ~ sqrt(alpha))
+    // and lands on another equilibrium branch (measured at alpha = 100).
+    bool first = true;
     while (lambda_done < 1.0 && summary.load_steps < options.max_load_steps) {
       const double lambda = std::min(1.0, lambda_done + increment);
       const RodModel loaded = shooting::model_at_load(model, lambda, tip_ptr);
       RodStateVector y = first ? shooting::initial_base_guess(loaded) : y_done;
-      if (have_previous) {
-        // Secant predictor on the vector parts (p, n, m); the orientation is kept.
-        const double t = (lambda - lambda_done) / (lambda_done - lambda_previous);
-        y.head<3>() += t * (y_done.head<3>() - y_previous.head<3>());
-        y.tail<6>() += t * (y_done.tail<6>() - y_previous.tail<6>());
-      }
       shooting::enforce_base(loaded.base, y);
       const NewtonOutcome step = solve_newton(ShootingProblem(loaded, integrator), y, options);
       summary.iterations += step.iterations;
       ++summary.load_steps;
       if (step.status == SolveStatus::Converged) {
-        have_previous = !first;
-        lambda_previous = lambda_done;
-        y_previous = y_done;
         lambda_done = lambda;
         y_done = y;
         first = false;
-        increment = std::min(2.0 * increment, 1.0);
+        increment = std::min(2.0 * increment, options.max_load_increment);
         if (lambda == 1.0) outcome = step;
       } else {
         increment *= 0.5;
@@ -338,8 +355,12 @@ ShootingSolution solve_rod_shooting(const RodModel& model, const ShootingOptions
   solution.method_ = options.integrator;
   RodStateVector y = y0;
   RodTrajectory trajectory;
-  const IntegrationReport report = integrate_rod(*solution.ode_, 0.0, model.length, y, integrator,
-                                                 options.store_trajectory ? &trajectory : nullptr);
+  RodTrajectory* record = options.store_trajectory ? &trajectory : nullptr;
+  // On the mesh Newton converged on (if frozen), so that the reported residual is the converged one.
+  const bool on_mesh = outcome.status == SolveStatus::Converged && !outcome.mesh.empty();
+  const IntegrationReport report =
+      on_mesh ? integrate_rod_on_mesh(*solution.ode_, outcome.mesh, y, options.integrator, record)
+              : integrate_rod(*solution.ode_, 0.0, model.length, y, integrator, record);
   solution.base = RodState::from_vector(y0);
   if (report.success && y.allFinite()) {
     solution.tip = RodState::from_vector(y);

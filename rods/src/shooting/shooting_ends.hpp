@@ -30,7 +30,7 @@ Mat6 tip_residual_jacobian(const RodEnd& tip, const RodStateWithTangents& Y);
 /// Divisors that make the residuals dimensionless: L, 1, F_c, M_c.
 Vec6 residual_scale(const RodEnd& tip, const RodOde& ode);
 
-/// Sizes of the base unknowns: F_c for forces, M_c for moments, L for positions, 1 for angles.
+/// Sizes of the base unknowns for the step cap: EI/L^2 for forces, EI/L for moments, L, 1 rad.
 Vec6 unknown_scale(const RodEnd& base, const RodOde& ode);
 
 /// Unit quaternion of the smallest rotation taking unit vector a to unit vector b.

@@ -22,7 +22,7 @@ struct IntegratorOptions {
   int rk4_steps = 100;     ///< RK4: number of equal steps over [s0, s1] (the full rod length)
   double rel_tol = 1e-10;  ///< Dormand-Prince: relative tolerance
   /// Dormand-Prince: absolute tolerance, multiplied per component by RodOde::state_scale() (L for p,
-  /// 1 for q, F_c for n, F_c L for m) so that one number serves all units.
+  /// 1 for q, F_c for n, M_c for m; see RodOde) so that one number serves all units.
   double abs_tol = 1e-12;
   double min_step_fraction = 1e-12;  ///< smallest step = this * |s1 - s0|; below it integration fails
   int max_steps = 1000000;           ///< accepted + rejected steps before integration fails
@@ -53,6 +53,16 @@ IntegrationReport integrate_rod(const RodOde& ode, double s0, double s1, RodStat
 /// controlled by the state (column 0) only.
 IntegrationReport integrate_rod(const RodOde& ode, double s0, double s1, RodStateWithTangents& Y,
                                 const IntegratorOptions& options, RodTrajectory* trajectory = nullptr);
+
+/// Integrates on a given mesh s_0 < s_1 < ... (e.g. the steps of an earlier adaptive run, from
+/// RodTrajectory::s): one step of the method per interval, no error control. With the mesh frozen,
+/// y(s_end) is a smooth function of y(s_0), which Newton needs to converge to round-off (an adaptive
+/// step sequence that changes between iterations adds noise of the size of the tolerance).
+IntegrationReport integrate_rod_on_mesh(const RodOde& ode, const std::vector<double>& mesh, RodStateVector& y,
+                                        IntegratorMethod method, RodTrajectory* trajectory = nullptr);
+IntegrationReport integrate_rod_on_mesh(const RodOde& ode, const std::vector<double>& mesh,
+                                        RodStateWithTangents& Y, IntegratorMethod method,
+                                        RodTrajectory* trajectory = nullptr);
 
 /// One step of the given method from (s0, y) to s0 + h, as used for dense output between stored steps
 /// (for Dormand-Prince: the 5th-order solution of a single step).

@@ -62,10 +62,13 @@ class RodOde {
   /// Distributed force f and moment l per length (world frame, load factor applied).
   const Vec3& force_per_length() const { return f_; }
   const Vec3& moment_per_length() const { return l_; }
-  /// Characteristic sizes used to weigh errors: L, 1 (quaternion), F_c = max(K_BT) / L^2, M_c = F_c L.
+  /// Characteristic sizes used to weigh errors: L, 1 (quaternion), F_c = max(max(K_BT) / L^2, sum of
+  /// applied forces |F_base| + |F_tip| + |f| L), M_c = max(max(K_BT) / L, applied moments + F_c L).
   double length_scale() const { return length_; }
   double force_scale() const { return force_scale_; }
-  double moment_scale() const { return force_scale_ * length_; }
+  double moment_scale() const { return moment_scale_; }
+  /// max(K_BT) / L^2: the force that bends the rod by about a radian (sizes Newton steps).
+  double bending_force_scale() const { return bending_force_scale_; }
   /// Per-component scale of the state (the absolute tolerance is multiplied by it).
   const RodStateVector& state_scale() const { return state_scale_; }
 
@@ -83,7 +86,7 @@ class RodOde {
   Vec3 f_, l_;
   Vec3 eps0_, kappa0_;
   std::shared_ptr<const IntrinsicStrains> varying_;  ///< set only for s-dependent strains
-  double force_scale_ = 1.0;
+  double force_scale_ = 1.0, moment_scale_ = 1.0, bending_force_scale_ = 1.0;
   RodStateVector state_scale_;
 };
 

@@ -41,14 +41,20 @@ struct ShootingOptions {
   Integrator integrator = Integrator::DormandPrince;
   int rk4_steps = 100;
   double rel_tol = 1e-10;
-  double abs_tol = 1e-12;  ///< relative to L, F_c = max(K_BT) / L^2, M_c = F_c L (see IntegratorOptions)
+  double abs_tol = 1e-12;  ///< relative to L, F_c, M_c (RodOde::state_scale, IntegratorOptions)
   double min_step_fraction = 1e-12;
   int max_integration_steps = 100000;
   /// Convergence: max-abs of the residuals divided by L (positions), 1 (directions), F_c (forces), M_c
   /// (moments) at most this.
   double residual_tolerance = 1e-10;
   int max_iterations = 50;  ///< per load step
-  /// Largest change of any base unknown per iteration, in units of its scale (F_c, M_c, L or 1 rad):
+  /// Dormand-Prince: when the scaled residual falls below this, the step sequence is frozen for the
+  /// rest of the Newton solve (a smooth map, so Newton reaches round-off instead of the tolerance-sized
+  /// noise of changing steps); the converged answer is then re-checked by an adaptive integration
+  /// (re-solving on the new mesh up to 3 times if that check fails).
+  double freeze_mesh_below = 1e-6;
+  /// Largest change of any base unknown per iteration, in units of its scale (max(K_BT) / L^2 for
+  /// forces, max(K_BT) / L for moments, L, 1 rad):
   /// keeps Newton from jumping to a rod curled into many loops when the Jacobian is nearly singular.
   double max_step = 2.0;
   /// A solve stops as stalled when the scaled residual norm fell by less than a factor stall_ratio over
@@ -58,7 +64,11 @@ struct ShootingOptions {
   bool levenberg_marquardt = true;
   bool load_stepping = true;
   double initial_load_increment = 0.25;  ///< first lambda increment after a failed full-load solve
-  double min_load_increment = 1e-3;      ///< give up when the increment is halved below this
+  /// Largest lambda increment (increments double after each success up to this): small enough that a
+  /// warm start stays on the branch of the previous solution (Bisshopp-Drucker alpha = 100 jumps to
+  /// an equilibrium with the tip bent past vertical with increments of 0.5).
+  double max_load_increment = 0.25;
+  double min_load_increment = 1e-3;  ///< give up when the increment is halved below this
   int max_load_steps = 200;
   bool store_trajectory = true;  ///< keep the state at every step of the final integration
 
