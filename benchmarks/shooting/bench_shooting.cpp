@@ -2,8 +2,7 @@
 // with tolerance tol) on scenes R1 (end moment, phi = 2 pi), R2 (Bisshopp-Drucker, alpha = 10) and
 // R3 (exact helix). Errors: max-abs centerline error against the analytic solution (R1, R3, at 101
 // points) or the tip position error against a tight Dormand-Prince reference (R2, tol 1e-13).
-// Every solve starts from the unloaded rod (zero base wrench, passed as warm start: the solver's own
-// straight-rod statics guess is exact for R1 and R3 and would leave nothing to iterate) and does not
+// Every solve is cold (the solver's default start: the unloaded rod, zero base wrench) and does not
 // store the trajectory.
 // usage: bench_shooting [csv path = benchmarks/results/shooting.csv]
 #include <algorithm>
@@ -102,21 +101,13 @@ struct Timing {
   double median = 0, min = 0, max = 0;
 };
 
-ShootingSolution unloaded_start(const RodModel& model) {
-  ShootingSolution start;
-  start.base.p = model.base.position;
-  start.base.q = model.base.orientation;
-  return start;  // n = m = 0
-}
-
 Timing time_solves(const RodModel& model, const ShootingOptions& options) {
-  const ShootingSolution start = unloaded_start(model);
   std::vector<double> times;
   double total = 0.0;
   // At least 5 solves and 0.2 s, at most 2000 solves.
   while ((times.size() < 5 || total < 0.2) && times.size() < 2000) {
     const auto t0 = std::chrono::steady_clock::now();
-    const ShootingSolution sol = solve_rod_shooting(model, options, &start);
+    const ShootingSolution sol = solve_rod_shooting(model, options);
     const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     times.push_back(t);
     total += t;
@@ -166,8 +157,7 @@ int main(int argc, char** argv) {
     }
     for (size_t i = 0; i < runs.size(); ++i) {
       ShootingOptions o = runs[i];
-      const ShootingSolution start = unloaded_start(scene.model);
-      const ShootingSolution sol = solve_rod_shooting(scene.model, o, &start);
+      const ShootingSolution sol = solve_rod_shooting(scene.model, o);
       const double error = sol.summary.converged() ? scene.error(sol) : NAN;
       o.store_trajectory = false;
       const Timing t = time_solves(scene.model, o);
