@@ -95,10 +95,14 @@ std::string failure(const char* what, double s) {
   return out.str();
 }
 
-void check_options(const RodOde& ode, double s0, double s1, const IntegratorOptions& o) {
+void check_interval(double s0, double s1) {
   require(std::isfinite(s0) && std::isfinite(s1) && s1 >= s0,
           "integrate_rod: need finite s0 <= s1, got s0 = ", s0, ", s1 = ", s1);
-  (void)ode;
+}
+
+}  // namespace
+
+void check_integrator_options(const IntegratorOptions& o) {
   if (o.method == IntegratorMethod::RK4) {
     require(o.rk4_steps >= 1, "integrate_rod: rk4_steps must be >= 1, got ", o.rk4_steps);
   } else {
@@ -111,6 +115,8 @@ void check_options(const RodOde& ode, double s0, double s1, const IntegratorOpti
     require(o.max_steps >= 1, "integrate_rod: max_steps must be >= 1, got ", o.max_steps);
   }
 }
+
+namespace {
 
 template <typename State>
 IntegrationReport integrate_rk4(const RodOde& ode, double s0, double s1, State& y, const IntegratorOptions& o,
@@ -228,7 +234,8 @@ IntegrationReport integrate_dormand_prince(const RodOde& ode, double s0, double 
 template <typename State>
 IntegrationReport integrate(const RodOde& ode, double s0, double s1, State& y, const IntegratorOptions& o,
                             RodTrajectory* trajectory) {
-  check_options(ode, s0, s1, o);
+  check_interval(s0, s1);
+  check_integrator_options(o);
   if (o.method == IntegratorMethod::RK4) return integrate_rk4(ode, s0, s1, y, o, trajectory);
   return integrate_dormand_prince(ode, s0, s1, y, o, trajectory);
 }

@@ -277,8 +277,7 @@ ShootingSolution solve_rod_shooting(const RodModel& model, const ShootingOptions
   model.validate();
   check_options(options);
   const IntegratorOptions integrator = options.integrator_options();
-  integrate_rod(RodOde(model), 0.0, 0.0, *std::make_unique<RodStateVector>(RodStateVector::Zero()),
-                integrator);  // validates the integrator options (throws InputError)
+  check_integrator_options(integrator);  // validates the integrator options (throws InputError)
 
   ShootingSolution solution;
   ShootingSummary& summary = solution.summary;
@@ -293,7 +292,6 @@ ShootingSolution solve_rod_shooting(const RodModel& model, const ShootingOptions
   NewtonOutcome outcome = solve_newton(full, y0, options);
   summary.iterations = outcome.iterations;
   summary.load_steps = 1;
-  double lambda_reached = outcome.status == SolveStatus::Converged ? 1.0 : 0.0;
 
   if (outcome.status != SolveStatus::Converged && options.load_stepping) {
     // Continuation in the load factor: lambda from 0 to 1, increments doubled after a success and
@@ -330,7 +328,6 @@ ShootingSolution solve_rod_shooting(const RodModel& model, const ShootingOptions
         }
       }
     }
-    lambda_reached = lambda_done;
     if (lambda_done == 1.0) {
       y0 = y_done;
     } else if (!first) {
@@ -348,7 +345,6 @@ ShootingSolution solve_rod_shooting(const RodModel& model, const ShootingOptions
   }
   summary.status = outcome.status;
   summary.message = outcome.message;
-  (void)lambda_reached;
 
   // Final integration at full load from the returned base state, with the trajectory.
   solution.ode_ = std::make_shared<RodOde>(model);

@@ -28,6 +28,9 @@ struct IntegratorOptions {
   int max_steps = 1000000;           ///< accepted + rejected steps before integration fails
 };
 
+/// Throws InputError naming the option if the options are unusable (non-positive steps or tolerances).
+void check_integrator_options(const IntegratorOptions& options);
+
 struct IntegrationReport {
   bool success = true;
   std::string message;  ///< why integration failed (step underflow, too many steps, non-finite state)

@@ -8,7 +8,7 @@
 // Unknowns by base kind (the base state y(0) is updated by a retraction, never leaving its constraints):
 //   clamped:   n(0), m(0)                                    (p, R given)
 //   collar:    n(0), two moment components m(0) . R_bar e1, m(0) . R_bar e2, twist psi about d3
-//              (R(0) = R R_z(psi)), with m(0) . d3 = -moment . d3
+//              (R(0) = R_bar R_z(psi)), with m(0) . d3 = -moment . d3
 //   spherical: n(0), rotation R(0) <- R(0) exp(hat(theta))   (p given, m(0) = -moment)
 //   free:      p(0), rotation theta                          (n(0) = -force, m(0) = -moment)
 // Residuals by tip kind (6), with the sign convention of RodEnd (n(L) = force, m(L) = moment):
@@ -22,6 +22,13 @@
 // Every pairing that RodModel::validate accepts is supported (at least one end clamped). A collar
 // honours the torsional part of its applied moment (m . d3 = moment . d3; DESIGN.md's m . d3 = 0 is
 // the unloaded case).
+//
+// Strategy: Newton from the warm start, or else from the unloaded rod (clamped base: n(0) = m(0) = 0;
+// other bases: a straight rod ending at the clamped tip), with every step capped to max_step (in units
+// of EI/L^2, EI/L, L, 1 rad), a backtracking line search, Levenberg-Marquardt when that fails, and stall
+// detection. With Dormand-Prince the step sequence is frozen once the residual is below
+// freeze_mesh_below, so that the map is smooth near the root. If the full-load solve fails, load
+// stepping restarts from lambda = 0.
 //
 // Load stepping scales the distributed loads and the loads at both ends by lambda in (0, 1]; when the
 // base is clamped, a prescribed tip position/orientation (clamped, collar, spherical tip) moves
