@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <vector>
 
@@ -283,7 +284,7 @@ ShootingSolution solve_rod_shooting(const RodModel& model, const ShootingOptions
   ShootingSummary& summary = solution.summary;
   summary.solver = std::string("shooting-") + to_string(options.integrator);
 
-  // Full load first, from the warm start or the straight-rod guess.
+  // Full load first, from the warm start or the unloaded-rod guess.
   const ShootingProblem full(model, integrator);
   RodStateVector y0 = warm_start ? warm_start->base.to_vector() : shooting::initial_base_guess(model);
   if (!y0.allFinite() || y0.segment<4>(RodStateIndex::q).norm() < 1e-12)
