@@ -141,6 +141,31 @@ BOOST_AUTO_TEST_CASE(r1_end_moment_gives_exact_arc) {
   }
 }
 
+// ---- a precurved rod without loads keeps its stress-free arc ----------------------------------------------
+BOOST_AUTO_TEST_CASE(precurved_rod_without_loads_is_its_intrinsic_arc) {
+  // kappa0 = (2, 0, 0) (constant, and the same through the s-dependent hook): n = m = 0 and the rod is
+  // the arc p(s) = (0, -(1 - cos 2s)/2, sin(2s)/2), R(s) = R_x(2s), for any stiffness.
+  for (bool varying : {false, true}) {
+    RodModel rod = cantilever(1.0, Vec3(1.0, 1.5, 0.7), Vec3(40, 50, 90));
+    if (varying)
+      rod.intrinsic.varying = [](double, Vec3&, Vec3& kappa0) { kappa0 = Vec3(2.0, 0.0, 0.0); };
+    else
+      rod.intrinsic.curvature = Vec3(2.0, 0.0, 0.0);
+    const ShootingSolution sol = solve_rod_shooting(rod, tight_options());
+    BOOST_TEST_REQUIRE(sol.summary.converged(), sol.summary.brief_report());
+    for (int i = 0; i <= 10; ++i) {
+      const double s = i / 10.0;
+      const RodState x = sol.at(s);
+      const Vec3 exact(0.0, -(1.0 - std::cos(2 * s)) / 2, std::sin(2 * s) / 2);
+      BOOST_TEST(max_abs(x.p - exact) < kTightIntegration, "varying " << varying << " s " << s);
+      BOOST_TEST(rotation_angle_between(x.R(), rotation_x(2 * s)) < kTightIntegration);
+      // Residual tolerance 1e-12 times F_c = M_c = 1.5 (bending scales).
+      BOOST_TEST(max_abs(x.n) < 1e-11);
+      BOOST_TEST(max_abs(x.m) < 1e-11);
+    }
+  }
+}
+
 // ---- R2: Bisshopp-Drucker table --------------------------------------------------------------------
 BOOST_AUTO_TEST_CASE(r2_bisshopp_drucker_table) {
   // alpha, (L - x_tip)/L, y_tip/L, tip angle (scenes/README.md R2).
