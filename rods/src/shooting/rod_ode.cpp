@@ -1,0 +1,143 @@
+#include "pcr/rods/shooting/rod_ode.hpp"
+
+#include "pcr/math/quaternion.hpp"
+#include "pcr/math/so3.hpp"
+
+#include <algorithm>
+
+namespace pcr {
+namespace {
+
+// a (x) [0, u] for a quaternion a and a vector u (Hamilton product with a pure quaternion).
+Quat multiply_pure(const Quat& a, const Vec3& u) {
+  const Vec3 av = a.tail<3>();
+  Quat r;
+  r[0] = -av.dot(u);
+  r.tail<3>() = a[0] * u + av.cross(u);
+  return r;
+}
+
+// R(q) = R_unit(q) / |q|^2 without the input check (q is never zero along a solution).
+Mat3 rotation_of(const Quat& q) {
+  return rotation_unit_form(q) / q.squaredNorm();
+}
+
+}  // namespace
+
+Mat3 RodState::R() const {
+  return rotation_matrix(q);
+}
+
+RodStateVector RodState::to_vector() const {
+  RodStateVector y;
+  y << p, q, n, m;
+  return y;
+}
+
+RodState RodState::from_vector(const RodStateVector& y) {
+  RodState x;
+  x.p = y.segment<3>(RodStateIndex::p);
+  x.q = y.segment<4>(RodStateIndex::q);
+  x.n = y.segment<3>(RodStateIndex::n);
+  x.m = y.segment<3>(RodStateIndex::m);
+  return x;
+}
+
+RodOde::RodOde(const RodModel& model, double load_factor) {
+  model.validate();
+  length_ = model.length;
+  load_factor_ = load_factor;
+  compliance_se_ = model.shear_extension_stiffness.cwiseInverse();
+  compliance_bt_ = model.bending_torsion_stiffness.cwiseInverse();
+  f_ = load_factor * model.distributed_force();
+  l_ = load_factor * model.loads.moment_per_length;
+  eps0_ = model.intrinsic.shear_extension;
+  kappa0_ = model.intrinsic.curvature;
+  if (model.intrinsic.varying) varying_ = std::make_shared<IntrinsicStrains>(model.intrinsic);
+  // Characteristic force and moment: the bending scale EI/L^2, EI/L, or the applied loads if larger
+  // (then round-off in n and m grows with the loads, and tolerances must follow).
+  const double bending = model.bending_torsion_stiffness.maxCoeff() / (length_ * length_);
+  const double forces = model.base.force.norm() + model.tip.force.norm() + f_.norm() * length_;
+  const double moments = model.base.moment.norm() + model.tip.moment.norm() + l_.norm() * length_;
+  bending_force_scale_ = bending;
+  force_scale_ = std::max(bending, load_factor * forces);
+  moment_scale_ = std::max(bending * length_, load_factor * moments + force_scale_ * length_);
+  state_scale_ << Vec3::Constant(length_), Quat::Ones(), Vec3::Constant(force_scale_),
+      Vec3::Constant(moment_scale_);
+}
+
+void RodOde::intrinsic_at(double s, Vec3& eps0, Vec3& kappa0) const {
+  if (varying_) {
+    varying_->at(s, eps0, kappa0);
+  } else {
+    eps0 = eps0_;
+    kappa0 = kappa0_;
+  }
+}
+
+void RodOde::derivative(double s, const RodStateVector& y, RodStateVector& dyds) const {
+  const Quat q = y.segment<4>(RodStateIndex::q);
+  const Vec3 n = y.segment<3>(RodStateIndex::n), m = y.segment<3>(RodStateIndex::m);
+  const Mat3 R = rotation_of(q);
+  Vec3 eps0, kappa0;
+  intrinsic_at(s, eps0, kappa0);
+  const Vec3 v = compliance_se_.cwiseProduct(R.transpose() * n) + eps0 + Vec3::UnitZ();
+  const Vec3 u = compliance_bt_.cwiseProduct(R.transpose() * m) + kappa0;
+  const Vec3 dp = R * v;
+  dyds.segment<3>(RodStateIndex::p) = dp;
+  dyds.segment<4>(RodStateIndex::q) = 0.5 * multiply_pure(q, u);
+  dyds.segment<3>(RodStateIndex::n) = -f_;
+  dyds.segment<3>(RodStateIndex::m) = -dp.cross(n) - l_;
+}
+
+void RodOde::derivative(double s, const RodStateWithTangents& Y, RodStateWithTangents& dYds) const {
+  const Quat q = Y.col(0).segment<4>(RodStateIndex::q);
+  const Vec3 n = Y.col(0).segment<3>(RodStateIndex::n), m = Y.col(0).segment<3>(RodStateIndex::m);
+  const double q2 = q.squaredNorm();
+  const Mat3 R = rotation_of(q);
+  Vec3 eps0, kappa0;
+  intrinsic_at(s, eps0, kappa0);
+  const Vec3 n_body = R.transpose() * n, m_body = R.transpose() * m;
+  const Vec3 v = compliance_se_.cwiseProduct(n_body) + eps0 + Vec3::UnitZ();
+  const Vec3 u = compliance_bt_.cwiseProduct(m_body) + kappa0;
+  const Vec3 dp = R * v;
+  dYds.col(0).segment<3>(RodStateIndex::p) = dp;
+  dYds.col(0).segment<4>(RodStateIndex::q) = 0.5 * multiply_pure(q, u);
+  dYds.col(0).segment<3>(RodStateIndex::n) = -f_;
+  dYds.col(0).segment<3>(RodStateIndex::m) = -dp.cross(n) - l_;
+
+  // All six tangents at once (3x6 blocks): omega = (2/|q|^2) G(q) dq with
+  // G(q) dq = vec(conj(q) (x) dq) = q_w dq_v - dq_w q_v - q_v x dq_v.
+  using Block36 = Eigen::Matrix<double, 3, kRodTangentCount>;
+  using Block46 = Eigen::Matrix<double, 4, kRodTangentCount>;
+  const Vec3 qv = q.tail<3>();
+  Eigen::Matrix<double, 3, 4> G;
+  G.col(0) = -qv;
+  G.rightCols<3>() = q[0] * Mat3::Identity() - hat(qv);
+  const auto dQ = Y.block<4, kRodTangentCount>(RodStateIndex::q, 1);
+  const auto dN = Y.block<3, kRodTangentCount>(RodStateIndex::n, 1);
+  const auto dM = Y.block<3, kRodTangentCount>(RodStateIndex::m, 1);
+  const Block36 omega = (2.0 / q2) * G * dQ;
+  const Mat3 Rt = R.transpose();
+  // n_body x omega = hat(n_body) omega; omega x v = -hat(v) omega.
+  const Block36 dv = compliance_se_.asDiagonal() * (hat(n_body) * omega + Rt * dN);
+  const Block36 du = compliance_bt_.asDiagonal() * (hat(m_body) * omega + Rt * dM);
+  const Block36 ddp = R * (dv - hat(v) * omega);
+  // dq (x) [0, u] = P(u) dq (right multiplication), q (x) [0, du] = Lq du (left multiplication).
+  Eigen::Matrix4d P;
+  P << 0, -u[0], -u[1], -u[2],  //
+      u[0], 0, u[2], -u[1],     //
+      u[1], -u[2], 0, u[0],     //
+      u[2], u[1], -u[0], 0;
+  Eigen::Matrix<double, 4, 3> Lq;
+  Lq.row(0) = -qv.transpose();
+  Lq.bottomRows<3>() = q[0] * Mat3::Identity() + hat(qv);
+  const Block46 ddq = 0.5 * (P * dQ + Lq * du);
+  dYds.block<3, kRodTangentCount>(RodStateIndex::p, 1) = ddp;
+  dYds.block<4, kRodTangentCount>(RodStateIndex::q, 1) = ddq;
+  dYds.block<3, kRodTangentCount>(RodStateIndex::n, 1).setZero();
+  // dm' = -(dp' x n + p' x dn) = hat(n) dp' - hat(p') dn.
+  dYds.block<3, kRodTangentCount>(RodStateIndex::m, 1) = hat(n) * ddp - hat(dp) * dN;
+}
+
+}  // namespace pcr
