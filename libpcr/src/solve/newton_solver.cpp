@@ -34,6 +34,7 @@ struct NewtonSolver::Impl {
   SparseColMajor J_free;            // free columns, column-major for SparseLU
   std::vector<int> value_map;       // J value index -> J_free value index, -1 for fixed columns
   Eigen::SparseLU<SparseColMajor, Eigen::COLAMDOrdering<int>> lu;
+  bool have_factorization = false;  // lu holds a factorisation of this structure (for reuse)
   VecX c, r, r_trial, x_trial, dx_free, dx, linear_check;
 
   Impl(const Problem& p, NewtonOptions o) : problem(p), options(o) {}
@@ -80,6 +81,7 @@ void NewtonSolver::Impl::prepare() {
   x_trial.resize(n);
   J = SparseRowMajor();
   value_map.clear();
+  have_factorization = false;
   version = problem.structure_version();
 }
 
@@ -164,15 +166,42 @@ SolveSummary NewtonSolver::solve(VecX& x) {
   }
   problem.evaluate_residuals(x, w.c);
   w.r = w.c - w.target;
+  // With reuse_factorization, iterations first try the last factorisation (simplified Newton:
+  // x <- x - J_old^-1 r(x)); a step that does not contract |r| by chord_contraction is discarded
+  // and the iteration is redone with a fresh Jacobian.
+  bool refresh = !(o.reuse_factorization && w.have_factorization);
+  int jacobian_evaluations = 0;
   for (int iteration = 0;; ++iteration) {
     summary.iterations = iteration;
     if (!w.r.allFinite()) return finish(SolveStatus::Diverged, "non-finite residual");
     const double r_max = w.r.lpNorm<Eigen::Infinity>();
-    if (r_max <= o.tolerance) return finish(SolveStatus::Converged, "");
+    if (r_max <= o.tolerance)
+      return finish(SolveStatus::Converged, o.reuse_factorization
+                                                ? std::to_string(jacobian_evaluations) + " Jacobian evaluations"
+                                                : std::string());
     if (iteration >= o.max_iterations) return finish(SolveStatus::MaxIterations, "");
+    const double r_norm = w.r.norm();
+
+    if (!refresh) {
+      w.dx_free = w.lu.solve(w.r);
+      for (int j = 0; j < x.size(); ++j) {
+        const int col = w.reduced_column[j];
+        w.x_trial[j] = x[j] - (col >= 0 ? w.dx_free[col] : 0.0);
+      }
+      problem.evaluate_residuals(w.x_trial, w.c);
+      w.r_trial = w.c - w.target;
+      if (w.r_trial.allFinite() && w.r_trial.norm() <= o.chord_contraction * r_norm) {
+        x.swap(w.x_trial);
+        w.r.swap(w.r_trial);
+        continue;
+      }
+      refresh = true;  // too slow or diverging: redo this iteration with a fresh Jacobian
+      problem.evaluate_residuals(x, w.c);
+    }
 
     // Newton direction: J_free dx = -r.
     problem.evaluate_residuals_and_jacobian(x, w.c, w.J);
+    ++jacobian_evaluations;
     if (w.value_map.size() != static_cast<size_t>(w.J.nonZeros())) w.build_free_pattern();
     double* free_values = w.J_free.valuePtr();
     const double* values = w.J.valuePtr();
@@ -180,15 +209,16 @@ SolveSummary NewtonSolver::solve(VecX& x) {
       if (w.value_map[p] >= 0) free_values[w.value_map[p]] = values[p];
     }
     if (!w.J_free.coeffs().allFinite()) return finish(SolveStatus::Diverged, "non-finite Jacobian entry");
+    w.have_factorization = false;
     w.lu.factorize(w.J_free);
     if (w.lu.info() != Eigen::Success) {
       return finish(SolveStatus::Singular, "sparse LU failed: " + w.lu.lastErrorMessage());
     }
+    w.have_factorization = true;
     w.dx_free = w.lu.solve(w.r);
     w.dx_free = -w.dx_free;
     w.linear_check.noalias() = w.J_free * w.dx_free;
     w.linear_check += w.r;
-    const double r_norm = w.r.norm();
     const double linear_residual = w.linear_check.norm() / r_norm;
     const double step = w.dx_free.lpNorm<Eigen::Infinity>();
     if (!(linear_residual <= o.linear_residual_limit)) {
@@ -229,6 +259,8 @@ SolveSummary NewtonSolver::solve(VecX& x) {
                              r_max));
       }
     }
+    // Keep using this factorisation while the residual contracts fast enough.
+    refresh = !(o.reuse_factorization && alpha == 1.0 && w.r_trial.norm() <= o.chord_contraction * r_norm);
     x.swap(w.x_trial);
     w.r.swap(w.r_trial);
   }

@@ -24,6 +24,7 @@ NewtonOptions newton_options(const KinematicsOptions& o) {
   NewtonOptions n;
   n.tolerance = o.tolerance;
   n.max_iterations = o.max_iterations;
+  n.reuse_factorization = o.reuse_factorization;
   return n;
 }
 
@@ -334,7 +335,8 @@ RobotSolution InverseKinematics::solve(const std::vector<Pose>& target_poses, co
   }
   if (!done) {
     VecX xo(solvers_->optimised.num_variables());
-    xo.head(x_.size()) = (square_ && summary.converged()) ? x_ : x_;
+    // Start from Newton's solution when it converged outside the input bounds, else from the last one.
+    xo.head(x_.size()) = (square_ && summary.converged() && x.allFinite()) ? x : x_;
     xo.tail(ref.size()) = ref;
     solvers_->optimised.fix_variable(solvers_->reference, ref);
     if (!solvers_->ipopt) solvers_->ipopt = std::make_unique<IpoptSolver>(solvers_->optimised, ipopt_options(options_));

@@ -49,7 +49,10 @@ RodSolution solve_rod(const RodModel& model, const RodSolveOptions& options, con
   const VecX x0 = sol.x;
   sol.summary = solve_at(rod, options, 1.0, sol.x, sol.variables);
   int iterations = sol.summary.iterations;
-  if (!sol.summary.converged() && options.load_stepping) {
+  // Continuation helps a Newton iteration that is lost far from the solution, not one that stalls at
+  // round-off just above the tolerance: then the direct result is reported as it is.
+  const bool stalled_near_solution = sol.summary.residual_max_abs < 1e-6;
+  if (!sol.summary.converged() && options.load_stepping && !stalled_near_solution) {
     // Continuation: lambda from 0 (the initial guess is exact for zero load when it starts at the
     // clamped end) to 1; step grows by 1.5 after a success and halves after a failure.
     double lambda = 0.0, step = 0.25, previous_step = 0.0;
@@ -76,8 +79,9 @@ RodSolution solve_rod(const RodModel& model, const RodSolveOptions& options, con
     }
     sol.load_steps = steps;
     std::ostringstream msg;
-    msg << "direct solve failed (" << sol.summary.message << "); load stepping: " << steps << " steps, reached lambda = "
-        << lambda;
+    msg << "direct solve failed (" << to_string(sol.summary.status)
+        << (sol.summary.message.empty() ? "" : ": " + sol.summary.message) << "); load stepping: " << steps
+        << " steps, reached lambda = " << lambda;
     if (lambda >= 1.0 && last.converged()) {
       sol.x = x;
       sol.summary = last;

@@ -25,6 +25,8 @@ struct KinematicsOptions {
   double tolerance = 1e-10;                ///< max-abs of the dimensionless residuals
   int max_iterations = 100;
   int centerline_points = 21;  ///< points per rod in the results
+  /// Newton reuses its last factorisation across warm-started solves (see NewtonOptions).
+  bool reuse_factorization = true;
 };
 
 struct RodResult {

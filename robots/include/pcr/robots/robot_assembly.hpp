@@ -19,8 +19,10 @@ namespace pcr {
 
 struct AssemblyOptions {
   /// Discretisation of rods that carry no hints in the model (formulation "auto" = mixed: it does
-  /// not lock for slender rods, DESIGN.md §2).
-  RodDiscretization discretization{RodFormulation::Mixed, 4, 4};
+  /// not lock for slender rods, DESIGN.md §2). Odd degree: the mixed form converges with order p + 1
+  /// for odd p (p for even p; README "Rods"), and with odd p the collocated n' + f = 0 reproduces the
+  /// global force balance of each rod exactly (even p only up to the discretisation error).
+  RodDiscretization discretization{RodFormulation::Mixed, 5, 4};
   /// Use the model's per-rod discretisation hints where given.
   bool use_model_hints = true;
 };
