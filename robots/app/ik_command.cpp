@@ -1,5 +1,9 @@
 // pcr ik MODEL --target LINK=x,y,z[,qw,qx,qy,qz] [--orientation-only LINK=qw,qx,qy,qz] [options]:
 // inverse kinematics.
+#include <cstdio>
+
+#include "pcr/math/so3.hpp"
+#include "pcr/robots/io/robot_outline.hpp"
 #include "solve_command.hpp"
 
 namespace pcr_app {
@@ -32,6 +36,29 @@ pcr::LinkTarget parse_target(const NamedArgument& arg) {
   return target;
 }
 
+/// One line per target: how far the reached link pose is from it (mm, degrees).
+void print_target_errors(std::ostream& out, const pcr::RobotModel& model, const pcr::RobotSolution& solution,
+                         const std::vector<pcr::LinkTarget>& targets) {
+  const pcr::VecX q = pcr::joint_values_of_inputs(model, solution.inputs);
+  for (const pcr::LinkTarget& target : targets) {
+    const pcr::Pose reached = model.link_pose(model.link_index(target.link), q, solution.platforms);
+    const double position_error_mm = (reached.position - target.pose.position).norm() * 1e3;
+    const double angle_error_deg =
+        pcr::rotation_angle_between(reached.rotation(), target.pose.rotation()) * 57.295779513082321;
+    char line[200];
+    if (target.mode == pcr::LinkTarget::Mode::Position)
+      std::snprintf(line, sizeof line, "target %s: position error %.3g mm\n", target.link.c_str(),
+                    position_error_mm);
+    else if (target.mode == pcr::LinkTarget::Mode::Orientation)
+      std::snprintf(line, sizeof line, "target %s: orientation error %.3g deg\n", target.link.c_str(),
+                    angle_error_deg);
+    else
+      std::snprintf(line, sizeof line, "target %s: position error %.3g mm, orientation error %.3g deg\n",
+                    target.link.c_str(), position_error_mm, angle_error_deg);
+    out << line;
+  }
+}
+
 }  // namespace
 
 int ik_command(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
@@ -52,6 +79,7 @@ int ik_command(int argc, const char* const* argv, std::ostream& out, std::ostrea
   pcr::InverseKinematics ik(model, targets, kinematics_options(args));
   const pcr::RobotSolution solution = ik.solve(poses, &reference);
   const int written = write_outputs(args, *model, solution, targets, "inverse kinematics", out, err);
+  if (!args.json) print_target_errors(out, *model, solution, targets);
   if (!solution.summary.converged()) {
     err << "pcr ik: no solution: the target is unreachable within the input bounds or the solve failed ("
         << solution.summary.brief_report() << ")\n";

@@ -63,6 +63,11 @@ int write_outputs(const SolveArguments& args, const pcr::RobotModel& model,
                   const std::string& title, std::ostream& out, std::ostream& err) {
   const std::string prefix = "pcr " + args.command + ": ";
   int code = kConverged;
+  for (const std::string* file : {&args.json_file, &args.vtk_path, &args.png_path}) {
+    const std::filesystem::path parent = std::filesystem::path(*file).parent_path();
+    std::error_code ignored;  // a directory that cannot be made shows up when the file is written
+    if (!file->empty() && !parent.empty()) std::filesystem::create_directories(parent, ignored);
+  }
   try {
     if (args.json) {
       const int non_finite = pcr::write_solution_json(out, model, solution, targets);
