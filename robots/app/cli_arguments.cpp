@@ -102,10 +102,10 @@ SolveArguments parse_solve_arguments(const std::string& command, int argc, const
     a.model_path = arg;
   }
   if (a.help) return a;
-  if (a.model_path.empty()) throw UsageError("pcr " + command + ": missing MODEL (a URDF file)");
+  if (a.model_path.empty()) throw UsageError("missing MODEL (a URDF file)");
   if (command == "ik" && a.targets.empty())
     throw UsageError(
-        "pcr ik: no target (give --target LINK=x,y,z[,qw,qx,qy,qz] or --orientation-only LINK=qw,qx,qy,qz)");
+        "no target (give --target LINK=x,y,z[,qw,qx,qy,qz] or --orientation-only LINK=qw,qx,qy,qz)");
   return a;
 }
 

@@ -3,6 +3,7 @@
 
 #include <sys/wait.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -172,9 +173,9 @@ BOOST_AUTO_TEST_CASE(ik_of_an_fk_pose_gives_back_the_fk_inputs) {
   const test_json::Value i = test_json::parse(ik.out);
   BOOST_CHECK_EQUAL(i["status"].text, "converged");
   BOOST_CHECK_EQUAL(i["targets"]["platform"]["mode"].text, "pose");
-  // 1e-8 m: both solves stop at dimensionless residuals below 1e-10; times the conditioning of the
-  // input-to-pose map (about 1e2 here) and the length scale 0.3 m this bounds the input error well
-  // below 1e-8 m.
+  // 1e-8 m: both solves stop at dimensionless residuals below 1e-10 (the task's tolerance); the input
+  // error is that times the conditioning of the pose-to-input map and the length scale 0.3 m, i.e.
+  // 3e-9 m for a condition number of 1e2 (measured errors: about 1e-12 m).
   BOOST_CHECK_SMALL(i["inputs"]["left"].number - left, 1e-8);
   BOOST_CHECK_SMALL(i["inputs"]["middle"].number - middle, 1e-8);
   BOOST_CHECK_SMALL(i["inputs"]["right"].number - right, 1e-8);
@@ -201,4 +202,34 @@ BOOST_AUTO_TEST_CASE(png_is_drawn_when_gnuplot_is_installed) {
   const std::string bytes = read_text(png);
   BOOST_REQUIRE_GT(bytes.size(), 8u);
   BOOST_CHECK_EQUAL(bytes.substr(1, 3), "PNG");  // PNG signature: \x89 P N G \r \n \x1a \n
+}
+
+BOOST_AUTO_TEST_CASE(ik_position_and_orientation_targets_are_reached) {
+  // 1e-9 (m, and quaternion components): the solver tolerance 1e-10 on dimensionless residuals times
+  // the length scale 0.3 m, with a factor 30 of margin for the conditioning.
+  const Run position =
+      run_pcr("ik " + model("planar_three_rod.urdf") + " --json --target platform=0.01,0,0.29");
+  BOOST_TEST_MESSAGE(position.err);
+  BOOST_REQUIRE_EQUAL(position.exit_code, 0);
+  const test_json::Value p = test_json::parse(position.out);
+  BOOST_CHECK_EQUAL(p["targets"]["platform"]["mode"].text, "position");
+  const test_json::Value& x = p["platforms"]["platform"]["position"];
+  BOOST_CHECK_SMALL(x[0].number - 0.01, 1e-9);
+  BOOST_CHECK_SMALL(x[1].number, 1e-9);
+  BOOST_CHECK_SMALL(x[2].number - 0.29, 1e-9);
+
+  // R_y(2 deg): (cos 1 deg, 0, sin 1 deg, 0); given unnormalised (x 2) to check the normalisation.
+  const double c = std::cos(M_PI / 180), s = std::sin(M_PI / 180);
+  const Run orientation =
+      run_pcr("ik " + model("planar_three_rod.urdf") +
+              " --json --orientation-only platform=" + number(2 * c) + ",0," + number(2 * s) + ",0");
+  BOOST_TEST_MESSAGE(orientation.err);
+  BOOST_REQUIRE_EQUAL(orientation.exit_code, 0);
+  const test_json::Value o = test_json::parse(orientation.out);
+  const test_json::Value& q = o["platforms"]["platform"]["quaternion_wxyz"];
+  const double sign = q[0].number < 0 ? -1.0 : 1.0;  // q and -q are the same rotation
+  BOOST_CHECK_SMALL(sign * q[0].number - c, 1e-9);
+  BOOST_CHECK_SMALL(sign * q[1].number, 1e-9);
+  BOOST_CHECK_SMALL(sign * q[2].number - s, 1e-9);
+  BOOST_CHECK_SMALL(sign * q[3].number, 1e-9);
 }
