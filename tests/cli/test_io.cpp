@@ -205,8 +205,10 @@ BOOST_AUTO_TEST_CASE(vtk_file_has_one_polyline_per_rod_and_the_outlines) {
     }
     return out;
   };
-  const auto lines = read_cells("LINES", 3, 3 * 6);
-  const auto polygons = read_cells("POLYGONS", 2, 2 * 4);
+  // The base attachment points (-0.1, 0, 0), (0, 0, 0), (0.1, 0, 0) are collinear: a polyline after
+  // the 3 rods; the platform triangle is the one polygon.
+  const auto lines = read_cells("LINES", 4, 3 * 6 + 4);
+  const auto polygons = read_cells("POLYGONS", 1, 4);
   for (size_t r = 0; r < 3; ++r) {
     BOOST_REQUIRE_EQUAL(lines[r].size(), 5u);
     for (size_t k = 0; k < 5; ++k)  // the points written are the rod's centerline (17 digits: exact)
@@ -217,13 +219,18 @@ BOOST_AUTO_TEST_CASE(vtk_file_has_one_polyline_per_rod_and_the_outlines) {
   const std::vector<pcr::Vec3> expected{{-0.04, 0, 0.3}, {0.04, 0, 0.3}, {0, 0, 0.28}};
   for (const pcr::Vec3& e : expected) {
     bool found = false;
-    for (size_t i : polygons[1]) found = found || (points[i] - e).norm() < 1e-15;
+    for (size_t i : polygons[0]) found = found || (points[i] - e).norm() < 1e-15;
     BOOST_CHECK_MESSAGE(found, "platform attachment point " << e.transpose() << " missing");
   }
   size_t cells = 0;
   in >> word >> cells;
   BOOST_CHECK_EQUAL(word, "CELL_DATA");
   BOOST_CHECK_EQUAL(cells, 5u);
+  // The base polyline runs along x in order: -0.1, 0, 0.1 (or reversed). 1e-15 m: exact inputs.
+  BOOST_REQUIRE_EQUAL(lines[3].size(), 3u);
+  const double x0 = points[lines[3][0]].x(), x1 = points[lines[3][1]].x(), x2 = points[lines[3][2]].x();
+  BOOST_CHECK_SMALL(x1, 1e-15);
+  BOOST_CHECK_CLOSE_FRACTION(std::abs(x0 - x2), 0.2, 1e-14);
 
   pcr::RobotSolution broken = s;
   broken.rods[0].centerline[2][0] = kNaN;
@@ -264,6 +271,7 @@ BOOST_AUTO_TEST_CASE(stewart_platform_outline_is_a_simple_hexagon) {
   BOOST_CHECK_EQUAL(outlines[1].platform, 0);
   for (const pcr::Outline& outline : outlines) {
     BOOST_REQUIRE_EQUAL(outline.points.size(), 6u);
+    BOOST_CHECK(outline.closed);
     pcr::Vec3 c = pcr::Vec3::Zero();
     for (const pcr::Vec3& p : outline.points) c += p / 6.0;
     double total = 0.0;

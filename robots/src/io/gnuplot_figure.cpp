@@ -85,7 +85,7 @@ FigureOutcome write_solution_png(const std::string& png_path, const RobotModel& 
     for (const Outline& outline : robot_outlines(model, solution)) {
       std::ofstream& out = outline.platform < 0 ? base : platforms;
       for (const Vec3& x : outline.points) write_point(out, x);
-      if (outline.points.size() > 2) write_point(out, outline.points.front());  // close the polygon
+      if (outline.closed) write_point(out, outline.points.front());  // close the polygon
       out << "\n\n";
     }
     // gnuplot refuses an empty data file: a cantilever has no platform; write a NaN point it skips

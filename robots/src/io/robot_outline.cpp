@@ -11,9 +11,10 @@ namespace pcr {
 namespace {
 
 /// Orders points by angle around their centroid in the plane normal to the covariance's weakest
-/// direction (smallest eigenvalue of sum (p - c)(p - c)^T).
-void order_around_centroid(std::vector<Vec3>& points) {
-  if (points.size() < 3) return;
+/// direction (smallest eigenvalue of sum (p - c)(p - c)^T); collinear points are ordered along their
+/// line. Returns whether the points form a polygon.
+bool order_around_centroid(std::vector<Vec3>& points) {
+  if (points.size() < 2) return false;
   Vec3 centroid = Vec3::Zero();
   for (const Vec3& p : points) centroid += p;
   centroid /= static_cast<double>(points.size());
@@ -21,13 +22,19 @@ void order_around_centroid(std::vector<Vec3>& points) {
   for (const Vec3& p : points) covariance += (p - centroid) * (p - centroid).transpose();
   const Eigen::SelfAdjointEigenSolver<Mat3> eigen(covariance);  // eigenvalues ascending
   const Vec3 u = eigen.eigenvectors().col(2), v = eigen.eigenvectors().col(1);
+  // Collinear when the spread across the line is below 1e-6 of the spread along it (variance ratio
+  // 1e-12, well above the eigensolver's round-off of ~1e-16 relative to the largest eigenvalue).
+  const bool polygon = points.size() >= 3 && eigen.eigenvalues()[1] > 1e-12 * eigen.eigenvalues()[2];
   std::vector<std::pair<double, Vec3>> keyed;
-  for (const Vec3& p : points)
-    keyed.emplace_back(std::atan2((p - centroid).dot(v), (p - centroid).dot(u)), p);
+  for (const Vec3& p : points) {
+    const Vec3 d = p - centroid;
+    keyed.emplace_back(polygon ? std::atan2(d.dot(v), d.dot(u)) : d.dot(u), p);
+  }
   std::stable_sort(
       keyed.begin(), keyed.end(),
       [](const std::pair<double, Vec3>& a, const std::pair<double, Vec3>& b) { return a.first < b.first; });
   for (size_t k = 0; k < points.size(); ++k) points[k] = keyed[k].second;
+  return polygon;
 }
 
 }  // namespace
@@ -68,7 +75,7 @@ std::vector<Outline> robot_outlines(const RobotModel& model, const RobotSolution
   std::vector<Outline> out;
   for (Outline& outline : outlines) {
     if (outline.points.empty()) continue;
-    order_around_centroid(outline.points);
+    outline.closed = order_around_centroid(outline.points);
     out.push_back(std::move(outline));
   }
   return out;

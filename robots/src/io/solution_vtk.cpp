@@ -35,9 +35,9 @@ void write_solution_vtk(const std::string& path, const RobotModel& model, const 
   for (const Outline& outline : robot_outlines(model, solution)) {
     Cell cell = add_points(outline.points, "outline '" + outline.name + "'");
     cell.part = outline.platform < 0 ? -1 : -2 - outline.platform;
-    if (cell.points.size() >= 3)
+    if (outline.closed)
       polygons.push_back(cell);
-    else if (cell.points.size() == 2)
+    else if (cell.points.size() >= 2)
       lines.push_back(cell);
   }
 

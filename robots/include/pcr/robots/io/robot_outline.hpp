@@ -1,7 +1,7 @@
 #pragma once
 // Outlines for pictures of a solved robot: for the base and for each platform, the polygon through
 // the rod attachment points it carries (world frame), ordered by angle around their centroid in
-// their best-fit plane.
+// their best-fit plane (or along their line when they are collinear).
 #include <string>
 #include <vector>
 
@@ -14,6 +14,9 @@ struct Outline {
   std::string name;          ///< "base" or the platform's link name
   int platform = -1;         ///< platform index, -1 for the base (links fixed to the world)
   std::vector<Vec3> points;  ///< distinct attachment points in polygon order (world frame) [m]
+  /// A polygon (>= 3 points, not all on one line); otherwise the points form an open polyline
+  /// ordered along their line.
+  bool closed = false;
 };
 
 /// Joint values (model's joint-value vector) for the given inputs (model input order).

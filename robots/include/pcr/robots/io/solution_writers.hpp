@@ -29,8 +29,8 @@ std::string rod_csv_file_name(const std::string& rod_name);
 void write_solution_csv(const std::string& directory, const RobotModel& model, const RobotSolution& solution);
 
 /// Legacy ASCII VTK POLYDATA: one polyline per rod (centerline), then the outlines of the base and the
-/// platforms (robot_outline.hpp) as polygons (>= 3 points) or lines (2 points); cell data "part" =
-/// rod index, -1 for the base outline, -2 - p for platform p. Throws InputError if a coordinate is
+/// platforms (robot_outline.hpp) as polygons (closed outlines) or polylines (collinear points); cell data
+/// "part" = rod index, -1 for the base outline, -2 - p for platform p. Throws InputError if a coordinate is
 /// not finite.
 void write_solution_vtk(const std::string& path, const RobotModel& model, const RobotSolution& solution);
 
