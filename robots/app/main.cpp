@@ -1,10 +1,12 @@
-// The pcr command-line tool.
+// The pcr command-line tool: dispatches to the subcommands.
 #include <cstring>
 #include <iostream>
 #include <string>
 
 #include "demo_basis.hpp"
+#include "pcr/core/error.hpp"
 #include "pcr/robots/version.hpp"
+#include "solve_command.hpp"
 
 namespace {
 
@@ -12,6 +14,8 @@ void print_usage(std::ostream& out) {
   out << "pcr " << pcr::version() << " — parallel continuum robots\n"
       << "usage: pcr <command> [options]\n"
       << "commands:\n"
+      << "  fk MODEL [--input NAME=VALUE ...]        forward kinematics (pcr fk --help)\n"
+      << "  ik MODEL --target LINK=x,y,z[,qw,qx,qy,qz]  inverse kinematics (pcr ik --help)\n"
       << "  demo [--out DIR]   spline basis tables and a sample curve; with --out also DIR/basis.csv\n";
 }
 
@@ -34,9 +38,21 @@ int demo_command(int argc, char** argv) {
 int main(int argc, char** argv) {
   if (argc < 2 || std::strcmp(argv[1], "--help") == 0) {
     print_usage(std::cout);
-    return argc < 2 ? 1 : 0;
+    return argc < 2 ? pcr_app::kBadUsage : 0;
   }
-  if (std::strcmp(argv[1], "demo") == 0) return demo_command(argc, argv);
-  std::cerr << "pcr: unknown command '" << argv[1] << "'\n";
-  return 1;
+  const std::string command = argv[1];
+  if (command == "demo") return demo_command(argc, argv);
+  if (command != "fk" && command != "ik") {
+    std::cerr << "pcr: unknown command '" << command << "' (commands: fk, ik, demo)\n";
+    return pcr_app::kBadUsage;
+  }
+  try {
+    return command == "fk" ? pcr_app::fk_command(argc, argv, std::cout, std::cerr)
+                           : pcr_app::ik_command(argc, argv, std::cout, std::cerr);
+  } catch (const pcr_app::UsageError& e) {
+    std::cerr << "pcr " << command << ": " << e.what() << "\n";
+  } catch (const pcr::InputError& e) {  // bad model file, target link, ...
+    std::cerr << "pcr " << command << ": " << e.what() << "\n";
+  }
+  return pcr_app::kBadUsage;
 }

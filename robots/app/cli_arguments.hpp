@@ -1,0 +1,51 @@
+#pragma once
+// Command-line arguments of `pcr fk` and `pcr ik` (one parser for both; see print_solve_usage).
+#include <ostream>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace pcr_app {
+
+/// Bad usage: exit code 2; the message names the offending argument.
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// A NAME=VALUE argument as given, with the option that carried it (for messages).
+struct NamedArgument {
+  std::string option;  ///< "--input", "--target", "--orientation-only"
+  std::string name;
+  std::string value;
+  std::string text() const { return option + " " + name + "=" + value; }
+};
+
+struct SolveArguments {
+  std::string command;                 ///< "fk" or "ik"
+  std::string model_path;              ///< the positional MODEL
+  std::vector<NamedArgument> inputs;   ///< --input NAME=VALUE
+  std::vector<NamedArgument> targets;  ///< --target and --orientation-only, in the order given
+  std::string solver;                  ///< "", "newton" or "ipopt"
+  int degree = 0, elements = 0;        ///< 0 = not given
+  std::string formulation;             ///< "", "mixed" or "primal"
+  double tolerance = 0.0;              ///< 0 = not given
+  int centerline_points = 0;           ///< 0 = not given
+  bool json = false;
+  std::string json_file, csv_dir, vtk_path, png_path;
+  bool help = false;
+};
+
+/// Parses argv[first..argc) of `pcr <command> ...`; throws UsageError.
+SolveArguments parse_solve_arguments(const std::string& command, int argc, const char* const* argv,
+                                     int first);
+
+/// A finite number, the whole text; throws UsageError naming `what`.
+double parse_number(const std::string& text, const std::string& what);
+/// Comma-separated finite numbers; throws UsageError naming `what`.
+std::vector<double> parse_numbers(const std::string& text, const std::string& what);
+
+void print_solve_usage(std::ostream& out, const std::string& command);
+
+}  // namespace pcr_app

@@ -1,0 +1,101 @@
+#include "solve_command.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "pcr/core/error.hpp"
+#include "pcr/robots/io/gnuplot_figure.hpp"
+#include "pcr/robots/io/solution_writers.hpp"
+#include "pcr/robots/urdf_loader.hpp"
+
+namespace pcr_app {
+
+std::shared_ptr<const pcr::RobotModel> load_model(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error))
+    throw UsageError("model file '" + path + "' not found (MODEL must be a URDF file)");
+  return std::make_shared<const pcr::RobotModel>(pcr::load_robot_model(path));
+}
+
+pcr::VecX resolve_inputs(const pcr::RobotModel& model, const std::vector<NamedArgument>& overrides) {
+  pcr::VecX inputs = model.default_input_values();
+  for (const NamedArgument& arg : overrides) {
+    int index = -1;
+    for (size_t i = 0; i < model.inputs().size(); ++i)
+      if (model.inputs()[i].name == arg.name) index = static_cast<int>(i);
+    if (index < 0) {
+      std::string valid;
+      for (const pcr::ActuationInput& input : model.inputs())
+        valid += (valid.empty() ? "" : ", ") + input.name;
+      throw UsageError(arg.text() + ": model '" + model.name() + "' has no input '" + arg.name +
+                       "' (inputs: " + (valid.empty() ? "none" : valid) + ")");
+    }
+    const double value = parse_number(arg.value, arg.text());
+    const pcr::ActuationInput& input = model.inputs()[index];
+    if (value < input.lower || value > input.upper) {
+      std::ostringstream message;
+      message << arg.text() << ": value " << value << " is outside the bounds [" << input.lower << ", "
+              << input.upper << "] of input '" << input.name << "'";
+      throw UsageError(message.str());
+    }
+    inputs[index] = value;
+  }
+  return inputs;
+}
+
+pcr::KinematicsOptions kinematics_options(const SolveArguments& args) {
+  pcr::KinematicsOptions options;
+  if (args.solver == "ipopt") options.solver = pcr::SolverKind::Ipopt;
+  if (args.solver == "newton") options.solver = pcr::SolverKind::Newton;
+  pcr::RodDiscretization& d = options.assembly.discretization;
+  if (args.degree > 0) d.degree = args.degree;
+  if (args.elements > 0) d.elements = args.elements;
+  if (args.formulation == "primal") d.formulation = pcr::RodFormulation::Primal;
+  if (args.formulation == "mixed") d.formulation = pcr::RodFormulation::Mixed;
+  if (args.tolerance > 0.0) options.tolerance = args.tolerance;
+  if (args.centerline_points > 0) options.centerline_points = args.centerline_points;
+  return options;
+}
+
+int write_outputs(const SolveArguments& args, const pcr::RobotModel& model,
+                  const pcr::RobotSolution& solution, const std::vector<pcr::LinkTarget>& targets,
+                  const std::string& title, std::ostream& out, std::ostream& err) {
+  const std::string prefix = "pcr " + args.command + ": ";
+  int code = kConverged;
+  for (const std::string* file : {&args.json_file, &args.vtk_path, &args.png_path}) {
+    const std::filesystem::path parent = std::filesystem::path(*file).parent_path();
+    std::error_code ignored;  // a directory that cannot be made shows up when the file is written
+    if (!file->empty() && !parent.empty()) std::filesystem::create_directories(parent, ignored);
+  }
+  try {
+    if (args.json) {
+      const int non_finite = pcr::write_solution_json(out, model, solution, targets);
+      if (non_finite > 0) err << prefix << non_finite << " non-finite values written as null\n";
+    } else {
+      pcr::write_solution_table(out, model, solution);
+    }
+    if (!args.json_file.empty()) {
+      std::ofstream file(args.json_file);
+      if (!file) throw pcr::InputError("--json-file: cannot write '" + args.json_file + "'");
+      pcr::write_solution_json(file, model, solution, targets);
+      file.close();
+      if (file.fail()) throw pcr::InputError("--json-file: error while writing '" + args.json_file + "'");
+    }
+    if (!args.csv_dir.empty()) pcr::write_solution_csv(args.csv_dir, model, solution);
+    if (!args.vtk_path.empty()) pcr::write_solution_vtk(args.vtk_path, model, solution);
+  } catch (const pcr::InputError& e) {
+    err << prefix << e.what() << "\n";
+    code = kOutputFailed;
+  }
+  if (!args.png_path.empty()) {
+    const pcr::FigureOutcome figure = pcr::write_solution_png(args.png_path, model, solution, title);
+    if (!figure.ok) {
+      err << prefix << "--png " << args.png_path << ": " << figure.message << "\n";
+      code = kOutputFailed;
+    }
+  }
+  return code;
+}
+
+}  // namespace pcr_app

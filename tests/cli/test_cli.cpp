@@ -1,0 +1,235 @@
+#define BOOST_TEST_MODULE cli
+#include <boost/test/unit_test.hpp>
+
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "mini_json.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Run {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+std::string read_text(const fs::path& path) {
+  std::ifstream file(path);
+  std::ostringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+fs::path work_directory() {
+  static const fs::path dir = [] {
+    const fs::path d = fs::temp_directory_path() / "pcr_test_cli";
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+  }();
+  return dir;
+}
+
+/// Runs the built pcr tool with the given arguments (shell words), capturing stdout and stderr.
+Run run_pcr(const std::string& arguments) {
+  const fs::path out = work_directory() / "stdout.txt", err = work_directory() / "stderr.txt";
+  const std::string command =
+      std::string("'") + PCR_TOOL + "' " + arguments + " > '" + out.string() + "' 2> '" + err.string() + "'";
+  const int status = std::system(command.c_str());
+  Run run;
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  run.out = read_text(out);
+  run.err = read_text(err);
+  return run;
+}
+
+std::string model(const std::string& name) {
+  return std::string("'") + PCR_MODEL_DIR + "/" + name + "'";
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+std::string number(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.17g", x);
+  return buffer;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(fk_cantilever_json_has_the_expected_keys_and_converges) {
+  const Run run = run_pcr("fk " + model("cantilever.urdf") + " --json");
+  BOOST_TEST_MESSAGE(run.err);
+  BOOST_REQUIRE_EQUAL(run.exit_code, 0);
+  const test_json::Value j = test_json::parse(run.out);
+  BOOST_CHECK_EQUAL(j["status"].text, "converged");
+  BOOST_CHECK_EQUAL(j["summary"]["status"].text, "converged");
+  for (const char* key : {"solver", "iterations", "residual_max_abs", "wall_time_seconds", "message"})
+    BOOST_CHECK_MESSAGE(j["summary"].has(key), "summary." << key);
+  BOOST_CHECK(j["inputs"].members.empty());     // the cantilever has no actuation input
+  BOOST_CHECK(j["platforms"].members.empty());  // and no platform
+  const test_json::Value& beam = j["rods"]["beam"];
+  for (const char* key : {"length", "axial_force", "base_wrench", "tip_wrench", "centerline"})
+    BOOST_CHECK_MESSAGE(beam.has(key), "rods.beam." << key);
+  // Fixed length 0.5 m in the model; 1e-12: the length is a fixed variable of the solve (round-off).
+  BOOST_CHECK_CLOSE_FRACTION(beam["length"].number, 0.5, 1e-12);
+  // The clamped end is at the origin; the free tip carries the 0.1 N dead load of the model
+  // (n(L) = the end's load, -0.1 e_z): 1e-9 N = solver tolerance 1e-10 times the force scale (~1 N).
+  BOOST_CHECK_SMALL(beam["centerline"][0][0].number, 1e-12);
+  BOOST_CHECK_SMALL(beam["tip_wrench"]["force"][0].number, 1e-9);
+  BOOST_CHECK_CLOSE_FRACTION(std::abs(beam["tip_wrench"]["force"][2].number), 0.1, 1e-8);
+}
+
+BOOST_AUTO_TEST_CASE(fk_planar_json_converges_with_symmetric_platform) {
+  const Run run = run_pcr("fk " + model("planar_three_rod.urdf") + " --json");
+  BOOST_TEST_MESSAGE(run.err);
+  BOOST_REQUIRE_EQUAL(run.exit_code, 0);
+  const test_json::Value j = test_json::parse(run.out);
+  BOOST_CHECK_EQUAL(j["status"].text, "converged");
+  // Default inputs from planar_three_rod.urdf; 1e-15: one decimal-to-double rounding.
+  BOOST_CHECK_CLOSE_FRACTION(j["inputs"]["left"].number, 0.305941170816, 1e-15);
+  BOOST_CHECK_CLOSE_FRACTION(j["inputs"]["middle"].number, 0.28, 1e-15);
+  BOOST_CHECK_CLOSE_FRACTION(j["inputs"]["right"].number, 0.305941170816, 1e-15);
+  // The model is mirror-symmetric about x = 0 with equal outer lengths: the platform stays at x = 0
+  // and does not pitch. 1e-10 m (rad): solver tolerance 1e-10 on residuals scaled by ~0.3 m.
+  const test_json::Value& platform = j["platforms"]["platform"];
+  BOOST_CHECK_SMALL(platform["position"][0].number, 1e-10);
+  BOOST_CHECK_SMALL(platform["quaternion_wxyz"][2].number, 1e-10);
+  BOOST_CHECK_EQUAL(j["rods"].members.size(), 3u);
+  BOOST_CHECK_EQUAL(j["rods"]["left"]["centerline"].items.size(), 21u);  // default centerline points
+}
+
+BOOST_AUTO_TEST_CASE(fk_table_and_files) {
+  const fs::path dir = work_directory() / "files";
+  const Run run = run_pcr("fk " + model("planar_three_rod.urdf") + " --input middle=0.29 --csv '" +
+                          (dir / "csv").string() + "' --vtk '" + (dir / "r.vtk").string() +
+                          "' --json-file '" + (dir / "r.json").string() + "'");
+  BOOST_TEST_MESSAGE(run.err);
+  BOOST_REQUIRE_EQUAL(run.exit_code, 0);
+  BOOST_CHECK(contains(run.out, "converged"));
+  BOOST_CHECK(contains(run.out, "290.0000 mm"));  // the input given, in mm
+  for (const char* file : {"csv/platforms.csv", "csv/inputs.csv", "csv/rod_left.csv", "csv/rod_middle.csv",
+                           "csv/rod_right.csv", "r.vtk"})
+    BOOST_CHECK_MESSAGE(fs::file_size(dir / file) > 0, file);
+  BOOST_CHECK_EQUAL(test_json::parse(read_text(dir / "r.json"))["inputs"]["middle"].number, 0.29);
+}
+
+BOOST_AUTO_TEST_CASE(unknown_input_name_is_a_usage_error_naming_it) {
+  const Run run = run_pcr("fk " + model("planar_three_rod.urdf") + " --input leftt=0.3");
+  BOOST_CHECK_EQUAL(run.exit_code, 2);
+  BOOST_CHECK_MESSAGE(contains(run.err, "leftt"), run.err);
+  BOOST_CHECK_MESSAGE(contains(run.err, "left, middle, right"), run.err);  // lists the valid names
+  BOOST_CHECK(run.out.empty());
+}
+
+BOOST_AUTO_TEST_CASE(out_of_bounds_input_is_a_usage_error) {
+  const Run run = run_pcr("fk " + model("planar_three_rod.urdf") + " --input left=0.9");  // upper 0.5
+  BOOST_CHECK_EQUAL(run.exit_code, 2);
+  BOOST_CHECK_MESSAGE(contains(run.err, "left=0.9") && contains(run.err, "bounds"), run.err);
+}
+
+BOOST_AUTO_TEST_CASE(missing_model_file_is_a_usage_error_naming_the_file) {
+  const Run run = run_pcr("fk /nonexistent/robot_xyz.urdf");
+  BOOST_CHECK_EQUAL(run.exit_code, 2);
+  BOOST_CHECK_MESSAGE(contains(run.err, "/nonexistent/robot_xyz.urdf"), run.err);
+}
+
+BOOST_AUTO_TEST_CASE(bad_arguments_are_usage_errors) {
+  BOOST_CHECK_EQUAL(run_pcr("fk " + model("cantilever.urdf") + " --solver bfgs").exit_code, 2);
+  BOOST_CHECK_EQUAL(run_pcr("fk " + model("cantilever.urdf") + " --tolerance abc").exit_code, 2);
+  BOOST_CHECK_EQUAL(run_pcr("fk " + model("cantilever.urdf") + " --frobnicate 1").exit_code, 2);
+  const Run ik = run_pcr("ik " + model("planar_three_rod.urdf") + " --target platform=0,0");
+  BOOST_CHECK_EQUAL(ik.exit_code, 2);
+  BOOST_CHECK_MESSAGE(contains(ik.err, "--target platform=0,0"), ik.err);
+  const Run link = run_pcr("ik " + model("planar_three_rod.urdf") + " --target nolink=0,0,0.3");
+  BOOST_CHECK_EQUAL(link.exit_code, 2);
+  BOOST_CHECK_MESSAGE(contains(link.err, "nolink"), link.err);
+}
+
+BOOST_AUTO_TEST_CASE(ik_of_an_fk_pose_gives_back_the_fk_inputs) {
+  const double left = 0.32, middle = 0.29, right = 0.31;  // within the bounds [0.15, 0.5]
+  const Run fk = run_pcr("fk " + model("planar_three_rod.urdf") + " --json --input left=" + number(left) +
+                         " --input middle=" + number(middle) + " --input right=" + number(right));
+  BOOST_REQUIRE_EQUAL(fk.exit_code, 0);
+  const test_json::Value f = test_json::parse(fk.out);
+  const test_json::Value& x = f["platforms"]["platform"]["position"];
+  const test_json::Value& q = f["platforms"]["platform"]["quaternion_wxyz"];
+  std::string target = "platform=";
+  for (int k = 0; k < 3; ++k) target += number(x[k].number) + ",";
+  for (int k = 0; k < 4; ++k) target += number(q[k].number) + (k < 3 ? "," : "");
+  const Run ik = run_pcr("ik " + model("planar_three_rod.urdf") + " --json --target " + target);
+  BOOST_TEST_MESSAGE(ik.err);
+  BOOST_REQUIRE_EQUAL(ik.exit_code, 0);
+  const test_json::Value i = test_json::parse(ik.out);
+  BOOST_CHECK_EQUAL(i["status"].text, "converged");
+  BOOST_CHECK_EQUAL(i["targets"]["platform"]["mode"].text, "pose");
+  // 1e-8 m: both solves stop at dimensionless residuals below 1e-10 (the task's tolerance); the input
+  // error is that times the conditioning of the pose-to-input map and the length scale 0.3 m, i.e.
+  // 3e-9 m for a condition number of 1e2 (measured errors: about 1e-12 m).
+  BOOST_CHECK_SMALL(i["inputs"]["left"].number - left, 1e-8);
+  BOOST_CHECK_SMALL(i["inputs"]["middle"].number - middle, 1e-8);
+  BOOST_CHECK_SMALL(i["inputs"]["right"].number - right, 1e-8);
+}
+
+BOOST_AUTO_TEST_CASE(unreachable_ik_target_fails_with_exit_code_1) {
+  // 0.9 m above the base: the rods are at most 0.8 m long (stewart_gough.urdf bounds).
+  const Run run = run_pcr("ik " + model("stewart_gough.urdf") + " --json --target platform=0,0,0.9");
+  BOOST_CHECK_EQUAL(run.exit_code, 1);
+  BOOST_CHECK_MESSAGE(contains(run.err, "unreachable"), run.err);
+  const test_json::Value j = test_json::parse(run.out);
+  BOOST_CHECK_NE(j["status"].text, "converged");
+}
+
+BOOST_AUTO_TEST_CASE(png_is_drawn_when_gnuplot_is_installed) {
+  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) {
+    BOOST_TEST_MESSAGE("gnuplot not installed: the --png case is not run");
+    return;
+  }
+  const fs::path png = work_directory() / "robot.png";
+  const Run run = run_pcr("fk " + model("planar_three_rod.urdf") + " --png '" + png.string() + "'");
+  BOOST_TEST_MESSAGE(run.err);
+  BOOST_REQUIRE_EQUAL(run.exit_code, 0);
+  const std::string bytes = read_text(png);
+  BOOST_REQUIRE_GT(bytes.size(), 8u);
+  BOOST_CHECK_EQUAL(bytes.substr(1, 3), "PNG");  // PNG signature: \x89 P N G \r \n \x1a \n
+}
+
+BOOST_AUTO_TEST_CASE(ik_position_and_orientation_targets_are_reached) {
+  // 1e-9 (m, and quaternion components): the solver tolerance 1e-10 on dimensionless residuals times
+  // the length scale 0.3 m, with a factor 30 of margin for the conditioning.
+  const Run position =
+      run_pcr("ik " + model("planar_three_rod.urdf") + " --json --target platform=0.01,0,0.29");
+  BOOST_TEST_MESSAGE(position.err);
+  BOOST_REQUIRE_EQUAL(position.exit_code, 0);
+  const test_json::Value p = test_json::parse(position.out);
+  BOOST_CHECK_EQUAL(p["targets"]["platform"]["mode"].text, "position");
+  const test_json::Value& x = p["platforms"]["platform"]["position"];
+  BOOST_CHECK_SMALL(x[0].number - 0.01, 1e-9);
+  BOOST_CHECK_SMALL(x[1].number, 1e-9);
+  BOOST_CHECK_SMALL(x[2].number - 0.29, 1e-9);
+
+  // R_y(2 deg): (cos 1 deg, 0, sin 1 deg, 0); given unnormalised (x 2) to check the normalisation.
+  const double c = std::cos(M_PI / 180), s = std::sin(M_PI / 180);
+  const Run orientation =
+      run_pcr("ik " + model("planar_three_rod.urdf") +
+              " --json --orientation-only platform=" + number(2 * c) + ",0," + number(2 * s) + ",0");
+  BOOST_TEST_MESSAGE(orientation.err);
+  BOOST_REQUIRE_EQUAL(orientation.exit_code, 0);
+  const test_json::Value o = test_json::parse(orientation.out);
+  const test_json::Value& q = o["platforms"]["platform"]["quaternion_wxyz"];
+  const double sign = q[0].number < 0 ? -1.0 : 1.0;  // q and -q are the same rotation
+  BOOST_CHECK_SMALL(sign * q[0].number - c, 1e-9);
+  BOOST_CHECK_SMALL(sign * q[1].number, 1e-9);
+  BOOST_CHECK_SMALL(sign * q[2].number - s, 1e-9);
+  BOOST_CHECK_SMALL(sign * q[3].number, 1e-9);
+}
