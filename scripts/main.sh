@@ -12,17 +12,12 @@ bash "$root/scripts/build.sh" "$root/build/release"
 pcr="$root/build/release/robots/pcr"
 model="$root/models/stewart_gough.urdf"
 out="$root/out"
-# 16 elements per rod instead of the default 4: the poses agree to ~0.03 mm either way, but the end
-# forces need the finer mesh (measured: the sum of the IK base reactions is (1.82, 0, 4.45) N with 4
-# elements, (-0.0005, 0, -1.597) N with 16, against the weight (0, 0, -1.582) N).
-mesh=(--elements 16)
-
 echo "== Forward kinematics: $model at the default inputs"
-"$pcr" fk "$model" "${mesh[@]}" --png "$out/fk.png" --json-file "$out/fk.json"
+"$pcr" fk "$model" --png "$out/fk.png" --json-file "$out/fk.json"
 
 echo
 echo "== Inverse kinematics: scene R5a, platform at (0, 0, 0.4) m, orientation R_y(10 deg)"
-"$pcr" ik "$model" "${mesh[@]}" --target platform=0,0,0.4,0.99619469809174555,0,0.087155742747658166,0 \
+"$pcr" ik "$model" --target platform=0,0,0.4,0.99619469809174555,0,0.087155742747658166,0 \
   --png "$out/ik.png" --json-file "$out/ik.json"
 
 echo
