@@ -1,0 +1,1 @@
+pcr_add_benchmark(NAME bench_robots SOURCES ${CMAKE_CURRENT_LIST_DIR}/robots/bench_robots.cpp)
