@@ -35,7 +35,7 @@ struct NewtonSolver::Impl {
   std::vector<int> value_map;       // J value index -> J_free value index, -1 for fixed columns
   Eigen::SparseLU<SparseColMajor, Eigen::COLAMDOrdering<int>> lu;
   bool have_factorization = false;  // lu holds a factorisation of this structure (for reuse)
-  VecX c, r, r_trial, x_trial, dx_free, dx, linear_check;
+  VecX c, r, r_trial, x_trial, dx_free, dx, linear_check, correction;
 
   Impl(const Problem& p, NewtonOptions o) : problem(p), options(o) {}
   void prepare();
@@ -167,9 +167,11 @@ SolveSummary NewtonSolver::solve(VecX& x) {
   problem.evaluate_residuals(x, w.c);
   w.r = w.c - w.target;
   // With reuse_factorization, iterations first try the last factorisation (simplified Newton:
-  // x <- x - J_old^-1 r(x)); a step that does not contract |r| by chord_contraction is discarded
-  // and the iteration is redone with a fresh Jacobian.
+  // x <- x - J_old^-1 r(x)). Contraction is measured affine-invariantly on the corrections
+  // (Deuflhard): the step is kept while |J_old^-1 r(x_new)| <= chord_contraction |J_old^-1 r(x)|, and
+  // that next correction is the next step. Otherwise the iteration is redone with a fresh Jacobian.
   bool refresh = !(o.reuse_factorization && w.have_factorization);
+  bool have_correction = false;  // w.correction = J_old^-1 r(x) is known
   int jacobian_evaluations = 0;
   for (int iteration = 0;; ++iteration) {
     summary.iterations = iteration;
@@ -183,19 +185,25 @@ SolveSummary NewtonSolver::solve(VecX& x) {
     const double r_norm = w.r.norm();
 
     if (!refresh) {
-      w.dx_free = w.lu.solve(w.r);
+      if (!have_correction) w.correction = w.lu.solve(w.r);
       for (int j = 0; j < x.size(); ++j) {
         const int col = w.reduced_column[j];
-        w.x_trial[j] = x[j] - (col >= 0 ? w.dx_free[col] : 0.0);
+        w.x_trial[j] = x[j] - (col >= 0 ? w.correction[col] : 0.0);
       }
       problem.evaluate_residuals(w.x_trial, w.c);
       w.r_trial = w.c - w.target;
-      if (w.r_trial.allFinite() && w.r_trial.norm() <= o.chord_contraction * r_norm) {
-        x.swap(w.x_trial);
-        w.r.swap(w.r_trial);
-        continue;
+      if (w.r_trial.allFinite()) {
+        w.dx_free = w.lu.solve(w.r_trial);
+        if (w.dx_free.allFinite() && w.dx_free.norm() <= o.chord_contraction * w.correction.norm()) {
+          x.swap(w.x_trial);
+          w.r.swap(w.r_trial);
+          w.correction.swap(w.dx_free);
+          have_correction = true;
+          continue;
+        }
       }
       refresh = true;  // too slow or diverging: redo this iteration with a fresh Jacobian
+      have_correction = false;
       problem.evaluate_residuals(x, w.c);
     }
 
@@ -259,8 +267,14 @@ SolveSummary NewtonSolver::solve(VecX& x) {
                              r_max));
       }
     }
-    // Keep using this factorisation while the residual contracts fast enough.
-    refresh = !(o.reuse_factorization && alpha == 1.0 && w.r_trial.norm() <= o.chord_contraction * r_norm);
+    // Keep this factorisation for simplified steps while the corrections contract fast enough.
+    refresh = true;
+    have_correction = false;
+    if (o.reuse_factorization && alpha == 1.0 && w.r_trial.allFinite()) {
+      w.correction = w.lu.solve(w.r_trial);
+      have_correction = w.correction.allFinite();
+      refresh = !(have_correction && w.correction.norm() <= o.chord_contraction * dx_norm);
+    }
     x.swap(w.x_trial);
     w.r.swap(w.r_trial);
   }

@@ -27,6 +27,25 @@ CouplingBlock::CouplingBlock(const std::string& name, RodEndEvaluator end, LinkF
       end_(std::move(end)), frame_(std::move(frame)), kind_(kind), scales_(scales),
       end_blocks_(static_cast<int>(end_.variables().size())) {}
 
+namespace {
+
+// The 7 coupling equations from z = [y (13): p, q, n, m of the rod end; x (3), Q (4): link frame].
+template <typename T>
+void coupling_residual(const Eigen::Matrix<T, 20, 1>& z, const Pose& offset, RodEndKind kind,
+                       const PointConstants& scales, T* r) {
+  const V3<T> x = z.template segment<3>(13);
+  const V4<T> Q = z.template segment<4>(16);
+  const M3<T> RQ = rotation(Q);
+  EndTarget<T> t;
+  t.position = x + RQ * offset.position.cast<T>();
+  t.orientation = quat_product<T>(Q, offset.orientation.cast<T>());
+  t.frame = RQ * offset.rotation().cast<T>();
+  end_conditions<T>(kind, t, EndLoads{}, scales, z.template segment<3>(0), z.template segment<4>(3),
+                    z.template segment<3>(7), z.template segment<3>(10), r);
+}
+
+}  // namespace
+
 void CouplingBlock::evaluate(const double* const* values, double* residual, double* const* jacobians) const {
   RodEndVector y;
   std::vector<MatX> dy;
@@ -34,22 +53,19 @@ void CouplingBlock::evaluate(const double* const* values, double* residual, doub
   Vec7 zl;
   MatX dz;
   frame_.evaluate(values + end_blocks_, zl, jacobians ? &dz : nullptr);
+  if (!jacobians) {
+    Eigen::Matrix<double, 20, 1> z;
+    z << y, zl;
+    coupling_residual<double>(z, frame_.offset, kind_, scales_, residual);
+    return;
+  }
   using D = Dual<20>;
   Eigen::Matrix<D, 20, 1> z;
   for (int k = 0; k < 13; ++k) z[k] = D::variable(y[k], k);
   for (int k = 0; k < 7; ++k) z[13 + k] = D::variable(zl[k], 13 + k);
-  const V3<D> x = z.segment<3>(13);
-  const V4<D> Q = z.segment<4>(16);
-  const M3<D> RQ = rotation(Q);
-  EndTarget<D> t;
-  t.position = x + RQ * frame_.offset.position.cast<D>();
-  t.orientation = quat_product<D>(Q, frame_.offset.orientation.cast<D>());
-  t.frame = RQ * frame_.offset.rotation().cast<D>();
   D r[7];
-  end_conditions<D>(kind_, t, EndLoads{}, scales_, z.segment<3>(0), z.segment<4>(3), z.segment<3>(7),
-                    z.segment<3>(10), r);
+  coupling_residual<D>(z, frame_.offset, kind_, scales_, r);
   for (int i = 0; i < 7; ++i) residual[i] = r[i].a;
-  if (!jacobians) return;
   Eigen::Matrix<double, 7, 20> dr;
   for (int i = 0; i < 7; ++i) dr.row(i) = r[i].v.transpose();
   for (int k = 0; k < end_blocks_; ++k)
