@@ -2,7 +2,7 @@
 # README command (2): install, build and run every test (CTest; Boost.Test executables), twice:
 #  1. Release (-Werror) in build/release: the whole suite;
 #  2. ASan + UBSan (PCR_SANITIZE, -O1, line tables, no benchmarks) in build/sanitize: the whole suite
-#     except the `stress` label, whose sweeps run shortened (-- --solves=20) to keep CI fast.
+#     except the `stress` label, whose sweeps run shortened (-- --solves=3) to keep CI fast.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 mkdir -p "$root/build"
@@ -16,4 +16,4 @@ export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 cd "$root/build/sanitize"
 ctest --output-on-failure -j "$(nproc)" -LE stress
 ./tests/test_hard_rods --log_level=warning
-./tests/test_random_sweeps --log_level=warning -- --solves=20
+./tests/test_random_sweeps --log_level=warning -- --solves=3
