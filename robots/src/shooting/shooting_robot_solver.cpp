@@ -363,6 +363,7 @@ ShootingRobotResult ShootingRobotSolver::Impl::solve(State s) {
   VecX r, r_trial;
   MatX J, J_trial;
   const bool dp = options.integrator == IntegratorMethod::DormandPrince;
+  std::vector<double> history;
   if (!evaluate(s, true, r, J)) {
     summary.status = SolveStatus::Failed;
     summary.message = "integration failed at the initial guess";
@@ -390,6 +391,14 @@ ShootingRobotResult ShootingRobotSolver::Impl::solve(State s) {
         break;
       }
       if (it >= options.max_iterations) break;
+      // Stalled (e.g. on the way to another equilibrium branch): less than 10 % progress over 10
+      // iterations; the caller then falls back to continuation.
+      history.push_back(r.norm());
+      if (history.size() > 10 && history.back() > 0.9 * history[history.size() - 11]) {
+        summary.status = SolveStatus::Failed;
+        summary.message = "stalled: residual fell by less than 10 % over 10 iterations";
+        break;
+      }
       summary.iterations = it + 1;
       VecX dz = J.partialPivLu().solve(-r);
       bool accepted = false;
@@ -553,13 +562,25 @@ ShootingRobotResult ShootingRobotSolver::fk(const VecX& inputs) {
             "ShootingRobotSolver::fk: input '", m.inputs()[j].name, "' = ", inputs[j], " outside [",
             m.inputs()[j].lower, ", ", m.inputs()[j].upper, "]");
   impl_->ik_mode = false;
+  ShootingSummary first;  // a cold start goes through the default inputs (the URDF's initial pose fits them)
+  const VecX u0 = m.default_input_values();
+  if (!impl_->has_warm && inputs != u0) {
+    first = impl_->solve(impl_->cold_state(u0, m.initial_platform_poses())).summary;
+    if (!first.converged()) {
+      ShootingRobotResult failed = impl_->solve(impl_->cold_state(inputs, m.initial_platform_poses()));
+      failed.summary.iterations += first.iterations;
+      failed.summary.wall_time_seconds += first.wall_time_seconds;
+      return failed;
+    }
+  }
   State s = impl_->has_warm ? impl_->warm : impl_->cold_state(inputs, m.initial_platform_poses());
   s.inputs = inputs;
   ShootingRobotResult out = impl_->solve(s);
+  out.summary.iterations += first.iterations;
+  out.summary.wall_time_seconds += first.wall_time_seconds;
   if (out.summary.converged()) return out;
   // Continuation in the inputs from the last solution (or from a cold solve at the default inputs).
   if (!impl_->has_warm) {
-    const VecX u0 = m.default_input_values();
     const ShootingRobotResult at_default = impl_->solve(impl_->cold_state(u0, m.initial_platform_poses()));
     out.summary.iterations += at_default.summary.iterations;
     out.summary.wall_time_seconds += at_default.summary.wall_time_seconds;
