@@ -65,6 +65,13 @@ struct ShootingRobotSolver::Impl {
   bool has_warm = false;
   State warm;
   VecX row_scale;  ///< unscaled residual = scaled * row_scale
+  /// LU of the last Newton Jacobian (scaled), for chord steps along warm-started sequences.
+  Eigen::PartialPivLU<MatX> lu;
+  bool lu_valid = false;
+  void set_mode(bool ik) {
+    if (ik != ik_mode) lu_valid = false;
+    ik_mode = ik;
+  }
 
   int num_rods() const { return static_cast<int>(rods.size()); }
   int num_platforms() const { return static_cast<int>(model->platforms().size()); }
@@ -86,7 +93,8 @@ struct ShootingRobotSolver::Impl {
   void residual(const State& s, VecX& r) const;
   bool evaluate(const State& s, bool jacobian, VecX& r, MatX& J);
   State retract(const State& s, const VecX& dz) const;
-  ShootingRobotResult solve(State s);
+  /// Newton from s; warm_start allows chord steps with the last factorised Jacobian.
+  ShootingRobotResult solve(State s, bool warm_start = false);
   /// Solves at move(start, t) for t = 1/n, 2/n, ..., 1, each from the previous solution, with n = 4,
   /// 8, ..., 64 until every step converges; iterations and time of all attempts are summed.
   ShootingRobotResult continuation(const State& start, const std::function<void(State&, double)>& move,
@@ -355,7 +363,7 @@ State ShootingRobotSolver::Impl::retract(const State& s, const VecX& dz) const {
   return t;
 }
 
-ShootingRobotResult ShootingRobotSolver::Impl::solve(State s) {
+ShootingRobotResult ShootingRobotSolver::Impl::solve(State s, bool warm_start) {
   const auto t0 = std::chrono::steady_clock::now();
   ShootingSummary summary;
   summary.solver = std::string("shooting (") + to_string(options.integrator) + ")";
@@ -364,7 +372,11 @@ ShootingRobotResult ShootingRobotSolver::Impl::solve(State s) {
   MatX J, J_trial;
   const bool dp = options.integrator == IntegratorMethod::DormandPrince;
   std::vector<double> history;
-  if (!evaluate(s, true, r, J)) {
+  // Chord steps (the Jacobian of an earlier solution, state-only integrations, ~5x cheaper) while
+  // they reduce the residual by half; Newton with a fresh Jacobian from the first one that does not.
+  bool chord = warm_start && lu_valid && options.reuse_jacobian;
+  bool have_J = !chord;
+  if (!evaluate(s, have_J, r, J)) {
     summary.status = SolveStatus::Failed;
     summary.message = "integration failed at the initial guess";
   } else {
@@ -379,7 +391,7 @@ ShootingRobotResult ShootingRobotSolver::Impl::solve(State s) {
           rod.mesh_fraction.back() = 1.0;
         }
         frozen = true;
-        if (!evaluate(s, true, r, J)) {
+        if (!evaluate(s, have_J, r, J)) {
           summary.status = SolveStatus::Failed;
           summary.message = "integration failed on the frozen mesh";
           break;
@@ -400,7 +412,27 @@ ShootingRobotResult ShootingRobotSolver::Impl::solve(State s) {
         break;
       }
       summary.iterations = it + 1;
-      VecX dz = J.partialPivLu().solve(-r);
+      if (chord) {
+        VecX dz = lu.solve(-r);
+        const double big = dz.lpNorm<Eigen::Infinity>();
+        if (big > options.max_step) dz *= options.max_step / big;
+        const State trial = retract(s, dz);
+        if (dz.allFinite() && evaluate(trial, false, r_trial, J_trial) && r_trial.norm() < 0.5 * r.norm()) {
+          s = trial;
+          r.swap(r_trial);
+          continue;
+        }
+        chord = false;
+      }
+      if (!have_J && !evaluate(s, true, r, J)) {
+        summary.status = SolveStatus::Failed;
+        summary.message = "integration failed";
+        break;
+      }
+      have_J = true;
+      lu.compute(J);
+      lu_valid = true;
+      VecX dz = lu.solve(-r);
       bool accepted = false;
       if (dz.allFinite()) {
         const double big = dz.lpNorm<Eigen::Infinity>();
@@ -472,7 +504,7 @@ ShootingRobotResult ShootingRobotSolver::Impl::continuation(const State& start,
     bool ok = true;
     for (int j = 1; j <= n && ok; ++j) {
       move(s, static_cast<double>(j) / n);
-      out = solve(s);
+      out = solve(s, true);
       iterations += out.summary.iterations;
       time += out.summary.wall_time_seconds;
       ok = out.summary.converged();
@@ -561,7 +593,7 @@ ShootingRobotResult ShootingRobotSolver::fk(const VecX& inputs) {
     require(std::isfinite(inputs[j]) && inputs[j] >= m.inputs()[j].lower && inputs[j] <= m.inputs()[j].upper,
             "ShootingRobotSolver::fk: input '", m.inputs()[j].name, "' = ", inputs[j], " outside [",
             m.inputs()[j].lower, ", ", m.inputs()[j].upper, "]");
-  impl_->ik_mode = false;
+  impl_->set_mode(false);
   ShootingSummary first;  // a cold start goes through the default inputs (the URDF's initial pose fits them)
   const VecX u0 = m.default_input_values();
   if (!impl_->has_warm && inputs != u0) {
@@ -575,7 +607,7 @@ ShootingRobotResult ShootingRobotSolver::fk(const VecX& inputs) {
   }
   State s = impl_->has_warm ? impl_->warm : impl_->cold_state(inputs, m.initial_platform_poses());
   s.inputs = inputs;
-  ShootingRobotResult out = impl_->solve(s);
+  ShootingRobotResult out = impl_->solve(s, impl_->has_warm);
   out.summary.iterations += first.iterations;
   out.summary.wall_time_seconds += first.wall_time_seconds;
   if (out.summary.converged()) return out;
@@ -604,10 +636,10 @@ ShootingRobotResult ShootingRobotSolver::ik(const std::vector<Pose>& targets) {
             "ShootingRobotSolver::ik: target pose is not finite or has a zero quaternion");
     p.orientation.normalize();
   }
-  impl_->ik_mode = true;
+  impl_->set_mode(true);
   State s = impl_->has_warm ? impl_->warm : impl_->cold_state(m.default_input_values(), poses);
   s.poses = poses;
-  ShootingRobotResult out = impl_->solve(s);
+  ShootingRobotResult out = impl_->solve(s, impl_->has_warm);
   if (!out.summary.converged()) {
     // Continuation in the targets from the last solution's poses (or the FK solution at the default
     // inputs): positions linear, rotations along the geodesic R(t) = exp(t log(R_1 R_0^T)) R_0.
@@ -617,7 +649,7 @@ ShootingRobotResult ShootingRobotSolver::ik(const std::vector<Pose>& targets) {
       out.summary.iterations += at_default.summary.iterations;
       out.summary.wall_time_seconds += at_default.summary.wall_time_seconds;
       have_start = at_default.summary.converged();
-      impl_->ik_mode = true;
+      impl_->set_mode(true);
     }
     if (have_start) {
       const State start = impl_->warm;

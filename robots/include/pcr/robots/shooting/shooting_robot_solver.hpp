@@ -48,6 +48,9 @@ struct ShootingRobotOptions {
   /// Largest change of any unknown per iteration in units of its scale (F_s, F_s L_max, L_max, 1 rad).
   double max_step = 0.5;
   bool levenberg_marquardt = true;
+  /// Warm-started solves first take chord steps with the previous solve's Jacobian (state-only
+  /// integrations) while each halves the residual, then Newton.
+  bool reuse_jacobian = true;
 };
 
 /// One rod at the solution (world frame).
