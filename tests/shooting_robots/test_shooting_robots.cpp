@@ -5,6 +5,8 @@
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
+#include <fstream>
+#include <sstream>
 
 #include "pcr/core/error.hpp"
 #include "pcr/math/so3.hpp"
@@ -119,6 +121,45 @@ BOOST_AUTO_TEST_CASE(forward_kinematics_agrees_with_collocation) {
       check_against_collocation(c, s, std::string(name) + " FK move " + std::to_string(move));
       check_platform_balance(*model, s);
     }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(every_coupling_with_loads_agrees_with_collocation) {
+  // R5a with leg0, leg3 clamped to the platform and leg1 spherical (the others collars), the platform's
+  // centre of mass off its origin and an external force + torque off the origin: exercises every tip
+  // coupling, the centre-of-mass lever arm and the external load in the balances of both solvers.
+  std::ifstream in(std::string(PCR_MODEL_DIR) + "/stewart_gough.urdf");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string xml = text.str();
+  auto replace_in_rod = [&](const std::string& rod, const std::string& coupling) {
+    const size_t at = xml.find("coupling=\"collar\"", xml.find("name=\"" + rod + "\""));
+    xml.replace(at, 17, "coupling=\"" + coupling + "\"");
+  };
+  replace_in_rod("leg0", "clamped");
+  replace_in_rod("leg3", "clamped");
+  replace_in_rod("leg1", "spherical");
+  const std::string com = "<origin xyz=\"0 0 0\" rpy=\"0 0 0\"/>\n      <mass";
+  xml.replace(xml.find(com), com.size() - 5, "<origin xyz=\"0.01 0.005 0.02\" rpy=\"0 0 0\"/>\n      ");
+  xml.replace(xml.rfind("</robot>"), 8,
+              "<pcr_load link=\"platform\" xyz=\"0.02 0 0.01\" force=\"0.3 -0.2 -0.5\" torque=\"0.01 0.02 "
+              "-0.01\"/>\n</robot>");
+  const auto model =
+      std::make_shared<const RobotModel>(parse_robot_model(xml, "stewart_gough_mixed_couplings"));
+  BOOST_REQUIRE(model->rods()[1].end.coupling == RodEndKind::Spherical);
+  BOOST_REQUIRE(model->rods()[3].end.coupling == RodEndKind::Clamped);
+  BOOST_REQUIRE(model->loads().size() == 1);
+  BOOST_REQUIRE(model->platforms()[0].center_of_mass.isApprox(Vec3(0.01, 0.005, 0.02)));
+  ForwardKinematics fk(model, tight_collocation());
+  ShootingRobotSolver shooting(model, tight_shooting());
+  for (double move : {0.0, 0.005}) {
+    const VecX u = moved_inputs(*model, move);
+    const RobotSolution c = fk.solve(u);
+    BOOST_REQUIRE_MESSAGE(c.summary.converged(), "collocation FK: " << c.summary.brief_report());
+    const ShootingRobotResult s = shooting.fk(u);
+    BOOST_REQUIRE_MESSAGE(s.summary.converged(),
+                          "shooting FK: " << s.summary.brief_report() << " " << s.summary.message);
+    check_against_collocation(c, s, "mixed couplings FK move " + std::to_string(move));
   }
 }
 

@@ -406,9 +406,12 @@ ShootingRobotResult ShootingRobotSolver::Impl::solve(State s, bool warm_start) {
       // Stalled (e.g. on the way to another equilibrium branch): less than 10 % progress over 10
       // iterations; the caller then falls back to continuation.
       history.push_back(r.norm());
-      if (history.size() > 10 && history.back() > 0.9 * history[history.size() - 11]) {
+      const size_t window = static_cast<size_t>(std::max(options.stall_window, 0));
+      if (window > 0 && history.size() > window &&
+          history.back() > 0.9 * history[history.size() - 1 - window]) {
         summary.status = SolveStatus::Failed;
-        summary.message = "stalled: residual fell by less than 10 % over 10 iterations";
+        summary.message =
+            "stalled: residual fell by less than 10 % over " + std::to_string(window) + " iterations";
         break;
       }
       summary.iterations = it + 1;

@@ -9,14 +9,17 @@
 // per platform). Residuals: each rod's tip coupling against the platform pose (clamped: position +
 // 2 vec(q_e); collar: position, the two components of R_T^T d3 normal to the frame axis, m(L) . d3 = 0;
 // spherical: position, m(L) = 0) and each platform's balance (DESIGN.md §3)
-//   F_ext + m g - sum n(L) = 0,   M_ext + (x_c - x) x m g + (r_F - x) x F_ext - sum (m(L) + (p(L) - x) x
-//   n(L)) = 0.
+//   F_ext + m g - sum n(L) = 0,
+//   M_ext + (x_c - x) x m g + (r_F - x) x F_ext - sum (m(L) + (p(L) - x) x n(L)) = 0.
 // Newton with the Jacobian from the variational equations (integrate_rod with tangents; d y(L)/dL =
 // f(L, y(L)) for fed lengths) and central differences of the algebraic tip/balance functions, step
 // cap, backtracking line search, Levenberg-Marquardt fallback; with Dormand-Prince the step sequence
 // of every rod is frozen once the residual is small (a smooth map, so Newton converges to round-off).
-// Every solve is warm-started from the previous converged one (for paths); a failed warm solve is
-// retried from the cold guess.
+// Every solve is warm-started from the previous converged one (for paths), first with chord steps
+// (the previous Jacobian's LU, state-only integrations) while they halve the residual. A cold FK goes
+// through the default inputs (the URDF's initial platform pose is meant for them); a failed solve
+// (stalled or out of iterations) is retried by continuation in the inputs (FK) or the target poses
+// (IK) from the last solution, in 4, 8, ..., 64 steps.
 //
 // Supported: rods that start clamped on a link fixed to the world (fixed or actuated length) and end on
 // a link carried by a platform with a clamped, collar or spherical coupling; gravity on rods and
@@ -48,6 +51,10 @@ struct ShootingRobotOptions {
   /// Largest change of any unknown per iteration in units of its scale (F_s, F_s L_max, L_max, 1 rad).
   double max_step = 0.5;
   bool levenberg_marquardt = true;
+  /// A solve stops as stalled when the residual norm fell by less than 10 % over this many
+  /// iterations (0 = never); continuation then takes over. (10 stops the capped-step approach from
+  /// the cold guess of R5a with mixed couplings that converges in 25.)
+  int stall_window = 20;
   /// Warm-started solves first take chord steps with the previous solve's Jacobian (state-only
   /// integrations) while each halves the residual, then Newton.
   bool reuse_jacobian = true;
