@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <optional>
 #include <sstream>
 
 #include "pcr/core/error.hpp"
@@ -23,10 +24,10 @@ struct RodSetup {
   int platform = -1;  ///< platform carrying the end link
   int input = -1;     ///< index of the fed-length input, or -1
   RodEndKind coupling = RodEndKind::Clamped;
-  Pose base_frame;  ///< world frame of the clamped start
-  Pose end_offset;  ///< end attachment frame in the platform frame
-  RodModel model;   ///< model.length = current length
-  std::unique_ptr<RodOde> ode;
+  Pose base_frame;                    ///< world frame of the clamped start
+  Pose end_offset;                    ///< end attachment frame in the platform frame
+  RodModel model;                     ///< model.length = current length
+  std::optional<RodOde> ode;          ///< rebuilt in place when the length changes (no allocation)
   std::vector<double> mesh_fraction;  ///< frozen Dormand-Prince steps, as fractions of L
   std::vector<double> mesh;
   RodStateWithTangents Y;  ///< tip state and d y(L) / d (n(0), m(0))
@@ -85,7 +86,7 @@ struct ShootingRobotSolver::Impl {
   void set_length(RodSetup& r, double L) {
     if (r.ode && r.model.length == L) return;
     r.model.length = L;
-    r.ode = std::make_unique<RodOde>(r.model);
+    r.ode.emplace(r.model);
   }
   bool integrate(const State& s, bool tangents);
   Vec6 tip_residual(const RodSetup& r, const RodStateVector& y, const Pose& platform) const;
@@ -480,7 +481,8 @@ ShootingRobotResult ShootingRobotSolver::Impl::solve(State s, bool warm_start) {
   summary.residual_scaled_max_abs = r.size() ? r.lpNorm<Eigen::Infinity>() : 0.0;
   summary.residual_max_abs = r.size() ? r.cwiseProduct(row_scale).lpNorm<Eigen::Infinity>() : 0.0;
   for (const RodSetup& rod : rods)
-    summary.integration_steps += static_cast<int>(frozen ? rod.mesh.size() - 1 : rod.trajectory.s.size() - 1);
+    summary.integration_steps +=
+        std::max(0, static_cast<int>(frozen ? rod.mesh.size() : rod.trajectory.s.size()) - 1);
   if (options.integrator == IntegratorMethod::RK4) summary.integration_steps = options.rk4_steps * num_rods();
   summary.wall_time_seconds = seconds_since(t0);
   if (!r.allFinite()) {
