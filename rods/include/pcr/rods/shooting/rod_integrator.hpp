@@ -10,12 +10,10 @@
 #include <string>
 #include <vector>
 
+#include "pcr/rods/shooting/integrator_method.hpp"
 #include "pcr/rods/shooting/rod_ode.hpp"
 
 namespace pcr {
-
-enum class IntegratorMethod { RK4, DormandPrince };
-const char* to_string(IntegratorMethod method);
 
 struct IntegratorOptions {
   IntegratorMethod method = IntegratorMethod::DormandPrince;

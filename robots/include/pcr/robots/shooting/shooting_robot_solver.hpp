@@ -1,0 +1,104 @@
+#pragma once
+// Forward and inverse kinematics of a RobotModel by shooting (Black, Till & Rucker 2018, "Parallel
+// continuum robots: modeling, analysis, and actuation-based force sensing", IEEE T-RO 34(1);
+// DESIGN.md §6): the independent reference of the collocation solver (kinematics.hpp).
+//
+// Unknowns: for every rod its base wrench n(0), m(0) (world frame; the base is clamped), for FK every
+// platform pose (position x and a world rotation vector increment: R <- exp(hat(dtheta)) R), for IK
+// the inputs (the platform poses are the targets, so the system is square when the model has 6 inputs
+// per platform). Residuals: each rod's tip coupling against the platform pose (clamped: position +
+// 2 vec(q_e); collar: position, the two components of R_T^T d3 normal to the frame axis, m(L) . d3 = 0;
+// spherical: position, m(L) = 0) and each platform's balance (DESIGN.md §3)
+//   F_ext + m g - sum n(L) = 0,
+//   M_ext + (x_c - x) x m g + (r_F - x) x F_ext - sum (m(L) + (p(L) - x) x n(L)) = 0.
+// Newton with the Jacobian from the variational equations (integrate_rod with tangents; d y(L)/dL =
+// f(L, y(L)) for fed lengths) and central differences of the algebraic tip/balance functions, step
+// cap, backtracking line search, Levenberg-Marquardt fallback; with Dormand-Prince the step sequence
+// of every rod is frozen once the residual is small (a smooth map, so Newton converges to round-off).
+// Every solve is warm-started from the previous converged one (for paths), first with chord steps
+// (the previous Jacobian's LU, state-only integrations) while they halve the residual. A cold FK goes
+// through the default inputs (the URDF's initial platform pose is meant for them); a failed solve
+// (stalled or out of iterations) is retried by continuation in the inputs (FK) or the target poses
+// (IK) from the last solution, in 4, 8, ..., 64 steps.
+//
+// Supported: rods that start clamped on a link fixed to the world (fixed or actuated length) and end on
+// a link carried by a platform with a clamped, collar or spherical coupling; gravity on rods and
+// platforms; external loads. Anything else (joint inputs, rods between two platforms, free ends, rod
+// starts on moving links) throws InputError naming the rod or input.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "pcr/core/types.hpp"
+#include "pcr/robots/pose.hpp"
+#include "pcr/robots/robot_model.hpp"
+#include "pcr/rods/shooting/integrator_method.hpp"
+#include "pcr/rods/shooting/shooting_summary.hpp"
+
+namespace pcr {
+
+struct ShootingRobotOptions {
+  IntegratorMethod integrator = IntegratorMethod::DormandPrince;
+  int rk4_steps = 40;      ///< RK4: steps per rod
+  double rel_tol = 1e-10;  ///< Dormand-Prince tolerances (abs_tol per component times L, F_c, M_c)
+  double abs_tol = 1e-12;
+  /// Convergence: max-abs of the residuals divided by L_max (positions), 1 (directions), F_s (forces),
+  /// F_s L_max (moments), F_s = max(max EI / L^2, total applied force).
+  double residual_tolerance = 1e-10;
+  int max_iterations = 100;
+  /// Dormand-Prince: freeze each rod's step sequence once the scaled residual is below this.
+  double freeze_mesh_below = 1e-6;
+  /// Largest change of any unknown per iteration in units of its scale (F_s, F_s L_max, L_max, 1 rad).
+  double max_step = 0.5;
+  bool levenberg_marquardt = true;
+  /// A solve stops as stalled when the residual norm fell by less than 10 % over this many
+  /// iterations (0 = never); continuation then takes over. (10 stops the capped-step approach from
+  /// the cold guess of R5a with mixed couplings that converges in 25.)
+  int stall_window = 20;
+  /// Warm-started solves first take chord steps with the previous solve's Jacobian (state-only
+  /// integrations) while each halves the residual, then Newton.
+  bool reuse_jacobian = true;
+};
+
+/// One rod at the solution (world frame).
+struct ShootingRodResult {
+  std::string name;
+  double length = 0.0;
+  Vec3 base_force = Vec3::Zero(), base_moment = Vec3::Zero();  ///< n(0), m(0)
+  Vec3 tip_force = Vec3::Zero(), tip_moment = Vec3::Zero();    ///< n(L), m(L)
+  Vec3 tip_position = Vec3::Zero();
+  Mat3 tip_rotation = Mat3::Identity();
+};
+
+struct ShootingRobotResult {
+  ShootingSummary summary;
+  VecX inputs;                  ///< model input order
+  std::vector<Pose> platforms;  ///< model platform order
+  std::vector<ShootingRodResult> rods;
+};
+
+class ShootingRobotSolver {
+ public:
+  /// Throws InputError for an unsupported model feature (see above) or bad options.
+  ShootingRobotSolver(std::shared_ptr<const RobotModel> model, const ShootingRobotOptions& options = {});
+  ~ShootingRobotSolver();
+  ShootingRobotSolver(ShootingRobotSolver&&) noexcept;
+  ShootingRobotSolver& operator=(ShootingRobotSolver&&) noexcept;
+
+  /// Platform poses for the given inputs (model order); InputError for a wrong size or out of bounds.
+  ShootingRobotResult fk(const VecX& inputs);
+  /// Inputs that put every platform at its target pose (platform order). Needs 6 inputs per platform
+  /// (square system); InputError otherwise or for a wrong number of targets.
+  ShootingRobotResult ik(const std::vector<Pose>& platform_targets);
+  /// Forget the warm start (the next solve starts from the cold guess).
+  void reset();
+
+  const RobotModel& model() const;
+  const ShootingRobotOptions& options() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace pcr

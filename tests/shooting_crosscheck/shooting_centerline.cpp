@@ -1,0 +1,22 @@
+#include "shooting_crosscheck/shooting_centerline.hpp"
+
+#include "pcr/rods/shooting/rod_shooting.hpp"
+
+namespace pcr::test {
+
+ShootingCenterline shooting_centerline(const RodModel& model, const std::vector<double>& s,
+                                       double tolerance) {
+  ShootingOptions o;
+  o.integrator = IntegratorMethod::DormandPrince;
+  o.rel_tol = o.abs_tol = tolerance;
+  o.residual_tolerance = 1e-12;
+  const ShootingSolution sol = solve_rod_shooting(model, o);
+  ShootingCenterline out;
+  out.converged = sol.summary.converged();
+  out.report = sol.summary.brief_report() + " " + sol.summary.message;
+  if (!out.converged) return out;
+  for (const RodState& state : sol.sample(s)) out.points.push_back(state.p);
+  return out;
+}
+
+}  // namespace pcr::test

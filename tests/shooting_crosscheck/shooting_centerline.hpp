@@ -1,0 +1,22 @@
+#pragma once
+// The shooting reference's centerline, behind a header that does not include rod_ode.hpp: its
+// pcr::RodState clashes with the collocation one (collocation_rod.hpp), so the two solvers live in
+// separate translation units of the cross-check test.
+#include <string>
+#include <vector>
+
+#include "pcr/core/types.hpp"
+#include "pcr/rods/rod_model.hpp"
+
+namespace pcr::test {
+
+struct ShootingCenterline {
+  bool converged = false;
+  std::string report;
+  std::vector<Vec3> points;  ///< p(s) at the requested s
+};
+
+/// Dormand-Prince shooting at rel_tol = abs_tol = tolerance, residual tolerance 1e-12.
+ShootingCenterline shooting_centerline(const RodModel& model, const std::vector<double>& s, double tolerance);
+
+}  // namespace pcr::test

@@ -1,0 +1,1 @@
+pcr_add_test(NAME test_shooting_robots LABELS robots SOURCES ${CMAKE_CURRENT_LIST_DIR}/shooting_robots/test_shooting_robots.cpp)
