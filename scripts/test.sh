@@ -14,6 +14,6 @@ bash "$root/scripts/build.sh" "$root/build/sanitize" -DPCR_SANITIZE=ON -DCMAKE_B
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 cd "$root/build/sanitize"
-ctest --output-on-failure -j "$(nproc)" -LE stress
+ctest --output-on-failure -j "$(nproc)" -LE "stress|install"
 ./tests/test_hard_rods --log_level=warning
 ./tests/test_random_sweeps --log_level=warning -- --solves=3

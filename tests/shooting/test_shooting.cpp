@@ -48,7 +48,7 @@ double max_abs(const Vec3& v) {
   return v.cwiseAbs().maxCoeff();
 }
 
-bool all_finite(const RodState& x) {
+bool all_finite(const ShootingState& x) {
   return x.p.allFinite() && x.q.allFinite() && x.n.allFinite() && x.m.allFinite();
 }
 
@@ -126,7 +126,7 @@ BOOST_AUTO_TEST_CASE(r1_end_moment_gives_exact_arc) {
       const double k = phi;  // curvature phi / L about d1: the arc turns d3 towards -e2
       for (int i = 0; i <= 20; ++i) {
         const double s = i / 20.0;
-        const RodState x = sol.at(s);
+        const ShootingState x = sol.at(s);
         const Vec3 exact(0.0, -(1.0 - std::cos(k * s)) / k, std::sin(k * s) / k);
         BOOST_TEST(max_abs(x.p - exact) < kTightIntegration, "phi " << phi << " s " << s);
         BOOST_TEST(rotation_angle_between(x.R(), rotation_x(k * s)) < kTightIntegration);
@@ -155,7 +155,7 @@ BOOST_AUTO_TEST_CASE(precurved_rod_without_loads_is_its_intrinsic_arc) {
     BOOST_TEST_REQUIRE(sol.summary.converged(), sol.summary.brief_report());
     for (int i = 0; i <= 10; ++i) {
       const double s = i / 10.0;
-      const RodState x = sol.at(s);
+      const ShootingState x = sol.at(s);
       const Vec3 exact(0.0, -(1.0 - std::cos(2 * s)) / 2, std::sin(2 * s) / 2);
       BOOST_TEST(max_abs(x.p - exact) < kTightIntegration, "varying " << varying << " s " << s);
       BOOST_TEST(rotation_angle_between(x.R(), rotation_x(2 * s)) < kTightIntegration);
@@ -221,7 +221,7 @@ BOOST_AUTO_TEST_CASE(r3_end_moment_gives_exact_helix) {
     double worst_p = 0.0, worst_R = 0.0;
     for (int i = 0; i <= 100; ++i) {
       const double s = L * i / 100.0;
-      const RodState x = sol.at(s);
+      const ShootingState x = sol.at(s);
       worst_p = std::max(worst_p, max_abs(x.p - helix_point(kappa, s)));
       worst_R = std::max(worst_R, rotation_angle_between(x.R(), so3_exp(s * kappa)));
     }
@@ -281,8 +281,8 @@ BOOST_AUTO_TEST_CASE(every_pairing_converges_to_the_same_equilibrium) {
     // Boundary equations, checked on the returned states (tolerance: residual 1e-12 scaled by
     // L = 1, F_c = M_c = 1.5, plus the integration bound).
     const double tol = kTightIntegration;
-    const RodState& b = sol.base;
-    const RodState& t = sol.tip;
+    const ShootingState& b = sol.base;
+    const ShootingState& t = sol.tip;
     switch (c.base) {
       case RodEndKind::Clamped:
         BOOST_TEST(max_abs(b.p - rod.base.position) < tol, name);
@@ -437,7 +437,7 @@ BOOST_AUTO_TEST_CASE(shooting_jacobian_matches_finite_differences_for_every_pair
       rod.tip.moment = 0.3 * random_vec();
       rod.tip.force = 0.3 * random_vec();
       const RodOde ode(rod);
-      RodState guess;
+      ShootingState guess;
       guess.p = 0.1 * random_vec();
       guess.q = quat_from_rotation_vector(0.4 * random_vec());
       guess.n = random_vec();
@@ -486,7 +486,7 @@ BOOST_AUTO_TEST_CASE(u_shaped_rod_reaches_a_tip_flipped_by_pi) {
     BOOST_TEST_REQUIRE(sol.summary.converged(), sol.summary.brief_report());
     BOOST_TEST(max_abs(sol.tip.p - rod.tip.position) < kTightIntegration);
     BOOST_TEST(sol.tip.R().col(2).dot(Vec3(0, 0, -1)) > 1.0 - 1e-12);  // pointing down, not up
-    const RodState mid = sol.at(0.5);
+    const ShootingState mid = sol.at(0.5);
     // The symmetry holds to the integration accuracy.
     BOOST_TEST(std::abs(mid.p.x() - 0.2) < kTightIntegration, "mid " << mid.p.transpose());
     BOOST_TEST(mid.R().col(2).dot(Vec3::UnitX()) > 1.0 - kTightIntegration);
@@ -609,7 +609,7 @@ BOOST_AUTO_TEST_CASE(bad_input_throws_input_error) {
   o = ShootingOptions();
   o.residual_tolerance = 0.0;
   BOOST_CHECK_THROW(solve_rod_shooting(bisshopp_drucker(1.0), o), InputError);
-  RodStateVector y = RodState().to_vector();
+  RodStateVector y = ShootingState().to_vector();
   BOOST_CHECK_THROW(integrate_rod(RodOde(bisshopp_drucker(1.0)), 1.0, 0.5, y, IntegratorOptions()),
                     InputError);
 }
@@ -641,13 +641,13 @@ BOOST_AUTO_TEST_CASE(integration_failure_is_reported) {
   IntegratorOptions io;
   io.rel_tol = 1e-12;
   io.min_step_fraction = 0.5;
-  RodState bent;
+  ShootingState bent;
   bent.m = Vec3(5, 0, 0);
   RodStateVector y = bent.to_vector();
   const IntegrationReport floor = integrate_rod(RodOde(bisshopp_drucker(2.0)), 0.0, 1.0, y, io);
   BOOST_TEST(!floor.success);
   BOOST_TEST(floor.message.find("underflow") != std::string::npos, floor.message);
-  y = RodState().to_vector();
+  y = ShootingState().to_vector();
   io = IntegratorOptions();
   io.max_steps = 3;
   io.rel_tol = 1e-12;

@@ -15,7 +15,7 @@ ShootingCenterline shooting_centerline(const RodModel& model, const std::vector<
   out.converged = sol.summary.converged();
   out.report = sol.summary.brief_report() + " " + sol.summary.message;
   if (!out.converged) return out;
-  for (const RodState& state : sol.sample(s)) out.points.push_back(state.p);
+  for (const ShootingState& state : sol.sample(s)) out.points.push_back(state.p);
   return out;
 }
 

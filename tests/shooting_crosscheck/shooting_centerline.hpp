@@ -1,7 +1,6 @@
 #pragma once
-// The shooting reference's centerline, behind a header that does not include rod_ode.hpp: its
-// pcr::RodState clashes with the collocation one (collocation_rod.hpp), so the two solvers live in
-// separate translation units of the cross-check test.
+// The shooting reference's centerline, behind a header that does not include rod_ode.hpp, so that the
+// shooting and the collocation solvers sit in separate translation units of the cross-check test.
 #include <string>
 #include <vector>
 

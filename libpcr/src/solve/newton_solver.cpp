@@ -181,7 +181,9 @@ SolveSummary NewtonSolver::solve(VecX& x) {
       return finish(SolveStatus::Converged, o.reuse_factorization
                                                 ? std::to_string(jacobian_evaluations) + " Jacobian evaluations"
                                                 : std::string());
-    if (iteration >= o.max_iterations) return finish(SolveStatus::MaxIterations, "");
+    if (iteration >= o.max_iterations)
+      return finish(SolveStatus::MaxIterations,
+                    format("no convergence in %.0f iterations (|r|max = %.3g)", o.max_iterations, r_max));
     const double r_norm = w.r.norm();
 
     if (!refresh) {

@@ -24,18 +24,18 @@ Mat3 rotation_of(const Quat& q) {
 
 }  // namespace
 
-Mat3 RodState::R() const {
+Mat3 ShootingState::R() const {
   return rotation_matrix(q);
 }
 
-RodStateVector RodState::to_vector() const {
+RodStateVector ShootingState::to_vector() const {
   RodStateVector y;
   y << p, q, n, m;
   return y;
 }
 
-RodState RodState::from_vector(const RodStateVector& y) {
-  RodState x;
+ShootingState ShootingState::from_vector(const RodStateVector& y) {
+  ShootingState x;
   x.p = y.segment<3>(RodStateIndex::p);
   x.q = y.segment<4>(RodStateIndex::q);
   x.n = y.segment<3>(RodStateIndex::n);

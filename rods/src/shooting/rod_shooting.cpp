@@ -26,7 +26,7 @@ IntegratorOptions ShootingOptions::integrator_options() const {
   return o;
 }
 
-RodState ShootingSolution::at(double s_query) const {
+ShootingState ShootingSolution::at(double s_query) const {
   require(ode_ && !s.empty(),
           "ShootingSolution::at: no stored trajectory (store_trajectory was off or the solve ",
           "did not produce one)");
@@ -37,11 +37,11 @@ RodState ShootingSolution::at(double s_query) const {
   const size_t i = it == s.begin() ? 0 : static_cast<size_t>(it - s.begin()) - 1;
   const double h = s_query - s[i];
   if (h <= 0.0) return states[i];
-  return RodState::from_vector(rod_single_step(*ode_, s[i], h, states[i].to_vector(), method_));
+  return ShootingState::from_vector(rod_single_step(*ode_, s[i], h, states[i].to_vector(), method_));
 }
 
-std::vector<RodState> ShootingSolution::sample(const std::vector<double>& s_values) const {
-  std::vector<RodState> out;
+std::vector<ShootingState> ShootingSolution::sample(const std::vector<double>& s_values) const {
+  std::vector<ShootingState> out;
   out.reserve(s_values.size());
   for (double v : s_values) out.push_back(at(v));
   return out;
@@ -263,7 +263,7 @@ NewtonOutcome solve_newton(const ShootingProblem& problem, RodStateVector& y0, c
 bool unloaded_tip(const RodModel& model, const IntegratorOptions& integrator, RodStateVector& tip) {
   const RodModel unloaded = shooting::model_at_load(model, 0.0, nullptr);
   const RodOde ode(unloaded);
-  RodState base;
+  ShootingState base;
   base.p = model.base.position;
   base.q = model.base.orientation.normalized();
   tip = base.to_vector();
@@ -358,16 +358,16 @@ ShootingSolution solve_rod_shooting(const RodModel& model, const ShootingOptions
   const IntegrationReport report =
       on_mesh ? integrate_rod_on_mesh(*solution.ode_, outcome.mesh, y, options.integrator, record)
               : integrate_rod(*solution.ode_, 0.0, model.length, y, integrator, record);
-  solution.base = RodState::from_vector(y0);
+  solution.base = ShootingState::from_vector(y0);
   if (report.success && y.allFinite()) {
-    solution.tip = RodState::from_vector(y);
+    solution.tip = ShootingState::from_vector(y);
     const Vec6 r = shooting::tip_residual(model.tip, y);
     summary.residual_max_abs = r.cwiseAbs().maxCoeff();
     summary.residual_scaled_max_abs = r.cwiseQuotient(full.scale()).cwiseAbs().maxCoeff();
     summary.integration_steps = report.steps;
     solution.s = trajectory.s;
     solution.states.reserve(trajectory.y.size());
-    for (const RodStateVector& state : trajectory.y) solution.states.push_back(RodState::from_vector(state));
+    for (const RodStateVector& state : trajectory.y) solution.states.push_back(ShootingState::from_vector(state));
   } else {
     // Never report NaN: keep the base state, no tip, and say why.
     solution.tip = solution.base;

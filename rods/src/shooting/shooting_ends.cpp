@@ -94,7 +94,7 @@ RodStateVector initial_base_guess(const RodModel& model) {
   const RodEnd& tip = model.tip;
   const Vec3 f = model.distributed_force();
   const double L = model.length;
-  RodState x;
+  ShootingState x;
   x.p = base.position;
   x.q = base.orientation.normalized();
   if (base.kind == RodEndKind::Clamped) {

@@ -1,6 +1,6 @@
 #pragma once
 // The integrators of the shooting reference (rod_integrator.hpp), in a header of its own so that code
-// can name them without including rod_ode.hpp (whose RodState clashes with collocation_rod.hpp's).
+// can name them without including rod_ode.hpp.
 namespace pcr {
 
 enum class IntegratorMethod { RK4, DormandPrince };

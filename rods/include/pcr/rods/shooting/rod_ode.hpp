@@ -38,7 +38,7 @@ struct RodStateIndex {
 };
 
 /// One cross-section's state in readable form (world frame).
-struct RodState {
+struct ShootingState {
   Vec3 p = Vec3::Zero();
   Quat q = Quat(1, 0, 0, 0);
   Vec3 n = Vec3::Zero();  ///< internal force (part s+ on part s-)
@@ -46,7 +46,7 @@ struct RodState {
 
   Mat3 R() const;
   RodStateVector to_vector() const;
-  static RodState from_vector(const RodStateVector& y);
+  static ShootingState from_vector(const RodStateVector& y);
 };
 
 /// Right-hand side of the rod ODE for one RodModel; cheap to copy, no allocation per evaluation

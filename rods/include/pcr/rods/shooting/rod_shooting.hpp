@@ -85,16 +85,16 @@ struct ShootingOptions {
 class ShootingSolution {
  public:
   ShootingSummary summary;
-  RodState base;                 ///< state at s = 0 (the converged unknowns, or the last iterate)
-  RodState tip;                  ///< state at s = L
+  ShootingState base;                 ///< state at s = 0 (the converged unknowns, or the last iterate)
+  ShootingState tip;                  ///< state at s = L
   std::vector<double> s;         ///< accepted integration steps (if store_trajectory)
-  std::vector<RodState> states;  ///< state at each s
+  std::vector<ShootingState> states;  ///< state at each s
 
   /// State at any s in [0, L]: one step of the solve's integrator from the stored step at or before s
   /// (re-integration, same order as the solve). Throws InputError for s outside [0, L] or no trajectory.
-  RodState at(double s) const;
+  ShootingState at(double s) const;
   /// States at many s (any order).
-  std::vector<RodState> sample(const std::vector<double>& s_values) const;
+  std::vector<ShootingState> sample(const std::vector<double>& s_values) const;
   /// Force and moment (about p(0)) that the base support applies to the rod: -n(0), -m(0).
   Vec3 base_force() const { return -base.n; }
   Vec3 base_moment() const { return -base.m; }
