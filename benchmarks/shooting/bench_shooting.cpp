@@ -165,7 +165,7 @@ int main(int argc, char** argv) {
       csv << scene.name << ',' << method << ',' << settings[i] << ',' << error << ',' << t.median << ','
           << t.min << ',' << t.max << ',' << sol.summary.iterations << '\n';
       std::printf("%-12s %-15s %-10s %10.2e %12.4f %6d %s\n", scene.name.c_str(), method, settings[i].c_str(),
-                  error, 1e3 * t.median, sol.summary.iterations, shooting_status_name(sol.summary.status));
+                  error, 1e3 * t.median, sol.summary.iterations, to_string(sol.summary.status));
       std::fflush(stdout);
     }
   }

@@ -23,7 +23,4 @@ struct ShootingSummary {
   std::string brief_report() const;
 };
 
-/// Name of a status ("converged", ...), local to the shooting reference.
-const char* shooting_status_name(SolveStatus status);
-
 }  // namespace pcr
