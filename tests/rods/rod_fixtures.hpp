@@ -35,6 +35,39 @@ inline Vec3 constant_curvature_position(const Vec3& kappa, double s) {
 
 inline Mat3 constant_curvature_rotation(const Vec3& kappa, double s) { return so3_exp(s * kappa); }
 
+/// The helical spring of Weeger et al. 2017 §7: a stress-free helix of radius R = 0.01 and pitch
+/// angle alpha (3 coils, EI = 2e-3, GJ = 1.5e-3) as intrinsic curvature kappa0 = (k, 0, tau) with
+/// k = cos^2(alpha)/R, tau = sin(alpha) cos(alpha)/R, the point of its axis nearest the reference tip
+/// (the axis passes through (a x e3) / |kappa0|), and the classical compliance along the axis
+/// delta / F = R^2 L (cos^2 alpha / GJ + sin^2 alpha / EI) (inextensible, unshearable).
+struct HelicalSpring {
+  double radius = 0.01, length = 0.0, EI = 2e-3, GJ = 1.5e-3, compliance = 0.0;
+  Vec3 kappa0, axis, tip_ref, on_axis;
+  /// Clamped at the origin, free tip, stress-free in the helix; axial/shear stiffness
+  /// stiffness_ratio * EI / R^2. The dead tip load F along the axis acts through the axis point.
+  RodModel model(double stiffness_ratio, double F) const {
+    RodModel m = cantilever(length, Vec3::Constant(stiffness_ratio * EI / (radius * radius)), Vec3(EI, EI, GJ));
+    m.intrinsic.curvature = kappa0;
+    m.tip.force = F * axis;
+    m.tip.moment = (on_axis - tip_ref).cross(F * axis);
+    return m;
+  }
+};
+
+inline HelicalSpring helical_spring(double alpha_deg) {
+  HelicalSpring h;
+  const double alpha = alpha_deg * M_PI / 180.0, R = h.radius, coils = 3;
+  h.length = coils * 2 * M_PI * R / std::cos(alpha);
+  h.kappa0 = Vec3(std::cos(alpha) * std::cos(alpha) / R, 0.0, std::sin(alpha) * std::cos(alpha) / R);
+  h.axis = h.kappa0.normalized();
+  h.tip_ref = constant_curvature_position(h.kappa0, h.length);
+  const Vec3 c0 = h.axis.cross(Vec3::UnitZ()) / h.kappa0.norm();
+  h.on_axis = c0 + h.axis * h.axis.dot(h.tip_ref - c0);
+  h.compliance = R * R * h.length *
+                 (std::cos(alpha) * std::cos(alpha) / h.GJ + std::sin(alpha) * std::sin(alpha) / h.EI);
+  return h;
+}
+
 /// Tip of the inextensible elastica cantilever under a perpendicular dead tip force (Bisshopp &
 /// Drucker 1945) for alpha = P L^2 / EI, from its elliptic-integral solution: with the tip angle t0,
 /// k^2 = (1 + sin t0) / 2 and sin(phi1) = 1 / (sqrt(2) k), t0 solves sqrt(alpha) = K(k) - F(k, phi1);

@@ -128,35 +128,21 @@ BOOST_AUTO_TEST_CASE(helical_spring_small_load_stiffness) {
   // so the geometric discretisation error cancels), and the linear stiffness is extracted by
   // Richardson extrapolation from F and 2F: delta_lin(F) = 2 delta(F) - delta(2F) / 2, error O(F^3).
   for (double alpha_deg : {5.0, 20.0, 45.0}) {
-    const double alpha = alpha_deg * M_PI / 180.0, Rh = 0.01, coils = 3;
-    const double k = std::cos(alpha) * std::cos(alpha) / Rh, tau = std::sin(alpha) * std::cos(alpha) / Rh;
-    const double L = coils * 2 * M_PI * Rh / std::cos(alpha);
-    const double EI = 2e-3, GJ = 1.5e-3;
-    const Vec3 kappa0(k, 0.0, tau);
-    const Vec3 axis = kappa0.normalized();
-    const Vec3 tip_ref = test::constant_curvature_position(kappa0, L);
-    // The helix axis passes through (a x e3) / |kappa0|; the point of it nearest the reference tip:
-    const Vec3 c0 = axis.cross(Vec3::UnitZ()) / kappa0.norm();
-    const Vec3 on_axis = c0 + axis * axis.dot(tip_ref - c0);
-    const double compliance =
-        Rh * Rh * L * (std::cos(alpha) * std::cos(alpha) / GJ + std::sin(alpha) * std::sin(alpha) / EI);
+    const test::HelicalSpring spring = test::helical_spring(alpha_deg);
+    const Vec3 axis = spring.axis;
     // The load acts at the axis point, rigidly attached to the wire tip by an arm; Castigliano's
     // deflection is that of this point: p_tip + R_tip a, with the arm a fixed in the tip frame.
     RodState unloaded;
     auto load_point_for = [&](double F) {
-      RodModel m = test::cantilever(L, Vec3::Constant(1e9 * EI / (Rh * Rh)), Vec3(EI, EI, GJ));
-      m.intrinsic.curvature = kappa0;
-      m.tip.force = F * axis;
-      m.tip.moment = (on_axis - tip_ref).cross(F * axis);
-      const RodState tip = solve_or_fail(m, RodFormulation::Mixed, 6, 24, 1e-12).tip();
+      const RodState tip = solve_or_fail(spring.model(1e9, F), RodFormulation::Mixed, 6, 24, 1e-12).tip();
       if (F == 0.0) unloaded = tip;
-      const Vec3 arm_body = unloaded.rotation.transpose() * (on_axis - unloaded.position);
+      const Vec3 arm_body = unloaded.rotation.transpose() * (spring.on_axis - unloaded.position);
       return Vec3(tip.position + tip.rotation * arm_body);
     };
-    const double F = 1e-3 * Rh / compliance;  // delta / R ~ 1e-3
+    const double F = 1e-3 * spring.radius / spring.compliance;  // delta / R ~ 1e-3
     const Vec3 p0 = load_point_for(0.0);
     const double d1 = (load_point_for(F) - p0).dot(axis), d2 = (load_point_for(2 * F) - p0).dot(axis);
-    const double linear = 2 * d1 - d2 / 2, expected = F * compliance;
+    const double linear = 2 * d1 - d2 / 2, expected = F * spring.compliance;
     // Relative tolerance 1e-4: Richardson leaves O((delta/R)^2) ~ 1e-6, extension/shear give 1e-9,
     // the discretisation of three coils at p = 6, 24 elements (measured ~1e-6 on the geometry).
     BOOST_TEST(std::abs(linear - expected) < 1e-4 * expected,

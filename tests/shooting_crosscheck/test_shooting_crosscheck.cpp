@@ -77,24 +77,9 @@ BOOST_AUTO_TEST_CASE(helical_spring_at_large_load) {
   // its axis by a force through the axis (dead force at the wire tip + the moment of the arm to the
   // axis). Large load: F = 2 R / compliance, i.e. a linear-theory extension of twice the coil radius
   // (~30 % of the spring's height), far outside the linear range.
-  const double alpha = 20.0 * M_PI / 180.0, Rh = 0.01, coils = 3;
-  const double k = std::cos(alpha) * std::cos(alpha) / Rh, tau = std::sin(alpha) * std::cos(alpha) / Rh;
-  const double L = coils * 2 * M_PI * Rh / std::cos(alpha);
-  const double EI = 2e-3, GJ = 1.5e-3;
-  const Vec3 kappa0(k, 0.0, tau);
-  const Vec3 axis = kappa0.normalized();
-  const Vec3 tip_ref = test::constant_curvature_position(kappa0, L);
-  const Vec3 c0 = axis.cross(Vec3::UnitZ()) / kappa0.norm();
-  const Vec3 on_axis = c0 + axis * axis.dot(tip_ref - c0);
-  const double compliance =
-      Rh * Rh * L * (std::cos(alpha) * std::cos(alpha) / GJ + std::sin(alpha) * std::sin(alpha) / EI);
-  const double F = 2.0 * Rh / compliance;
-  RodModel m = test::cantilever(L, Vec3(1e6 * EI / (Rh * Rh), 1e6 * EI / (Rh * Rh), 1e6 * EI / (Rh * Rh)),
-                                Vec3(EI, EI, GJ));
+  const test::HelicalSpring spring = test::helical_spring(20.0);
+  RodModel m = spring.model(1e6, 2.0 * spring.radius / spring.compliance);
   m.name = "helical spring";
-  m.intrinsic.curvature = kappa0;
-  m.tip.force = F * axis;
-  m.tip.moment = (on_axis - tip_ref).cross(F * axis);
   const double d = centerline_difference(m, {RodFormulation::Mixed, 8, 96});
   BOOST_TEST_MESSAGE("helical spring: max centerline difference " << d << " L");
   BOOST_TEST(d < kAgreement);
