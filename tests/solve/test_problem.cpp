@@ -51,6 +51,21 @@ class MixedBlock : public ResidualBlock {
   bool wrong_;
 };
 
+// MixedBlock with its structural zeros declared (d c0/d p1, d c1/d p2, d c0/d q0, d c1/d q1). With
+// `lie`, d c0/d p2 = cos(p2) (not zero) is declared zero too, which the problem checker must catch.
+class DeclaredSparseBlock : public MixedBlock {
+ public:
+  DeclaredSparseBlock(VariableId p, VariableId q, bool lie) : MixedBlock(p, q, false, "sparse"), lie_(lie) {}
+  bool structural_nonzero(int k, int row, int column) const override {
+    if (lie_ && k == 0 && row == 0 && column == 2) return false;
+    if (k == 0) return !((row == 0 && column == 1) || (row == 1 && column == 2));
+    return !((row == 0 && column == 0) || (row == 1 && column == 1));
+  }
+
+ private:
+  bool lie_;
+};
+
 // Three blocks: a (size 3), b (size 2), c (size 1); MixedBlock(a, b) rows 0-1, line(c, a? no) ...
 struct SmallProblem {
   Problem p;
@@ -354,4 +369,29 @@ BOOST_AUTO_TEST_CASE(hessian_checker_passes_right_and_catches_wrong_hessians) {
   BOOST_TEST(std::abs(bad.numeric - 6.0) <= 1e-8);  // d(2 w x)/dx = 2 w = 6; FD of a linear function
   BOOST_CHECK_THROW(check_block_hessian(pcr::test::SquarePlusOne(0), {VecX::Ones(1)}, VecX::Ones(1)),
                     InputError);
+}
+
+BOOST_AUTO_TEST_CASE(declared_structural_zeros_are_left_out_of_the_pattern) {
+  for (bool lie : {false, true}) {
+    Problem p;
+    const VariableId a = p.add_variable_block("a", (VecX(3) << 0.3, -0.7, 1.1).finished());
+    const VariableId b = p.add_variable_block("b", (VecX(2) << 2.0, 0.5).finished());
+    p.add_residual_block(std::make_shared<DeclaredSparseBlock>(a, b, lie));
+    // 2 rows x 5 columns, less the 4 declared zeros (5 with the false declaration).
+    BOOST_TEST(p.jacobian_nonzeros() == (lie ? 5 : 6));
+    VecX c;
+    SparseRowMajor J;
+    const VecX x = p.initial_values();
+    p.evaluate_residuals_and_jacobian(x, c, J);
+    // Entries kept, from the formulas c0 = p0 q1 + sin p2, c1 = p1^2 q0 - p0 (x = [p, q]).
+    BOOST_TEST(J.coeff(0, 0) == 0.5);
+    BOOST_TEST(J.coeff(0, 4) == 0.3);
+    BOOST_TEST(J.coeff(1, 0) == -1.0);
+    BOOST_TEST(J.coeff(1, 1) == 2.0 * -0.7 * 2.0);
+    BOOST_TEST(J.coeff(1, 3) == 0.49, boost::test_tools::tolerance(1e-15));
+    BOOST_TEST(J.coeff(0, 2) == (lie ? 0.0 : std::cos(1.1)));
+    const JacobianCheckResult r = check_problem_jacobian(p, x);
+    BOOST_TEST(r.passed == !lie, r.to_string());
+    if (lie) BOOST_TEST((r.block_name == "sparse" && r.row == 0 && r.column == 2), r.to_string());
+  }
 }

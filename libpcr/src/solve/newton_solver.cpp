@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "pcr/core/error.hpp"
 
@@ -35,7 +36,11 @@ struct NewtonSolver::Impl {
   std::vector<int> value_map;       // J value index -> J_free value index, -1 for fixed columns
   Eigen::SparseLU<SparseColMajor, Eigen::COLAMDOrdering<int>> lu;
   bool have_factorization = false;  // lu holds a factorisation of this structure (for reuse)
-  VecX c, r, r_trial, x_trial, dx_free, dx, linear_check, correction;
+  VecX c, r, r_trial, x_trial, dx_free, dx, linear_check;
+  // Quasi-Newton steps on the last factorisation J0 (free columns): steps[0 .. num_steps), see solve().
+  std::vector<VecX> steps;
+  int num_steps = 0;
+  static constexpr int kMaxSteps = 16;  // then a fresh Jacobian (bounds the update work and storage)
 
   Impl(const Problem& p, NewtonOptions o) : problem(p), options(o) {}
   void prepare();
@@ -77,6 +82,8 @@ void NewtonSolver::Impl::prepare() {
   r_trial.resize(m);
   linear_check.resize(m);
   dx_free.resize(m);
+  steps.assign(kMaxSteps, VecX::Zero(m));
+  num_steps = 0;
   dx = VecX::Zero(n);
   x_trial.resize(n);
   J = SparseRowMajor();
@@ -166,43 +173,66 @@ SolveSummary NewtonSolver::solve(VecX& x) {
   }
   problem.evaluate_residuals(x, w.c);
   w.r = w.c - w.target;
-  // With reuse_factorization, iterations first try the last factorisation (simplified Newton:
-  // x <- x - J_old^-1 r(x)). Contraction is measured affine-invariantly on the corrections
-  // (Deuflhard): the step is kept while |J_old^-1 r(x_new)| <= chord_contraction |J_old^-1 r(x)|, and
-  // that next correction is the next step. Otherwise the iteration is redone with a fresh Jacobian.
+  // With reuse_factorization, iterations first try the last factorisation J0 with Broyden's "good"
+  // rank-one updates in Deuflhard's error-oriented form (QNERR, Newton Methods for Nonlinear Problems,
+  // 2004, sec. 2.1.4): with steps s_0 = -J0^-1 r(x_0) (or the last Newton step) and x_{k+1} = x_k + s_k,
+  //   w = -J0^-1 r(x_{k+1});  w += s_{j+1} (s_j . w) / |s_j|^2  for j = 0 .. k-1;
+  //   theta = |w| / |s_k|,  alpha = (s_k . w) / |s_k|^2,  s_{k+1} = w / (1 - alpha).
+  // The step is kept while theta <= chord_contraction (affine-invariant contraction; |alpha| <= theta
+  // keeps 1 - alpha >= 1/2), else the iteration is redone from x_k with a fresh Jacobian. Convergence is
+  // superlinear, against linear for the plain simplified Newton step.
   bool refresh = !(o.reuse_factorization && w.have_factorization);
-  bool have_correction = false;  // w.correction = J_old^-1 r(x) is known
+  bool have_correction = false;  // w.steps[w.num_steps - 1] is the next step from x
   int jacobian_evaluations = 0;
+  auto take_step_from = [&](const VecX& x0, const VecX& step) {
+    for (int j = 0; j < x0.size(); ++j) {
+      const int col = w.reduced_column[j];
+      w.x_trial[j] = x0[j] + (col >= 0 ? step[col] : 0.0);
+    }
+  };
+  // Broyden update after the step w.steps[num_steps - 1] led to the residual r_new: appends the next
+  // step and returns true if it contracts, false if a fresh Jacobian is needed.
+  auto broyden_next = [&](const VecX& r_new) {
+    if (w.num_steps >= Impl::kMaxSteps) return false;
+    w.dx_free = w.lu.solve(r_new);
+    w.dx_free = -w.dx_free;
+    for (int j = 0; j + 1 < w.num_steps; ++j)
+      w.dx_free += w.steps[j + 1] * (w.steps[j].dot(w.dx_free) / w.steps[j].squaredNorm());
+    const VecX& s_k = w.steps[w.num_steps - 1];
+    const double s2 = s_k.squaredNorm();
+    if (!w.dx_free.allFinite() || !(s2 > 0.0) || !(w.dx_free.norm() <= o.chord_contraction * std::sqrt(s2)))
+      return false;
+    const double alpha = s_k.dot(w.dx_free) / s2;
+    w.steps[w.num_steps++] = w.dx_free / (1.0 - alpha);
+    return true;
+  };
   for (int iteration = 0;; ++iteration) {
     summary.iterations = iteration;
     if (!w.r.allFinite()) return finish(SolveStatus::Diverged, "non-finite residual");
     const double r_max = w.r.lpNorm<Eigen::Infinity>();
     if (r_max <= o.tolerance)
-      return finish(SolveStatus::Converged, o.reuse_factorization
-                                                ? std::to_string(jacobian_evaluations) + " Jacobian evaluations"
-                                                : std::string());
+      return finish(SolveStatus::Converged,
+                    o.reuse_factorization ? std::to_string(jacobian_evaluations) + " Jacobian evaluations"
+                                          : std::string());
     if (iteration >= o.max_iterations)
       return finish(SolveStatus::MaxIterations,
                     format("no convergence in %.0f iterations (|r|max = %.3g)", o.max_iterations, r_max));
     const double r_norm = w.r.norm();
 
     if (!refresh) {
-      if (!have_correction) w.correction = w.lu.solve(w.r);
-      for (int j = 0; j < x.size(); ++j) {
-        const int col = w.reduced_column[j];
-        w.x_trial[j] = x[j] - (col >= 0 ? w.correction[col] : 0.0);
+      if (!have_correction) {  // a new sequence on J0: the simplified Newton step
+        w.steps[0] = w.lu.solve(w.r);
+        w.steps[0] = -w.steps[0];
+        w.num_steps = 1;
       }
+      take_step_from(x, w.steps[w.num_steps - 1]);
       problem.evaluate_residuals(w.x_trial, w.c);
       w.r_trial = w.c - w.target;
-      if (w.r_trial.allFinite()) {
-        w.dx_free = w.lu.solve(w.r_trial);
-        if (w.dx_free.allFinite() && w.dx_free.norm() <= o.chord_contraction * w.correction.norm()) {
-          x.swap(w.x_trial);
-          w.r.swap(w.r_trial);
-          w.correction.swap(w.dx_free);
-          have_correction = true;
-          continue;
-        }
+      if (w.r_trial.allFinite() && broyden_next(w.r_trial)) {
+        x.swap(w.x_trial);
+        w.r.swap(w.r_trial);
+        have_correction = true;
+        continue;
       }
       refresh = true;  // too slow or diverging: redo this iteration with a fresh Jacobian
       have_correction = false;
@@ -269,13 +299,15 @@ SolveSummary NewtonSolver::solve(VecX& x) {
                              r_max));
       }
     }
-    // Keep this factorisation for simplified steps while the corrections contract fast enough.
+    // Keep this factorisation for quasi-Newton steps while they contract fast enough (the full Newton
+    // step is the first step of the Broyden sequence: J0 s_0 = -r holds exactly).
     refresh = true;
     have_correction = false;
     if (o.reuse_factorization && alpha == 1.0 && w.r_trial.allFinite()) {
-      w.correction = w.lu.solve(w.r_trial);
-      have_correction = w.correction.allFinite();
-      refresh = !(have_correction && w.correction.norm() <= o.chord_contraction * dx_norm);
+      w.steps[0] = w.dx_free;
+      w.num_steps = 1;
+      have_correction = broyden_next(w.r_trial);
+      refresh = !have_correction;
     }
     x.swap(w.x_trial);
     w.r.swap(w.r_trial);

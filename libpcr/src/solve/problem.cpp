@@ -6,6 +6,7 @@
 #include <limits>
 #include <numeric>
 #include <stdexcept>
+#include <utility>
 
 #include "pcr/core/error.hpp"
 
@@ -54,11 +55,11 @@ struct Problem::Impl {
   std::vector<int> kind_of_block;  // per residual block, index into kinds (-1 when inactive)
   std::vector<std::string> kinds;  // kinds of active blocks in order of first appearance
   SparseRowMajor jacobian_pattern;
-  // Value position in J of entry (row r, first column) of touched variable k of block b:
-  // jacobian_start[jacobian_start_offset[b] + k * rows_b + r]; the block's columns of one variable
-  // block are contiguous in a compressed row because variable blocks occupy contiguous columns.
-  std::vector<int> jacobian_start_offset;
-  std::vector<int> jacobian_start;
+  // Scatter of each block's dense Jacobians into J: pairs (index in the block's stacked dense
+  // row-major Jacobians, index into J's values), for the structurally nonzero entries, from
+  // jacobian_scatter[jacobian_scatter_offset[b]] to jacobian_scatter[jacobian_scatter_offset[b + 1]].
+  std::vector<int> jacobian_scatter_offset;
+  std::vector<std::pair<int, int>> jacobian_scatter;
   // Scratch (sized to the largest block): value pointers, Jacobian pointers, dense Jacobian buffer.
   std::vector<const double*> value_ptrs;
   std::vector<double*> derivative_ptrs;
@@ -113,43 +114,49 @@ void Problem::Impl::ensure_structure() {
   derivative_ptrs.assign(max_vars, nullptr);
   dense_scratch.assign(max_dense, 0.0);
 
-  // Row pointers: every row of block b has sum of its variable sizes entries.
+  // Per active block: its structurally nonzero entries (dense index, row, column), in the order of a
+  // compressed row (touched variable blocks by increasing column offset, then columns).
+  struct Entry {
+    int dense, row, col;
+  };
+  std::vector<std::vector<Entry>> entries(nb);
   std::vector<int> outer(num_rows + 1, 0);
-  for (int b = 0; b < nb; ++b) {
-    if (!active[b]) continue;
-    const int width = local_size(residuals[b]->variables());
-    for (int r = 0; r < residuals[b]->num_rows(); ++r) outer[row_offset[b] + r + 1] = width;
-  }
-  std::partial_sum(outer.begin(), outer.end(), outer.begin());
-  std::vector<int> inner(outer.back());
-  jacobian_start_offset.assign(nb, -1);
-  jacobian_start.clear();
   for (int b = 0; b < nb; ++b) {
     if (!active[b]) continue;
     const ResidualBlock& block = *residuals[b];
     const auto& ids = block.variables();
-    const int nk = static_cast<int>(ids.size());
-    // Touched variable blocks in increasing column order.
+    const int nk = static_cast<int>(ids.size()), rows = block.num_rows();
+    std::vector<int> dense_start(nk, 0);  // start of variable k's dense rows x size array
+    for (int k = 1; k < nk; ++k) dense_start[k] = dense_start[k - 1] + rows * variables[ids[k - 1]].size;
     std::vector<int> order(nk);
     std::iota(order.begin(), order.end(), 0);
     std::sort(order.begin(), order.end(),
               [&](int a, int c) { return variables[ids[a]].offset < variables[ids[c]].offset; });
-    std::vector<int> shift(nk, 0);  // position of variable k's first column within a row
-    int s = 0;
-    for (int k : order) {
-      shift[k] = s;
-      s += variables[ids[k]].size;
-    }
-    jacobian_start_offset[b] = static_cast<int>(jacobian_start.size());
-    for (int k = 0; k < nk; ++k) {
-      const VariableBlock& v = variables[ids[k]];
-      for (int r = 0; r < block.num_rows(); ++r) {
-        const int start = outer[row_offset[b] + r] + shift[k];
-        jacobian_start.push_back(start);
-        for (int j = 0; j < v.size; ++j) inner[start + j] = v.offset + j;
+    for (int r = 0; r < rows; ++r)
+      for (int k : order) {
+        const VariableBlock& v = variables[ids[k]];
+        for (int j = 0; j < v.size; ++j) {
+          if (!block.structural_nonzero(k, r, j)) continue;
+          entries[b].push_back({dense_start[k] + r * v.size + j, row_offset[b] + r, v.offset + j});
+          ++outer[row_offset[b] + r + 1];
+        }
       }
+  }
+  std::partial_sum(outer.begin(), outer.end(), outer.begin());
+  std::vector<int> inner(outer.back());
+  jacobian_scatter_offset.assign(nb + 1, 0);
+  jacobian_scatter.clear();
+  jacobian_scatter.reserve(outer.back());
+  std::vector<int> next(outer.begin(), outer.end() - 1);  // next free slot of each row
+  for (int b = 0; b < nb; ++b) {
+    jacobian_scatter_offset[b] = static_cast<int>(jacobian_scatter.size());
+    for (const Entry& e : entries[b]) {
+      const int position = next[e.row]++;
+      inner[position] = e.col;
+      jacobian_scatter.emplace_back(e.dense, position);
     }
   }
+  jacobian_scatter_offset[nb] = static_cast<int>(jacobian_scatter.size());
   jacobian_pattern = make_pattern(num_rows, num_variables, outer, inner);
   built_version = version;
 }
@@ -451,13 +458,10 @@ void Problem::evaluate_residuals_and_jacobian(const VecX& x, VecX& c, SparseRowM
       dense += static_cast<size_t>(rows) * m.variables[ids[k]].size;
     }
     block.evaluate(m.value_ptrs.data(), c.data() + m.row_offset[b], m.derivative_ptrs.data());
-    // Scatter each dense row-major block row into its contiguous run of the compressed row.
-    const int* start = m.jacobian_start.data() + m.jacobian_start_offset[b];
-    for (size_t k = 0; k < ids.size(); ++k) {
-      const int width = m.variables[ids[k]].size;
-      const double* src = m.derivative_ptrs[k];
-      for (int r = 0; r < rows; ++r, ++start, src += width) std::copy(src, src + width, J_values + *start);
-    }
+    // Scatter the structurally nonzero entries of the stacked dense Jacobians into J.
+    const double* stacked = m.dense_scratch.data();
+    for (int e = m.jacobian_scatter_offset[b]; e < m.jacobian_scatter_offset[b + 1]; ++e)
+      J_values[m.jacobian_scatter[e].second] = stacked[m.jacobian_scatter[e].first];
   }
 }
 

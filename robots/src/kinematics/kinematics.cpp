@@ -12,13 +12,16 @@
 #include "pcr/math/quaternion.hpp"
 #include "pcr/solve/ipopt_solver.hpp"
 #include "pcr/solve/newton_solver.hpp"
+#include "secant_predictor.hpp"
 
 namespace pcr {
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 NewtonOptions newton_options(const KinematicsOptions& o) {
   NewtonOptions n;
@@ -64,7 +67,8 @@ MatX implicit_derivative(const Problem& problem, const VecX& x, const MatX& rhs)
   Jf.setFromTriplets(t.begin(), t.end());
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
   lu.compute(Jf);
-  require(lu.info() == Eigen::Success, "derivatives: the assembled Jacobian is singular at this configuration");
+  require(lu.info() == Eigen::Success,
+          "derivatives: the assembled Jacobian is singular at this configuration");
   const MatX dfree = lu.solve(-rhs);
   MatX out = MatX::Zero(problem.num_variables(), rhs.cols());
   for (size_t k = 0; k < cols.size(); ++k) out.row(cols[k]) = dfree.row(k);
@@ -84,14 +88,17 @@ MatX platform_rows(const RobotAssembly& a, const VecX& x, int platform, const Ma
   return rows;
 }
 
-bool finite_solution(const VecX& x) { return x.allFinite(); }
+bool finite_solution(const VecX& x) {
+  return x.allFinite();
+}
 
 }  // namespace
 
 RobotSolution read_solution(const RobotAssembly& a, const VecX& x, int centerline_points) {
   RobotSolution s;
   s.inputs = a.inputs(x);
-  for (size_t p = 0; p < a.model().platforms().size(); ++p) s.platforms.push_back(a.platform_pose(x, static_cast<int>(p)));
+  for (size_t p = 0; p < a.model().platforms().size(); ++p)
+    s.platforms.push_back(a.platform_pose(x, static_cast<int>(p)));
   for (int i = 0; i < a.num_rods(); ++i) {
     const CollocationRod& rod = a.rod(i);
     const RodVariables& v = a.rod_variables(i);
@@ -104,7 +111,8 @@ RobotSolution read_solution(const RobotAssembly& a, const VecX& x, int centerlin
     r.tip_force = t.force;
     r.tip_moment = t.moment;
     r.axial_force = b.force.dot(b.rotation.col(2));
-    for (const RodState& st : rod.sample(x, v, std::max(2, centerline_points))) r.centerline.push_back(st.position);
+    for (const RodState& st : rod.sample(x, v, std::max(2, centerline_points)))
+      r.centerline.push_back(st.position);
     s.rods.push_back(r);
   }
   return s;
@@ -114,29 +122,41 @@ RobotSolution read_solution(const RobotAssembly& a, const VecX& x, int centerlin
 struct ForwardKinematics::Solvers {
   std::unique_ptr<NewtonSolver> newton;
   std::unique_ptr<IpoptSolver> ipopt;
+  kinematics::SecantPredictor predictor;  // start point along a path of inputs
 };
 
-ForwardKinematics::ForwardKinematics(std::shared_ptr<const RobotModel> model, const KinematicsOptions& options)
-    : assembly_(std::move(model), options.assembly), options_(options), solvers_(std::make_shared<Solvers>()) {
+ForwardKinematics::ForwardKinematics(std::shared_ptr<const RobotModel> model,
+                                     const KinematicsOptions& options)
+    : assembly_(std::move(model), options.assembly),
+      options_(options),
+      solvers_(std::make_shared<Solvers>()) {
   x_ = assembly_.initial_guess();
 }
 
 SolveSummary ForwardKinematics::solve_once(VecX& x) {
   if (options_.solver == SolverKind::Newton) {
-    if (!solvers_->newton) solvers_->newton = std::make_unique<NewtonSolver>(assembly_.problem(), newton_options(options_));
+    if (!solvers_->newton)
+      solvers_->newton = std::make_unique<NewtonSolver>(assembly_.problem(), newton_options(options_));
     return solvers_->newton->solve(x);
   }
-  if (!solvers_->ipopt) solvers_->ipopt = std::make_unique<IpoptSolver>(assembly_.problem(), ipopt_options(options_));
+  if (!solvers_->ipopt)
+    solvers_->ipopt = std::make_unique<IpoptSolver>(assembly_.problem(), ipopt_options(options_));
   return solvers_->ipopt->solve(x);
 }
 
 RobotSolution ForwardKinematics::solve(const VecX& inputs) {
   const auto start = Clock::now();
   assembly_.fix_inputs(inputs);  // validates size and bounds
-  VecX x = x_;
+  VecX x = solvers_->predictor.predict(x_, inputs);
   assembly_.set_inputs(x, inputs);
   SolveSummary summary = solve_once(x);
   int iterations = summary.iterations;
+  if (!summary.converged() && has_solution_) {  // the extrapolated start failed: retry from the last solution
+    x = x_;
+    assembly_.set_inputs(x, inputs);
+    summary = solve_once(x);
+    iterations += summary.iterations;
+  }
   if (!summary.converged()) {
     // Continuation in the inputs from the last converged state (or, on a cold start, from the
     // model's default inputs, solved first).
@@ -187,6 +207,7 @@ RobotSolution ForwardKinematics::solve(const VecX& inputs) {
   if (summary.converged() && finite_solution(x)) {
     x_ = x;
     has_solution_ = true;
+    solvers_->predictor.accept(x_, inputs);
   } else if (summary.converged()) {
     summary.status = SolveStatus::Failed;
     summary.message = "non-finite solution";
@@ -215,8 +236,8 @@ MatX ForwardKinematics::input_jacobian() const {
 
 MatX ForwardKinematics::compliance(int platform) const {
   require(has_solution_, "compliance: no converged forward kinematics solution yet");
-  require(platform >= 0 && platform < static_cast<int>(assembly_.model().platforms().size()), "compliance: platform index ",
-          platform, " out of range");
+  require(platform >= 0 && platform < static_cast<int>(assembly_.model().platforms().size()),
+          "compliance: platform index ", platform, " out of range");
   const Problem& problem = assembly_.problem();
   // The balance rows of the platform: force / F0 (3), moment / M0 (3); an external wrench (f, tau) at
   // the origin adds (f / F0, tau / M0) to them.
@@ -242,11 +263,14 @@ struct InverseKinematics::Solvers {
   std::unique_ptr<NewtonSolver> newton;
   std::unique_ptr<IpoptSolver> ipopt;
   VariableId reference = -1;
+  kinematics::SecantPredictor predictor;  // start point along a path of targets
 };
 
-InverseKinematics::InverseKinematics(std::shared_ptr<const RobotModel> model, const std::vector<LinkTarget>& targets,
-                                     const KinematicsOptions& options)
-    : assembly_(std::move(model), options.assembly), options_(options), targets_(targets),
+InverseKinematics::InverseKinematics(std::shared_ptr<const RobotModel> model,
+                                     const std::vector<LinkTarget>& targets, const KinematicsOptions& options)
+    : assembly_(std::move(model), options.assembly),
+      options_(options),
+      targets_(targets),
       solvers_(std::make_shared<Solvers>()) {
   const RobotModel& m = assembly_.model();
   require(!targets.empty(), "inverse kinematics: no target given");
@@ -268,15 +292,17 @@ InverseKinematics::InverseKinematics(std::shared_ptr<const RobotModel> model, co
       components[i] = components[i] && t.mode != LinkTarget::Mode::Orientation;
       components[3 + i] = components[3 + i] && t.mode != LinkTarget::Mode::Position;
     }
-    require(std::count(components.begin(), components.end(), true) > 0, "inverse kinematics: target for '", t.link,
-            "' selects no pose component");
-    problem.add_residual_block(std::make_shared<assembly::PoseTargetBlock>(
-        "target." + t.link, assembly_.platform_variable(platform), tv, offset, components, assembly_.length_scale()));
+    require(std::count(components.begin(), components.end(), true) > 0, "inverse kinematics: target for '",
+            t.link, "' selects no pose component");
+    problem.add_residual_block(
+        std::make_shared<assembly::PoseTargetBlock>("target." + t.link, assembly_.platform_variable(platform),
+                                                    tv, offset, components, assembly_.length_scale()));
   }
   // Square problem: inputs free (no bounds: Newton checks them afterwards).
   const int n_in = static_cast<int>(m.inputs().size());
   for (int i = 0; i < n_in; ++i)
-    problem.set_variable_bounds(assembly_.input_variable(i), VecX::Constant(1, -INFINITY), VecX::Constant(1, INFINITY));
+    problem.set_variable_bounds(assembly_.input_variable(i), VecX::Constant(1, -INFINITY),
+                                VecX::Constant(1, INFINITY));
   int free_unknowns = 0;
   for (int v = 0; v < problem.num_variable_blocks(); ++v)
     if (!problem.variable_fixed(v)) free_unknowns += problem.variable(v).size;
@@ -289,7 +315,8 @@ InverseKinematics::InverseKinematics(std::shared_ptr<const RobotModel> model, co
   VecX scales(n_in);
   for (int i = 0; i < n_in; ++i) {
     const ActuationInput& in = m.inputs()[i];
-    opt.set_variable_bounds(assembly_.input_variable(i), VecX::Constant(1, in.lower), VecX::Constant(1, in.upper));
+    opt.set_variable_bounds(assembly_.input_variable(i), VecX::Constant(1, in.lower),
+                            VecX::Constant(1, in.upper));
     inputs.push_back(assembly_.input_variable(i));
     scales[i] = in.kind == ActuationInput::Kind::RodLength ? assembly_.length_scale() : 1.0;
   }
@@ -301,15 +328,17 @@ InverseKinematics::InverseKinematics(std::shared_ptr<const RobotModel> model, co
 
 RobotSolution InverseKinematics::solve(const std::vector<Pose>& target_poses, const VecX* reference) {
   const auto start = Clock::now();
-  require(target_poses.size() == targets_.size(), "inverse kinematics: ", target_poses.size(), " target poses for ",
-          targets_.size(), " targets");
+  require(target_poses.size() == targets_.size(), "inverse kinematics: ", target_poses.size(),
+          " target poses for ", targets_.size(), " targets");
   const RobotModel& m = assembly_.model();
+  VecX all_targets(7 * targets_.size());
   for (size_t k = 0; k < targets_.size(); ++k) {
     require(target_poses[k].position.allFinite() && target_poses[k].orientation.allFinite() &&
                 target_poses[k].orientation.norm() > 0,
             "inverse kinematics: target for '", targets_[k].link, "' is not a finite pose");
     VecX z(7);
     z << target_poses[k].position, target_poses[k].orientation.normalized();
+    all_targets.segment(7 * k, 7) = z;
     solvers_->square.fix_variable(target_variables_[k], z);
     solvers_->optimised.fix_variable(target_variables_[k], z);
   }
@@ -328,9 +357,16 @@ RobotSolution InverseKinematics::solve(const std::vector<Pose>& target_poses, co
   bool done = false;
   int iterations = 0;
   if (square_) {
-    if (!solvers_->newton) solvers_->newton = std::make_unique<NewtonSolver>(solvers_->square, newton_options(options_));
+    if (!solvers_->newton)
+      solvers_->newton = std::make_unique<NewtonSolver>(solvers_->square, newton_options(options_));
+    x = solvers_->predictor.predict(x_, all_targets);
     summary = solvers_->newton->solve(x);
     iterations += summary.iterations;
+    if (!summary.converged()) {  // the extrapolated start failed: retry from the last solution
+      x = x_;
+      summary = solvers_->newton->solve(x);
+      iterations += summary.iterations;
+    }
     done = summary.converged() && within_bounds(assembly_.inputs(x));
   }
   if (!done) {
@@ -339,15 +375,20 @@ RobotSolution InverseKinematics::solve(const std::vector<Pose>& target_poses, co
     xo.head(x_.size()) = (square_ && summary.converged() && x.allFinite()) ? x : x_;
     xo.tail(ref.size()) = ref;
     solvers_->optimised.fix_variable(solvers_->reference, ref);
-    if (!solvers_->ipopt) solvers_->ipopt = std::make_unique<IpoptSolver>(solvers_->optimised, ipopt_options(options_));
+    if (!solvers_->ipopt)
+      solvers_->ipopt = std::make_unique<IpoptSolver>(solvers_->optimised, ipopt_options(options_));
     summary = solvers_->ipopt->solve(xo);
     iterations += summary.iterations;
     x = xo.head(x_.size());
   }
   summary.iterations = iterations;
   summary.wall_time_seconds = seconds_since(start);
-  if (summary.converged() && x.allFinite()) x_ = x;
-  RobotSolution out = read_solution(assembly_, summary.converged() ? x_ : (x.allFinite() ? x : x_), options_.centerline_points);
+  if (summary.converged() && x.allFinite()) {
+    x_ = x;
+    solvers_->predictor.accept(x_, all_targets);
+  }
+  RobotSolution out = read_solution(assembly_, summary.converged() ? x_ : (x.allFinite() ? x : x_),
+                                    options_.centerline_points);
   out.summary = summary;
   return out;
 }

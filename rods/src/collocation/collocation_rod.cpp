@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "pcr/core/error.hpp"
 #include "pcr/rods/collocation/end_equations.hpp"
 #include "pcr/rods/collocation/equations.hpp"
-#include "pcr/core/error.hpp"
-#include "pcr/splines/basis.hpp"
 #include "pcr/rods/collocation/point_block.hpp"
+#include "pcr/splines/basis.hpp"
 
 namespace pcr {
 using namespace collocation;
@@ -18,7 +18,8 @@ namespace {
 constexpr int kP = 0, kQ = 3, kN = 7, kM = 10;
 
 // Local variable layouts of the kernels in equations.hpp (offset, component, size, derivative order).
-const std::vector<LocalGroup> kPrimalInterior = {{0, kQ, 4, 0}, {4, kQ, 4, 1}, {8, kQ, 4, 2}, {12, kP, 3, 1}, {15, kP, 3, 2}};
+const std::vector<LocalGroup> kPrimalInterior = {
+    {0, kQ, 4, 0}, {4, kQ, 4, 1}, {8, kQ, 4, 2}, {12, kP, 3, 1}, {15, kP, 3, 2}};
 const std::vector<LocalGroup> kMixedPoint = {{0, kQ, 4, 0},  {4, kQ, 4, 1},  {8, kP, 3, 1}, {11, kN, 3, 0},
                                              {14, kN, 3, 1}, {17, kM, 3, 0}, {20, kM, 3, 1}};
 const std::vector<LocalGroup> kPrimalEnd = {{0, kP, 3, 0}, {3, kQ, 4, 0}, {7, kQ, 4, 1}, {11, kP, 3, 1}};
@@ -58,17 +59,21 @@ CollocationRod::CollocationRod(RodModel model, RodDiscretization discretization)
     : model_(std::move(model)), discretization_(discretization) {
   model_.validate();
   require(discretization.degree >= 2 && discretization.degree <= 9, "rod '", model_.name,
-          "': collocation degree must be in [2, 9] (second derivatives are collocated), got ", discretization.degree);
+          "': collocation degree must be in [2, 9] (second derivatives are collocated), got ",
+          discretization.degree);
   require(discretization.elements >= 1 && discretization.elements <= 100000, "rod '", model_.name,
           "': number of elements must be in [1, 100000], got ", discretization.elements);
-  knots_ = std::make_shared<const KnotVector>(KnotVector::open_uniform(discretization.degree, discretization.elements));
+  knots_ = std::make_shared<const KnotVector>(
+      KnotVector::open_uniform(discretization.degree, discretization.elements));
   const double L = model_.length;
   const double kb = model_.bending_torsion_stiffness.maxCoeff();
   force_scale_ = kb / (L * L);
   moment_scale_ = kb / L;
 }
 
-int CollocationRod::num_control_points() const { return knots_->num_basis(); }
+int CollocationRod::num_control_points() const {
+  return knots_->num_basis();
+}
 
 int CollocationRod::control_point_size() const {
   return discretization_.formulation == RodFormulation::Mixed ? 13 : 7;
@@ -92,7 +97,8 @@ VecX CollocationRod::straight_configuration() const {
   VecX x = VecX::Zero(n * cp);
   for (int i = 0; i < n; ++i) {
     // Greville abscissae reproduce linear functions: sum_i N_i(u) tau_i = u, so P_i = p0 + L tau_i d3.
-    const Vec3 p = from_base ? Vec3(end.position + L * tau[i] * d3) : Vec3(end.position - L * (1.0 - tau[i]) * d3);
+    const Vec3 p =
+        from_base ? Vec3(end.position + L * tau[i] * d3) : Vec3(end.position - L * (1.0 - tau[i]) * d3);
     x.segment<3>(i * cp + kP) = p;
     x.segment<4>(i * cp + kQ) = q;
   }
@@ -105,12 +111,14 @@ RodVariables CollocationRod::add_to_problem(Problem& problem, const RodEndOption
   const bool mixed = discretization_.formulation == RodFormulation::Mixed;
   const std::string& name = model_.name;
   const VecX init = initial ? *initial : straight_configuration();
-  require(init.size() == n * cp, "rod '", name, "': initial guess has ", init.size(), " values, expected ", n * cp);
+  require(init.size() == n * cp, "rod '", name, "': initial guess has ", init.size(), " values, expected ",
+          n * cp);
   require(init.allFinite(), "rod '", name, "': initial guess is not finite");
 
   RodVariables vars;
   for (int i = 0; i < n; ++i) {
-    vars.control_points.push_back(problem.add_variable_block(name + ".cp" + std::to_string(i), init.segment(i * cp, cp)));
+    vars.control_points.push_back(
+        problem.add_variable_block(name + ".cp" + std::to_string(i), init.segment(i * cp, cp)));
     if (group >= 0) problem.set_variable_group(vars.control_points.back(), group);
   }
   vars.length = problem.add_variable_block(name + ".length", VecX::Constant(1, model_.length));
@@ -161,7 +169,8 @@ RodVariables CollocationRod::add_to_problem(Problem& problem, const RodEndOption
     return b;
   };
   auto variables_of = [&](const PointBasis& b, bool with_length) {
-    std::vector<VariableId> v(vars.control_points.begin() + b.first, vars.control_points.begin() + b.first + b.count);
+    std::vector<VariableId> v(vars.control_points.begin() + b.first,
+                              vars.control_points.begin() + b.first + b.count);
     if (with_length) v.push_back(vars.length);
     return v;
   };
@@ -177,12 +186,12 @@ RodVariables CollocationRod::add_to_problem(Problem& problem, const RodEndOption
         const PointBasis b = basis_at(u, 1, false);
         problem.add_residual_block(make_point_block<24, 13>(
             "rod.mixed_equilibrium", where, variables_of(b, true), cp, b, kMixedPoint, 23,
-            [c](const auto& z, auto* r) { mixed_interior(z, c, r); }));
+            [c](const auto& z, auto* r) { mixed_interior(z, c, r); }, /*detect_sparsity=*/true));
       } else {
         const PointBasis b = basis_at(u, 2, false);
         problem.add_residual_block(make_point_block<19, 7>(
             "rod.primal_equilibrium", where, variables_of(b, true), cp, b, kPrimalInterior, 18,
-            [c](const auto& z, auto* r) { primal_interior(z, c, r); }));
+            [c](const auto& z, auto* r) { primal_interior(z, c, r); }, /*detect_sparsity=*/true));
       }
       continue;
     }
@@ -191,22 +200,20 @@ RodVariables CollocationRod::add_to_problem(Problem& problem, const RodEndOption
       const PointBasis b = basis_at(u, 1, false);
       problem.add_residual_block(make_point_block<24, 6>(
           "rod.mixed_constitutive", where, variables_of(b, true), cp, b, kMixedPoint, 23,
-          [c](const auto& z, auto* r) { mixed_constitutive(z, c, r); }));
+          [c](const auto& z, auto* r) { mixed_constitutive(z, c, r); }, /*detect_sparsity=*/true));
     }
     if (!(at_base ? ends.base : ends.tip)) continue;
     const EndData e = end_data(at_base ? model_.base : model_.tip, at_base, load_factor);
     const std::string kind = std::string("rod.end_") + to_string(e.kind);
     if (mixed) {
       const PointBasis b = basis_at(u, 0, true);
-      problem.add_residual_block(make_point_block<13, 7>(kind, where, variables_of(b, false), cp, b, kMixedEnd, -1,
-                                                         [c, e](const auto& z, auto* r) {
-                                                           using T = typename std::decay_t<decltype(z)>::Scalar;
-                                                           end_conditions<T>(e.kind, cast_target<T>(e.target), e.loads, c,
-                                                                             z.template segment<3>(0),
-                                                                             z.template segment<4>(3),
-                                                                             z.template segment<3>(7),
-                                                                             z.template segment<3>(10), r);
-                                                         }));
+      problem.add_residual_block(make_point_block<13, 7>(
+          kind, where, variables_of(b, false), cp, b, kMixedEnd, -1, [c, e](const auto& z, auto* r) {
+            using T = typename std::decay_t<decltype(z)>::Scalar;
+            end_conditions<T>(e.kind, cast_target<T>(e.target), e.loads, c, z.template segment<3>(0),
+                              z.template segment<4>(3), z.template segment<3>(7), z.template segment<3>(10),
+                              r);
+          }));
     } else {
       const PointBasis b = basis_at(u, 1, false);
       problem.add_residual_block(make_point_block<15, 7>(
@@ -224,12 +231,14 @@ RodVariables CollocationRod::add_to_problem(Problem& problem, const RodEndOption
   return vars;
 }
 
-double CollocationRod::length(const VecX& x, const RodVariables& vars) const { return x[vars.length_offset]; }
+double CollocationRod::length(const VecX& x, const RodVariables& vars) const {
+  return x[vars.length_offset];
+}
 
 RodState CollocationRod::state_at(const VecX& x, const RodVariables& vars, double s) const {
   const double L = length(x, vars);
-  require(std::isfinite(s) && s >= -1e-12 * L && s <= L * (1.0 + 1e-12), "rod '", model_.name, "': arc length s = ", s,
-          " outside [0, ", L, "]");
+  require(std::isfinite(s) && s >= -1e-12 * L && s <= L * (1.0 + 1e-12), "rod '", model_.name,
+          "': arc length s = ", s, " outside [0, ", L, "]");
   const double u = std::clamp(s / L, 0.0, 1.0);
   const BasisDerivatives d = basis_derivatives(*knots_, u, 1);
   const int cp = control_point_size();

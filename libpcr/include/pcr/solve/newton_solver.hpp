@@ -22,10 +22,10 @@ struct NewtonOptions {
   /// solve with relative residual |J dx + r| / |r| above linear_residual_limit.
   double max_step_ratio = 1e10;
   double linear_residual_limit = 1e-6;
-  /// Simplified Newton across iterations and solves: reuse the last LU factorisation while the
-  /// corrections contract, |J_old^-1 r(x_new)| <= chord_contraction |J_old^-1 r(x)| (Deuflhard's
-  /// affine-invariant measure); otherwise take a fresh Newton step. Pays off for warm-started
-  /// sequences (FK/IK along a path), where the Jacobian barely changes.
+  /// Quasi-Newton across iterations and solves: reuse the last LU factorisation J0 with Broyden
+  /// rank-one updates (Deuflhard's QNERR) while the steps contract, |s_{k+1}| (1 - alpha) <=
+  /// chord_contraction |s_k| (affine-invariant measure); otherwise take a fresh Newton step. Pays off
+  /// for warm-started sequences (FK/IK along a path), where the Jacobian barely changes.
   bool reuse_factorization = false;
   double chord_contraction = 0.5;
 };

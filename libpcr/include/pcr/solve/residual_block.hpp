@@ -2,7 +2,8 @@
 // A residual block: a few rows of the nonlinear system c(x) (with row bounds: equality by default),
 // touching a fixed list of variable blocks. Ceres-style evaluation: values of each touched variable
 // block in, residual values out, and — when asked — one dense row-major Jacobian per touched block.
-// The global sparsity pattern is the union of these dense blocks, fixed when the problem is built.
+// The global sparsity pattern is the union of these dense blocks (less the entries a block declares
+// structurally zero), fixed when the problem is built.
 #include <limits>
 #include <string>
 #include <vector>
@@ -31,6 +32,16 @@ class ResidualBlock {
   virtual int expected_variable_size(int k) const {
     (void)k;
     return -1;
+  }
+
+  /// Optional structural sparsity: false promises that d c_row / d (column of variables()[k]) is zero
+  /// for every x, and the entry is left out of the problem's Jacobian pattern (evaluate may still
+  /// write it; the value is ignored). Default: every entry of every touched block is a nonzero.
+  /// Asked only when the problem's structure is (re)built. Checked by check_problem_jacobian, which
+  /// compares the omitted entries against finite differences as zeros.
+  virtual bool structural_nonzero(int k, int row, int column) const {
+    (void)k, (void)row, (void)column;
+    return true;
   }
 
   /// Optional second derivatives (used by Ipopt for exact Hessians when EVERY active block and objective

@@ -6,7 +6,16 @@
 // values cached at construction: z_g = sum_i B_d(u)[i] c_i[component]. The kernel is evaluated with
 // Dual<NL> numbers, which gives dr/dz exactly; the chain rule dz/dc_i = B_d(u)[i] scatters it into one
 // dense Jacobian per control point (and dr/dL into the length block).
+//
+// Structural sparsity: control point components that no local group reads, and basis functions whose
+// value is zero at the point, give zero columns. With `detect_sparsity`, the kernel's own zero
+// derivatives dr_row/dz_k are found once by evaluating it with dual numbers at two pseudo-random z
+// (entries of [0.5, 1.5]): a derivative of a smooth (rational) kernel that vanishes at a random point
+// is identically zero with probability one. Only for kernels whose constants enter additively or as
+// nonzero factors (material stiffness), so that a zero constant (e.g. no load yet) cannot hide a
+// dependency. The problem's Jacobian check compares every left-out entry with finite differences.
 #include <array>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -36,10 +45,26 @@ class PointBlock final : public ResidualBlock {
  public:
   /// variables: the `basis.count` control point blocks, then the length block (if length_local >= 0).
   PointBlock(std::string kind, std::string name, std::vector<VariableId> variables, int control_point_size,
-             PointBasis basis, std::vector<LocalGroup> groups, int length_local, Kernel kernel)
+             PointBasis basis, std::vector<LocalGroup> groups, int length_local, Kernel kernel,
+             bool detect_sparsity = false)
       : ResidualBlock(std::move(kind), std::move(name), NR, std::move(variables)),
-        cp_size_(control_point_size), basis_(basis), groups_(std::move(groups)), length_local_(length_local),
-        kernel_(std::move(kernel)) {}
+        cp_size_(control_point_size),
+        basis_(basis),
+        groups_(std::move(groups)),
+        length_local_(length_local),
+        kernel_(std::move(kernel)) {
+    depends_.fill(true);
+    if (detect_sparsity) detect_kernel_sparsity();
+  }
+
+  bool structural_nonzero(int k, int row, int column) const override {
+    if (k == basis_.count) return length_local_ >= 0 && depends(row, length_local_);
+    for (const LocalGroup& g : groups_)
+      if (column >= g.component && column < g.component + g.dim && basis_.B[g.derivative][k] != 0.0 &&
+          depends(row, g.local + column - g.component))
+        return true;
+    return false;
+  }
 
   void evaluate(const double* const* values, double* residual, double* const* jacobians) const override {
     if (jacobians == nullptr) {
@@ -82,7 +107,27 @@ class PointBlock final : public ResidualBlock {
     if (length_local_ >= 0) z[length_local_] = values[basis_.count][0];
   }
 
+  bool depends(int row, int local) const { return depends_[row * NL + local]; }
+
+  void detect_kernel_sparsity() {
+    depends_.fill(false);
+    std::uint32_t state = 12345u;  // fixed-seed linear congruential generator: reproducible patterns
+    for (int trial = 0; trial < 2; ++trial) {
+      Eigen::Matrix<Dual<NL>, NL, 1> z;
+      for (int k = 0; k < NL; ++k) {
+        state = state * 1664525u + 1013904223u;
+        z[k] = Dual<NL>::variable(0.5 + (state >> 8) * (1.0 / 16777216.0), k);
+      }
+      std::array<Dual<NL>, NR> r;
+      kernel_(z, r.data());
+      for (int row = 0; row < NR; ++row)
+        for (int k = 0; k < NL; ++k)
+          if (r[row].v[k] != 0.0) depends_[row * NL + k] = true;
+    }
+  }
+
   int cp_size_;
+  std::array<bool, NR * NL> depends_;  ///< dr_row / dz_local not identically zero
   PointBasis basis_;
   std::vector<LocalGroup> groups_;
   int length_local_;
@@ -93,10 +138,11 @@ template <int NL, int NR, typename Kernel>
 std::shared_ptr<const ResidualBlock> make_point_block(std::string kind, std::string name,
                                                       std::vector<VariableId> variables, int cp_size,
                                                       const PointBasis& basis, std::vector<LocalGroup> groups,
-                                                      int length_local, Kernel kernel) {
+                                                      int length_local, Kernel kernel,
+                                                      bool detect_sparsity = false) {
   return std::make_shared<PointBlock<NL, NR, Kernel>>(std::move(kind), std::move(name), std::move(variables),
                                                       cp_size, basis, std::move(groups), length_local,
-                                                      std::move(kernel));
+                                                      std::move(kernel), detect_sparsity);
 }
 
 }  // namespace pcr::collocation
