@@ -158,18 +158,11 @@ RobotSolution ForwardKinematics::solve(const VecX& inputs) {
     iterations += summary.iterations;
   }
   if (!summary.converged()) {
-    // Continuation in the inputs from the last converged state (or, on a cold start, from the
-    // model's default inputs, solved first).
-    VecX x_start = x_;
-    if (!has_solution_) {
-      const VecX defaults = assembly_.model().default_input_values();
-      assembly_.fix_inputs(defaults);
-      x_start = assembly_.initial_guess();
-      const SolveSummary s0 = solve_once(x_start);
-      iterations += s0.iterations;
-      if (!s0.converged()) x_start.resize(0);
-    }
-    if (x_start.size() > 0) {
+    // Continuation in the inputs u(t) = u0 + t (inputs - u0), adaptive steps in t: first from the last
+    // converged state, then (on a cold start, only) from the model's default inputs solved from the
+    // straight initial guess. The warm path starts in a deformed state that may be far from the new
+    // inputs and fails more often than the cold one (random input sweeps), hence the second attempt.
+    auto continuation = [&](const VecX& x_start, const char* from) {
       const VecX u0 = assembly_.inputs(x_start);
       double t = 0.0, step = 0.5;
       VecX xc = x_start;
@@ -195,10 +188,23 @@ RobotSolution ForwardKinematics::solve(const VecX& inputs) {
       if (t >= 1.0 && last.converged()) {
         x = xc;
         summary = last;
-        summary.message = "converged by continuation in the inputs (" + std::to_string(steps) + " steps)";
-      } else {
-        summary.message += "; continuation in the inputs stopped at t = " + std::to_string(t);
+        summary.message = "converged by continuation in the inputs from " + std::string(from) + " (" +
+                          std::to_string(steps) + " steps)";
+        return true;
       }
+      summary.message += "; continuation from " + std::string(from) + " stopped at t = " + std::to_string(t);
+      return false;
+    };
+    bool done = has_solution_ && continuation(x_, "the last solution");
+    if (!done) {
+      assembly_.fix_inputs(assembly_.model().default_input_values());
+      VecX x_default = assembly_.initial_guess();
+      const SolveSummary s0 = solve_once(x_default);
+      iterations += s0.iterations;
+      if (s0.converged())
+        continuation(x_default, "the default inputs");
+      else
+        summary.message += "; the default inputs did not converge from the straight initial guess";
     }
     assembly_.fix_inputs(inputs);
   }

@@ -2,7 +2,7 @@
 // Forward and inverse kinematics of a robot (DESIGN.md §4) on its assembly.
 //  - ForwardKinematics: inputs -> platform poses, rod shapes and end wrenches (square system;
 //    Newton by default). Each solve is warm-started from the previous solution; a failed solve is
-//    retried by continuation in the inputs from the last converged state.
+//    retried by continuation in the inputs from the last converged state, then from the default inputs.
 //  - InverseKinematics: platform targets -> inputs. A full-pose target on every DOF gives a square
 //    system, solved by Newton when the result is inside the input bounds; otherwise (bounds active,
 //    partial targets) Ipopt minimises the distance to the reference inputs subject to all equations.
