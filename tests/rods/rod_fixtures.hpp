@@ -30,10 +30,13 @@ inline Vec3 constant_curvature_position(const Vec3& kappa, double s) {
   if (w < 1e-300) return s * Vec3::UnitZ();
   const Vec3 a = kappa / w, e3 = Vec3::UnitZ();
   const double ws = w * s;
-  return e3 * std::sin(ws) / w + a.cross(e3) * (1.0 - std::cos(ws)) / w + a * a.dot(e3) * (s - std::sin(ws) / w);
+  return e3 * std::sin(ws) / w + a.cross(e3) * (1.0 - std::cos(ws)) / w +
+         a * a.dot(e3) * (s - std::sin(ws) / w);
 }
 
-inline Mat3 constant_curvature_rotation(const Vec3& kappa, double s) { return so3_exp(s * kappa); }
+inline Mat3 constant_curvature_rotation(const Vec3& kappa, double s) {
+  return so3_exp(s * kappa);
+}
 
 /// The helical spring of Weeger et al. 2017 §7: a stress-free helix of radius R = 0.01 and pitch
 /// angle alpha (3 coils, EI = 2e-3, GJ = 1.5e-3) as intrinsic curvature kappa0 = (k, 0, tau) with
@@ -46,7 +49,8 @@ struct HelicalSpring {
   /// Clamped at the origin, free tip, stress-free in the helix; axial/shear stiffness
   /// stiffness_ratio * EI / R^2. The dead tip load F along the axis acts through the axis point.
   RodModel model(double stiffness_ratio, double F) const {
-    RodModel m = cantilever(length, Vec3::Constant(stiffness_ratio * EI / (radius * radius)), Vec3(EI, EI, GJ));
+    RodModel m =
+        cantilever(length, Vec3::Constant(stiffness_ratio * EI / (radius * radius)), Vec3(EI, EI, GJ));
     m.intrinsic.curvature = kappa0;
     m.tip.force = F * axis;
     m.tip.moment = (on_axis - tip_ref).cross(F * axis);
@@ -96,7 +100,21 @@ inline Elastica bisshopp_drucker(double alpha) {
   const double t0 = 0.5 * (a + b);
   double k, phi1;
   parts(t0, k, phi1);
-  return {1 - std::sqrt(2 * std::sin(t0) / alpha), 1 - 2 * (ellint_2(k) - ellint_2(k, phi1)) / std::sqrt(alpha), t0};
+  return {1 - std::sqrt(2 * std::sin(t0) / alpha),
+          1 - 2 * (ellint_2(k) - ellint_2(k, phi1)) / std::sqrt(alpha), t0};
+}
+
+/// Post-buckled inextensible elastica of the clamped-free column under P = lambda P_cr:
+/// sqrt(lambda) = 2 K(k) / pi with k = sin(theta0 / 2); tip lateral deflection delta / L = 2 k / K(k)
+/// (Timoshenko & Gere §2.7). Solved for k by bisection (K increases with k).
+inline double clamped_free_elastica_deflection(double lambda) {
+  double a = 0.0, b = 1.0 - 1e-15;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (a + b);
+    (2.0 * boost::math::ellint_1(mid) / M_PI < std::sqrt(lambda) ? a : b) = mid;
+  }
+  const double k = 0.5 * (a + b);
+  return 2.0 * k / boost::math::ellint_1(k);
 }
 
 }  // namespace pcr::test

@@ -8,7 +8,6 @@
 #define BOOST_TEST_MODULE hard_rods
 #include <boost/test/unit_test.hpp>
 
-#include <boost/math/special_functions/ellint_1.hpp>
 #include <cmath>
 #include <functional>
 #include <sstream>
@@ -51,19 +50,6 @@ double beam_column_deflection(double EI, double P, double H, double L) {
   return H / (P * k) * (std::tan(k * L) - k * L);
 }
 
-/// Post-buckled inextensible elastica of the clamped-free column under P = lambda P_cr:
-/// sqrt(lambda) = 2 K(k) / pi with k = sin(theta0 / 2); tip lateral deflection delta / L = 2 k / K(k)
-/// (Timoshenko & Gere §2.7). Solved for k by bisection (K increases with k).
-double elastica_deflection(double lambda) {
-  double a = 0.0, b = 1.0 - 1e-15;
-  for (int i = 0; i < 200; ++i) {
-    const double mid = 0.5 * (a + b);
-    (2.0 * boost::math::ellint_1(mid) / M_PI < std::sqrt(lambda) ? a : b) = mid;
-  }
-  const double k = 0.5 * (a + b);
-  return 2.0 * k / boost::math::ellint_1(k);
-}
-
 std::vector<Case> cases() {
   std::vector<Case> c;
   // Lateral dead force alpha = P L^2 / EI = 10: Bisshopp & Drucker's elastica (y_tip / L).
@@ -84,7 +70,7 @@ std::vector<Case> cases() {
                  [lambda](const RodModel& m, const RodSolution& s) {
                    const double EI = bending_stiffness(m), P = -m.tip.force.z(), H = m.tip.force.x();
                    const double ref = lambda < 1.0 ? beam_column_deflection(EI, P, H, kLength) / kLength
-                                                   : elastica_deflection(lambda);
+                                                   : test::clamped_free_elastica_deflection(lambda);
                    return std::abs(std::abs(s.tip().position.x()) / kLength - ref) / ref;  // relative
                  }});
   }

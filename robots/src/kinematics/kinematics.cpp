@@ -10,6 +10,7 @@
 #include "input_objective.hpp"
 #include "pcr/core/error.hpp"
 #include "pcr/math/quaternion.hpp"
+#include "pcr/solve/free_jacobian.hpp"
 #include "pcr/solve/ipopt_solver.hpp"
 #include "pcr/solve/newton_solver.hpp"
 #include "secant_predictor.hpp"
@@ -39,39 +40,17 @@ IpoptOptions ipopt_options(const KinematicsOptions& o) {
   return i;
 }
 
-/// Columns of the free (not fixed) variables, in order.
-std::vector<int> free_columns(const Problem& problem) {
-  std::vector<int> cols;
-  for (int v = 0; v < problem.num_variable_blocks(); ++v) {
-    if (problem.variable_fixed(v)) continue;
-    const VariableBlock& b = problem.variable(v);
-    for (int k = 0; k < b.size; ++k) cols.push_back(b.offset + k);
-  }
-  return cols;
-}
-
 /// Solves J_free dX = -rhs for the free columns (implicit function theorem); returns dX over all
 /// variables (zero rows for fixed ones), one column per rhs column.
 MatX implicit_derivative(const Problem& problem, const VecX& x, const MatX& rhs) {
-  VecX c;
-  Eigen::SparseMatrix<double, Eigen::RowMajor> J;
-  problem.evaluate_residuals_and_jacobian(x, c, J);
-  const std::vector<int> cols = free_columns(problem);
-  std::vector<int> position(problem.num_variables(), -1);
-  for (size_t k = 0; k < cols.size(); ++k) position[cols[k]] = static_cast<int>(k);
-  std::vector<Eigen::Triplet<double>> t;
-  for (int r = 0; r < J.outerSize(); ++r)
-    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(J, r); it; ++it)
-      if (position[it.col()] >= 0) t.emplace_back(r, position[it.col()], it.value());
-  Eigen::SparseMatrix<double> Jf(J.rows(), static_cast<int>(cols.size()));
-  Jf.setFromTriplets(t.begin(), t.end());
+  const FreeJacobian J = free_jacobian(problem, x);
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
-  lu.compute(Jf);
+  lu.compute(J.matrix);
   require(lu.info() == Eigen::Success,
           "derivatives: the assembled Jacobian is singular at this configuration");
   const MatX dfree = lu.solve(-rhs);
   MatX out = MatX::Zero(problem.num_variables(), rhs.cols());
-  for (size_t k = 0; k < cols.size(); ++k) out.row(cols[k]) = dfree.row(k);
+  for (size_t k = 0; k < J.columns.size(); ++k) out.row(J.columns[k]) = dfree.row(k);
   return out;
 }
 

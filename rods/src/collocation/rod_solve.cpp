@@ -3,10 +3,11 @@
 #include <chrono>
 #include <sstream>
 
+#include <Eigen/SparseLU>
 #include "pcr/core/error.hpp"
+#include "pcr/solve/free_jacobian.hpp"
 #include "pcr/solve/ipopt_solver.hpp"
 #include "pcr/solve/newton_solver.hpp"
-#include <Eigen/SparseLU>
 
 #include "pcr/splines/basis.hpp"
 #include "pcr/splines/spline_curve.hpp"
@@ -32,9 +33,35 @@ SolveSummary solve_at(const CollocationRod& rod, const RodSolveOptions& options,
   return IpoptSolver(problem, o).solve(x);
 }
 
+// Sign of det J at the unloaded state (load factor 0, the initial guess) and at the solution.
+// The unloaded state is the straight initial guess (whatever initial guess the solve itself used).
+StabilityIndicator stability_of(const CollocationRod& rod, const VecX& x_solution, double tolerance) {
+  Problem unloaded, loaded;
+  rod.add_to_problem(unloaded, {}, 0.0);
+  rod.add_to_problem(loaded, {}, 1.0);
+  const VecX x0 = unloaded.initial_values();
+  VecX c;
+  unloaded.evaluate_residuals(x0, c);
+  if (!(unloaded.constraint_violation(c) <= tolerance)) return StabilityIndicator::NotChecked;
+  const int sign0 = jacobian_determinant_sign(unloaded, x0),
+            sign1 = jacobian_determinant_sign(loaded, x_solution);
+  if (sign0 == 0 || sign1 == 0) return StabilityIndicator::NotChecked;
+  return sign0 == sign1 ? StabilityIndicator::SignKept : StabilityIndicator::Unstable;
+}
+
 }  // namespace
 
-const char* to_string(SolverKind solver) { return solver == SolverKind::Newton ? "newton" : "ipopt"; }
+const char* to_string(StabilityIndicator s) {
+  switch (s) {
+    case StabilityIndicator::SignKept: return "sign_kept";
+    case StabilityIndicator::Unstable: return "unstable";
+    default: return "not_checked";
+  }
+}
+
+const char* to_string(SolverKind solver) {
+  return solver == SolverKind::Newton ? "newton" : "ipopt";
+}
 
 RodSolution solve_rod(const RodModel& model, const RodSolveOptions& options, const VecX* initial) {
   const auto start = std::chrono::steady_clock::now();
@@ -63,7 +90,8 @@ RodSolution solve_rod(const RodModel& model, const RodSolveOptions& options, con
     while (lambda < 1.0 && steps < options.max_load_steps && step > 1e-7) {
       const double target = std::min(1.0, lambda + step);
       VecX trial = x;
-      if (previous_step > 0.0) trial += (x - x_previous) * ((target - lambda) / previous_step);  // secant predictor
+      if (previous_step > 0.0)
+        trial += (x - x_previous) * ((target - lambda) / previous_step);  // secant predictor
       last = solve_at(rod, options, target, trial, sol.variables);
       iterations += last.iterations;
       ++steps;
@@ -91,14 +119,18 @@ RodSolution solve_rod(const RodModel& model, const RodSolveOptions& options, con
     sol.summary.message = msg.str() + (sol.summary.message.empty() ? "" : "; " + sol.summary.message);
   }
   sol.summary.iterations = iterations;
-  sol.summary.wall_time_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (options.check_stability && sol.summary.converged())
+    sol.stability = stability_of(rod, sol.x, options.tolerance);
+  sol.summary.wall_time_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return sol;
 }
 
 VecX refine_solution(const RodSolution& solution, const RodDiscretization& finer) {
   const CollocationRod& rod = *solution.rod;
   require(finer.formulation == rod.discretization().formulation,
-          "refine_solution: the formulation must stay the same (", to_string(rod.discretization().formulation), ")");
+          "refine_solution: the formulation must stay the same (",
+          to_string(rod.discretization().formulation), ")");
   // Interpolation of the solution's spline at the Greville abscissae of the new basis: exact (up to
   // round-off) when the new space contains the old one (knot insertion), otherwise accurate to the
   // interpolation error, which is all an initial guess needs.
@@ -106,7 +138,8 @@ VecX refine_solution(const RodSolution& solution, const RodDiscretization& finer
   const std::vector<double> tau = target.knots().greville();
   const int n_old = rod.num_control_points(), cp = rod.control_point_size();
   MatX points(cp, n_old);
-  for (int i = 0; i < n_old; ++i) points.col(i) = solution.x.segment(solution.variables.control_point_offset + i * cp, cp);
+  for (int i = 0; i < n_old; ++i)
+    points.col(i) = solution.x.segment(solution.variables.control_point_offset + i * cp, cp);
   const SplineCurve curve(rod.knots(), points);
   const int n = target.num_control_points();
   MatX values(n, cp);

@@ -17,15 +17,34 @@ const char* to_string(SolverKind solver);
 struct RodSolveOptions {
   RodDiscretization discretization;
   SolverKind solver = SolverKind::Newton;
-  double tolerance = 1e-10;  ///< max-abs of the dimensionless residual (see collocation_rod.hpp)
-  int max_iterations = 50;   ///< per solve
-  bool load_stepping = true; ///< automatic when the direct solve fails
+  double tolerance = 1e-10;   ///< max-abs of the dimensionless residual (see collocation_rod.hpp)
+  int max_iterations = 50;    ///< per solve
+  bool load_stepping = true;  ///< automatic when the direct solve fails
   int max_load_steps = 400;
+  /// Stability indicator of the result (RodSolution::stability); costs two sparse LU factorisations.
+  bool check_stability = false;
 };
+
+/// Stability indicator (DESIGN.md §4): the sign of det J (the Jacobian of the collocation system with
+/// respect to the free unknowns) at the solution against its sign in the unloaded state (load factor 0,
+/// where the straight initial guess is the solution and is stable). det J vanishes where an equilibrium
+/// path crosses a fold or a bifurcation (a zero eigenvalue of the second variation of the energy), so
+/// a different sign means an odd number of such crossings lies between the two states, and for
+/// conservative loads the solution has an odd number of unstable modes: e.g. the straight column above
+/// the Euler load. The same sign does not prove stability: an even number of crossings keeps it, e.g.
+/// above the second critical load, or a double critical mode such as the buckling of a rod with a
+/// circular section (both bending directions at once).
+enum class StabilityIndicator {
+  NotChecked,  ///< not asked, not converged, singular, or the initial guess is not the unloaded solution
+  SignKept,    ///< det J has the unloaded state's sign
+  Unstable,    ///< det J changed sign: unstable equilibrium
+};
+const char* to_string(StabilityIndicator s);
 
 struct RodSolution {
   SolveSummary summary;  ///< of the last solve; iterations summed over all load steps
   int load_steps = 0;    ///< 0 when the direct solve succeeded
+  StabilityIndicator stability = StabilityIndicator::NotChecked;
   std::shared_ptr<const CollocationRod> rod;
   RodVariables variables;
   VecX x;  ///< all variables of the rod's problem (control points, then L)
@@ -38,7 +57,8 @@ struct RodSolution {
 
 /// Solves the rod; `initial` (control point values, size n * control_point_size) replaces the
 /// straight initial guess.
-RodSolution solve_rod(const RodModel& model, const RodSolveOptions& options = {}, const VecX* initial = nullptr);
+RodSolution solve_rod(const RodModel& model, const RodSolveOptions& options = {},
+                      const VecX* initial = nullptr);
 
 /// Control points of `solution` carried to another discretisation of the same formulation, by
 /// interpolation at the new Greville abscissae (the same curve when the new space contains the old

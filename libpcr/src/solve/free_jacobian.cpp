@@ -1,0 +1,42 @@
+#include "pcr/solve/free_jacobian.hpp"
+
+#include <Eigen/SparseLU>
+
+namespace pcr {
+
+FreeJacobian free_jacobian(const Problem& problem, const VecX& x) {
+  FreeJacobian out;
+  std::vector<int> position(problem.num_variables(), -1);
+  for (int v = 0; v < problem.num_variable_blocks(); ++v) {
+    if (problem.variable_fixed(v)) continue;
+    const VariableBlock& b = problem.variable(v);
+    for (int k = 0; k < b.size; ++k) {
+      position[b.offset + k] = static_cast<int>(out.columns.size());
+      out.columns.push_back(b.offset + k);
+    }
+  }
+  VecX c;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> J;
+  problem.evaluate_residuals_and_jacobian(x, c, J);
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(J.nonZeros());
+  for (int r = 0; r < J.outerSize(); ++r)
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(J, r); it; ++it)
+      if (position[it.col()] >= 0) entries.emplace_back(r, position[it.col()], it.value());
+  out.matrix.resize(J.rows(), static_cast<int>(out.columns.size()));
+  out.matrix.setFromTriplets(entries.begin(), entries.end());
+  out.matrix.makeCompressed();
+  return out;
+}
+
+int jacobian_determinant_sign(const Problem& problem, const VecX& x) {
+  const FreeJacobian J = free_jacobian(problem, x);
+  if (J.matrix.rows() != J.matrix.cols() || J.matrix.rows() == 0) return 0;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+  lu.compute(J.matrix);
+  if (lu.info() != Eigen::Success) return 0;
+  const double sign = lu.signDeterminant();  // diagonal of U and both permutations
+  return sign > 0.0 ? 1 : (sign < 0.0 ? -1 : 0);
+}
+
+}  // namespace pcr
