@@ -161,15 +161,15 @@ void collocation_setting(const Scenes& sc, const References& ref, const AllConfi
         cold);
     const double error = s.summary.converged() ? input_error(s.inputs, ref.ik_inputs) : NAN;
     // IK picks its solver itself (Newton for this square system inside the bounds): name the one used.
-    out.record("R5a_ik_cold", form + s.summary.solver, settings, error, t, s.summary.iterations,
-               to_string(s.summary.status));
+    out.record("R5a_ik_cold", form + (s.summary.solver.empty() ? to_string(solver) : s.summary.solver),
+               settings, error, t, s.summary.iterations, to_string(s.summary.status));
   }
   if (path && config.selected("R5b_ik_path")) {
     InverseKinematics ik(sc.r5b, {platform_target()}, o);
     std::vector<double> times;
     double error = 0.0, iterations = 0.0;
     bool failed = false;
-    std::string used;
+    std::string used = to_string(solver);
     for (size_t k = 0; k < sc.path.size(); ++k) {
       const auto t0 = std::chrono::steady_clock::now();
       const RobotSolution s = ik.solve({sc.path[k]});
@@ -179,7 +179,7 @@ void collocation_setting(const Scenes& sc, const References& ref, const AllConfi
       }
       failed = failed || !s.summary.converged();
       if (!failed) error = std::max(error, input_error(s.inputs, ref.path_inputs[k]));
-      used = s.summary.solver;
+      if (!s.summary.solver.empty()) used = s.summary.solver;
     }
     out.record("R5b_ik_path", form + used, settings, failed ? NAN : error, summarise(times),
                iterations / times.size(), failed ? "failed" : "converged");
