@@ -2,12 +2,18 @@
 # One log-log PNG per scene of error against median run time per solve, one series per method, from
 # benchmark CSVs (scene,method,settings,error,time_median_s,time_min_s,time_max_s,iterations; rows with
 # a non-finite error — failed solves — are left out).
-# usage: scripts/plot_bench.sh [csv...]   (default: every benchmarks/results/*.csv)
+# usage: scripts/plot_bench.sh [csv...]   (default: every benchmarks/results/*.csv but all.csv, whose scenes
+# and methods repeat those of the per-harness CSVs: scripts/bench_report.sh plots it)
 # writes benchmarks/results/<scene>.png
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 out_dir="$root/benchmarks/results"
-if [ $# -gt 0 ]; then csvs=("$@"); else csvs=("$out_dir"/*.csv); fi
+if [ $# -gt 0 ]; then
+  csvs=("$@")
+else
+  csvs=()
+  for f in "$out_dir"/*.csv; do [ "$(basename "$f")" = all.csv ] || csvs+=("$f"); done
+fi
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 # Split into one data file per (scene, method): "time error".

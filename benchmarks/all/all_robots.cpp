@@ -1,0 +1,301 @@
+// bench_all, Stewart-Gough robots (common/robot_scenes.hpp):
+//  - R5a_fk_cold: FK at the moved inputs, error = platform position error [m];
+//  - R5a_ik_cold: IK to (0, 0, 0.4) m, R_y(10 deg), error = max input (rod length) error [m];
+//    both cold: a new solver object per solve (collocation: assembly included);
+//  - R5b_ik_path: IK along the teleoperation path, each solve warm-started from the previous; time per
+//    warm solve (the first, cold, solve excluded), error = max input error along the path,
+//    iterations = mean per warm solve.
+// References (independent method): collocation runs against shooting (Dormand-Prince 1e-12, residual
+// 1e-12), shooting runs against collocation (mixed, p = 8, 32 elements, tolerance 1e-11; at 16
+// elements it already agrees with that shooting reference to 2e-11 m (platform) / 5e-11 m (inputs),
+// tests/shooting_robots).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "all/all_runs.hpp"
+#include "common/robot_scenes.hpp"
+#include "pcr/robots/kinematics.hpp"
+#include "pcr/robots/shooting/shooting_robot_solver.hpp"
+
+namespace pcr::bench {
+
+namespace {
+
+/// Results that the errors are measured on: platform position (FK), inputs (IK, one per path pose).
+struct References {
+  Vec3 fk_platform = Vec3::Zero();
+  VecX ik_inputs;
+  std::vector<VecX> path_inputs;
+  bool ok = false;
+};
+
+struct Scenes {
+  std::shared_ptr<const RobotModel> r5a = load_r5a(), r5b = load_r5b();
+  VecX fk_inputs;
+  Pose target;
+  std::vector<Pose> path;
+};
+
+double input_error(const VecX& a, const VecX& b) {
+  return (a - b).lpNorm<Eigen::Infinity>();
+}
+
+KinematicsOptions collocation_options(RodFormulation formulation, int degree, int elements, SolverKind solver,
+                                      double tolerance = 1e-10) {
+  KinematicsOptions o;
+  o.assembly.discretization = {formulation, degree, elements};
+  o.assembly.use_model_hints = false;
+  o.solver = solver;
+  o.tolerance = tolerance;
+  return o;
+}
+
+ShootingRobotOptions shooting_reference_options() {
+  ShootingRobotOptions o;
+  o.rel_tol = o.abs_tol = 1e-12;
+  o.residual_tolerance = 1e-12;
+  return o;
+}
+
+References shooting_references(const Scenes& sc, const AllConfig& config, Recorder& out) {
+  References ref;
+  ShootingRobotSolver a(sc.r5a, shooting_reference_options());
+  if (config.selected("R5a_fk_cold")) {
+    const ShootingRobotResult fk = a.fk(sc.fk_inputs);
+    out.note("R5a FK reference (shooting, Dormand-Prince 1e-12): " + fk.summary.brief_report());
+    if (!fk.summary.converged()) return ref;
+    ref.fk_platform = fk.platforms[0].position;
+  }
+  if (config.selected("R5a_ik_cold")) {
+    const ShootingRobotResult ik = a.ik({sc.target});
+    out.note("R5a IK reference (shooting, Dormand-Prince 1e-12): " + ik.summary.brief_report());
+    if (!ik.summary.converged()) return ref;
+    ref.ik_inputs = ik.inputs;
+  }
+  if (config.selected("R5b_ik_path")) {
+    ShootingRobotSolver b(sc.r5b, shooting_reference_options());
+    for (const Pose& p : sc.path) {
+      const ShootingRobotResult s = b.ik({p});
+      if (!s.summary.converged()) {
+        out.note("R5b reference (shooting) failed: " + s.summary.brief_report());
+        return ref;
+      }
+      ref.path_inputs.push_back(s.inputs);
+    }
+    out.note("R5b path reference (shooting, Dormand-Prince 1e-12): " + std::to_string(sc.path.size()) +
+             " poses");
+  }
+  ref.ok = true;
+  return ref;
+}
+
+References collocation_references(const Scenes& sc, const AllConfig& config, Recorder& out) {
+  References ref;
+  const KinematicsOptions o = collocation_options(RodFormulation::Mixed, 8, 32, SolverKind::Newton, 1e-11);
+  if (config.selected("R5a_fk_cold")) {
+    ForwardKinematics fk(sc.r5a, o);
+    const RobotSolution s = fk.solve(sc.fk_inputs);
+    out.note("R5a FK reference (collocation, mixed p=8 E=32): " + s.summary.brief_report());
+    if (!s.summary.converged()) return ref;
+    ref.fk_platform = s.platforms[0].position;
+  }
+  if (config.selected("R5a_ik_cold")) {
+    InverseKinematics ik(sc.r5a, {platform_target()}, o);
+    const RobotSolution s = ik.solve({sc.target});
+    out.note("R5a IK reference (collocation, mixed p=8 E=32): " + s.summary.brief_report());
+    if (!s.summary.converged()) return ref;
+    ref.ik_inputs = s.inputs;
+  }
+  if (config.selected("R5b_ik_path")) {
+    InverseKinematics ik(sc.r5b, {platform_target()}, o);
+    for (const Pose& p : sc.path) {
+      const RobotSolution s = ik.solve({p});
+      if (!s.summary.converged()) {
+        out.note("R5b reference (collocation) failed: " + s.summary.brief_report());
+        return ref;
+      }
+      ref.path_inputs.push_back(s.inputs);
+    }
+    out.note("R5b path reference (collocation, mixed p=8 E=32): " + std::to_string(sc.path.size()) +
+             " poses");
+  }
+  ref.ok = true;
+  return ref;
+}
+
+/// Cold solves: a new solver object per solve (`solve` builds it), at least 3 and 0.3 s (quick: once,
+/// 0.03 s), at most 50.
+Repeats cold_repeats(const AllConfig& config) {
+  return config.quick ? Repeats{1, 10, 0.03} : Repeats{3, 50, 0.3};
+}
+
+/// One collocation setting on the selected scenes; `cold` repeats the cold FK/IK solves.
+void collocation_setting(const Scenes& sc, const References& ref, const AllConfig& config,
+                         RodFormulation formulation, SolverKind solver, int degree, int elements, bool ik,
+                         bool path, Recorder& out, const Repeats& cold) {
+  const KinematicsOptions o = collocation_options(formulation, degree, elements, solver);
+  const std::string settings = "p=" + std::to_string(degree) + ";E=" + std::to_string(elements);
+  const std::string form = std::string("collocation-") + to_string(formulation) + "-";
+  if (config.selected("R5a_fk_cold")) {
+    RobotSolution s;
+    const Timing t = time_repeated(
+        [&] {
+          ForwardKinematics fk(sc.r5a, o);
+          s = fk.solve(sc.fk_inputs);
+        },
+        cold);
+    const double error = s.summary.converged() ? (s.platforms[0].position - ref.fk_platform).norm() : NAN;
+    out.record("R5a_fk_cold", form + to_string(solver), settings, error, t, s.summary.iterations,
+               to_string(s.summary.status));
+  }
+  if (ik && config.selected("R5a_ik_cold")) {
+    RobotSolution s;
+    const Timing t = time_repeated(
+        [&] {
+          InverseKinematics ik(sc.r5a, {platform_target()}, o);
+          s = ik.solve({sc.target});
+        },
+        cold);
+    const double error = s.summary.converged() ? input_error(s.inputs, ref.ik_inputs) : NAN;
+    // IK picks its solver itself (Newton for this square system inside the bounds): name the one used.
+    out.record("R5a_ik_cold", form + (s.summary.solver.empty() ? to_string(solver) : s.summary.solver),
+               settings, error, t, s.summary.iterations, to_string(s.summary.status));
+  }
+  if (path && config.selected("R5b_ik_path")) {
+    InverseKinematics ik(sc.r5b, {platform_target()}, o);
+    std::vector<double> times;
+    double error = 0.0, iterations = 0.0;
+    bool failed = false;
+    std::string used = to_string(solver);
+    for (size_t k = 0; k < sc.path.size(); ++k) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const RobotSolution s = ik.solve({sc.path[k]});
+      if (k > 0) {  // warm-started solves only
+        times.push_back(seconds_since(t0));
+        iterations += s.summary.iterations;
+      }
+      failed = failed || !s.summary.converged();
+      if (!failed) error = std::max(error, input_error(s.inputs, ref.path_inputs[k]));
+      if (!s.summary.solver.empty()) used = s.summary.solver;
+    }
+    out.record("R5b_ik_path", form + used, settings, failed ? NAN : error, summarise(times),
+               iterations / times.size(), failed ? "failed" : "converged");
+  }
+}
+
+void collocation_sweep(const Scenes& sc, const References& ref, const AllConfig& config, Recorder& out) {
+  const bool quick = config.quick;
+  const std::vector<int> mixed_degrees = quick ? std::vector<int>{5} : std::vector<int>{3, 4, 5, 6};
+  const std::vector<int> mixed_elements = quick ? std::vector<int>{4, 8, 16} : std::vector<int>{4, 8, 16, 32};
+  // The path from 8 elements: at 4 (p = 5) warm solves fail along it, each failure retried by continuation
+  // (6.5 s for the 41 poses of the quick path).
+  for (int p : mixed_degrees)
+    for (int e : mixed_elements)
+      collocation_setting(sc, ref, config, RodFormulation::Mixed, SolverKind::Newton, p, e, true, e >= 8, out,
+                          cold_repeats(config));
+  // Ipopt path: FK only (IK chooses its solver itself), fewer sizes: 10-60x slower than Newton on rods.
+  for (int e : quick ? std::vector<int>{8} : std::vector<int>{4, 8, 16})
+    collocation_setting(sc, ref, config, RodFormulation::Mixed, SolverKind::Ipopt, 5, e, false, false, out,
+                        cold_repeats(config));
+  // Primal form: locks on these slender rods (EA L^2 / EI = 4 L^2 / r^2 ~ 1e6): one cold FK at p = 4
+  // with 4 and 8 elements, full run only (a failing primal FK took 7.7 s at E = 4, a failing primal IK
+  // 22 s, so IK and the path are left out).
+  if (!quick)
+    for (int e : {4, 8})
+      collocation_setting(sc, ref, config, RodFormulation::Primal, SolverKind::Newton, 4, e, false, false,
+                          out, Repeats{1, 1, 0.0});
+}
+
+void shooting_sweep(const Scenes& sc, const References& ref, const AllConfig& config, Recorder& out) {
+  struct Run {
+    std::string method, settings;
+    ShootingRobotOptions options;
+  };
+  std::vector<Run> runs;
+  for (int n : config.quick ? std::vector<int>{20, 80} : std::vector<int>{10, 20, 40, 80, 160}) {
+    ShootingRobotOptions o;
+    o.integrator = IntegratorMethod::RK4;
+    o.rk4_steps = n;
+    o.residual_tolerance = 1e-11;
+    runs.push_back({"shooting-rk4", "N=" + std::to_string(n), o});
+  }
+  for (int e : config.quick ? std::vector<int>{6, 10} : std::vector<int>{4, 6, 8, 10, 12}) {
+    ShootingRobotOptions o;
+    o.rel_tol = o.abs_tol = std::pow(10.0, -e);
+    o.residual_tolerance = std::clamp(1e-2 * o.rel_tol, 1e-12, 1e-10);  // below the integration error
+    runs.push_back({"shooting-dormand_prince", "tol=1e-" + std::to_string(e), o});
+  }
+  for (const Run& run : runs) {
+    if (config.selected("R5a_fk_cold")) {
+      ShootingRobotResult s;
+      const Timing t = time_repeated(
+          [&] {
+            ShootingRobotSolver solver(sc.r5a, run.options);
+            s = solver.fk(sc.fk_inputs);
+          },
+          cold_repeats(config));
+      const double error = s.summary.converged() ? (s.platforms[0].position - ref.fk_platform).norm() : NAN;
+      out.record("R5a_fk_cold", run.method, run.settings, error, t, s.summary.iterations,
+                 to_string(s.summary.status));
+    }
+    if (config.selected("R5a_ik_cold")) {
+      ShootingRobotResult s;
+      const Timing t = time_repeated(
+          [&] {
+            ShootingRobotSolver solver(sc.r5a, run.options);
+            s = solver.ik({sc.target});
+          },
+          cold_repeats(config));
+      const double error = s.summary.converged() ? input_error(s.inputs, ref.ik_inputs) : NAN;
+      out.record("R5a_ik_cold", run.method, run.settings, error, t, s.summary.iterations,
+                 to_string(s.summary.status));
+    }
+    if (config.selected("R5b_ik_path")) {
+      ShootingRobotSolver solver(sc.r5b, run.options);
+      std::vector<double> times;
+      double error = 0.0, iterations = 0.0;
+      bool failed = false;
+      for (size_t k = 0; k < sc.path.size(); ++k) {
+        const auto t0 = std::chrono::steady_clock::now();
+        const ShootingRobotResult s = solver.ik({sc.path[k]});
+        if (k > 0) {  // warm-started solves only
+          times.push_back(seconds_since(t0));
+          iterations += s.summary.iterations;
+        }
+        failed = failed || !s.summary.converged();
+        if (!failed) error = std::max(error, input_error(s.inputs, ref.path_inputs[k]));
+      }
+      out.record("R5b_ik_path", run.method, run.settings, failed ? NAN : error, summarise(times),
+                 iterations / times.size(), failed ? "failed" : "converged");
+    }
+  }
+}
+
+}  // namespace
+
+bool run_robot_scenes(const AllConfig& config, Recorder& out) {
+  if (!config.selected("R5a_fk_cold") && !config.selected("R5a_ik_cold") && !config.selected("R5b_ik_path"))
+    return true;
+  Scenes sc;
+  sc.fk_inputs = r5a_moved_inputs(*sc.r5a);
+  sc.target = r5a_target();
+  // The scene's path has 100 steps out and back; the quick run takes the first 20 of them.
+  sc.path = r5b_path(config.quick ? 20 : 100);
+  bool ok = true;
+  const References by_shooting = shooting_references(sc, config, out);
+  if (by_shooting.ok)
+    collocation_sweep(sc, by_shooting, config, out);
+  else
+    ok = false;
+  const References by_collocation = collocation_references(sc, config, out);
+  if (by_collocation.ok)
+    shooting_sweep(sc, by_collocation, config, out);
+  else
+    ok = false;
+  return ok;
+}
+
+}  // namespace pcr::bench

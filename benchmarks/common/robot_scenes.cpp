@@ -1,0 +1,53 @@
+#include "common/robot_scenes.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "pcr/math/quaternion.hpp"
+#include "pcr/math/so3.hpp"
+#include "pcr/robots/urdf_loader.hpp"
+
+namespace pcr::bench {
+
+std::shared_ptr<const RobotModel> load_r5a() {
+  return std::make_shared<const RobotModel>(
+      load_robot_model(std::string(PCR_MODEL_DIR) + "/stewart_gough.urdf"));
+}
+
+std::shared_ptr<const RobotModel> load_r5b() {
+  return std::make_shared<const RobotModel>(
+      load_robot_model(std::string(PCR_MODEL_DIR) + "/stewart_gough_teleop.urdf"));
+}
+
+VecX r5a_moved_inputs(const RobotModel& r5a) {
+  VecX u = r5a.default_input_values();
+  const double pattern[] = {1.0, -0.6, 0.35, -0.8, 0.5, -0.2};
+  for (int i = 0; i < u.size(); ++i) u[i] += 0.005 * pattern[i % 6];
+  return u;
+}
+
+Pose r5a_target() {
+  Pose target;
+  target.position = Vec3(0, 0, 0.4);
+  target.orientation = quat_from_rotation(rotation_y(10.0 * M_PI / 180.0));
+  return target;
+}
+
+std::vector<Pose> r5b_path(int steps) {
+  std::vector<Pose> path;
+  for (int i = 0; i <= steps; ++i) {
+    Pose p;
+    p.position = Vec3(0, 0.02 + 0.001 * i, 0.48 + 0.001 * i);
+    path.push_back(p);
+  }
+  for (int i = steps - 1; i >= 0; --i) path.push_back(path[i]);
+  return path;
+}
+
+LinkTarget platform_target() {
+  LinkTarget t;
+  t.link = "platform";
+  return t;
+}
+
+}  // namespace pcr::bench

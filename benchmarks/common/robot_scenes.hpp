@@ -1,0 +1,28 @@
+#pragma once
+// The Stewart-Gough scenes of the benchmarks (shared/scenes/README.md R5a, R5b): models, the R5a
+// inputs and target, the R5b teleoperation path.
+#include <memory>
+#include <vector>
+
+#include "pcr/robots/kinematics.hpp"
+#include "pcr/robots/pose.hpp"
+#include "pcr/robots/robot_model.hpp"
+
+namespace pcr::bench {
+
+/// models/stewart_gough.urdf (R5a: steel, gravity, 0.1 kg platform).
+std::shared_ptr<const RobotModel> load_r5a();
+/// models/stewart_gough_teleop.urdf (R5b: no gravity, no platform mass).
+std::shared_ptr<const RobotModel> load_r5b();
+
+/// R5a FK inputs off the default ones: rod lengths moved by 5 mm times (1, -0.6, 0.35, -0.8, 0.5, -0.2).
+VecX r5a_moved_inputs(const RobotModel& r5a);
+/// R5a IK target: platform at (0, 0, 0.4) m, turned by R_y(10 deg).
+Pose r5a_target();
+/// R5b path: (0, 0.02, 0.48) + i (0, 0.001, 0.001) m for i = 0..steps and back to i = 0 (2 steps + 1
+/// poses; the scene has steps = 100), orientation identity.
+std::vector<Pose> r5b_path(int steps = 100);
+/// Collocation IK target on the link "platform" (full pose).
+LinkTarget platform_target();
+
+}  // namespace pcr::bench
