@@ -14,9 +14,11 @@
 
 #include "../../robots/src/kinematics/ik_objectives.hpp"
 #include "../../robots/src/kinematics/reduced_ik.hpp"
+#include "../rods/rod_fixtures.hpp"
 #include "pcr/core/error.hpp"
 #include "pcr/robots/kinematics.hpp"
 #include "pcr/robots/urdf_loader.hpp"
+#include "pcr/rods/rod_solve.hpp"
 #include "pcr/solve/jacobian_check.hpp"
 
 using namespace pcr;
@@ -33,8 +35,9 @@ std::shared_ptr<const RobotModel> load(const std::string& name) {
   return std::make_shared<const RobotModel>(load_robot_model(model_path(name)));
 }
 
-/// The planar robot with rods of the given radius instead of 0.5 mm.
-std::shared_ptr<const RobotModel> planar_with_radius(double radius) {
+/// The planar robot with rods of the given radius instead of 0.5 mm; first_rod_extra: XML put into
+/// the first rod element.
+std::shared_ptr<const RobotModel> planar_with_radius(double radius, const std::string& first_rod_extra = "") {
   std::ifstream in(model_path("planar_three_rod"));
   std::stringstream buffer;
   buffer << in.rdbuf();
@@ -44,6 +47,7 @@ std::shared_ptr<const RobotModel> planar_with_radius(double radius) {
   for (size_t at = xml.find(from); at != std::string::npos; at = xml.find(from, at + to.size()), ++replaced)
     xml.replace(at, from.size(), to);
   BOOST_REQUIRE(replaced == 3);
+  xml.insert(xml.find("</pcr_rod>"), first_rod_extra);
   return std::make_shared<const RobotModel>(parse_robot_model(xml, "planar_thick"));
 }
 
@@ -203,6 +207,7 @@ BOOST_AUTO_TEST_CASE(objective_and_stress_gradients_match_finite_differences) {
     KinematicsOptions o;
     // Primal rods lock at R5a's slenderness (FK does not converge); 1 cm rods on the planar robot.
     if (primal) o.assembly.discretization = RodDiscretization{RodFormulation::Primal, 5, 8};
+    o.assembly.formulation_by_slenderness = false;
     const auto model = primal ? planar_with_radius(0.01) : load("stewart_gough");
     ForwardKinematics fk(model, o);
     BOOST_REQUIRE(fk.solve(moved_inputs(*model, 0.05)).summary.converged());
@@ -400,4 +405,78 @@ BOOST_AUTO_TEST_CASE(bad_ik_options_are_rejected_with_names) {
   KinematicsOptions e;
   e.ik.objective = IkObjective::ActuationEffort;
   BOOST_CHECK_THROW(InverseKinematics(slider, {t}, e), InputError);
+}
+BOOST_AUTO_TEST_CASE(primal_locking_study) {
+  // Cantilever, solid circle of diameter d, E = 1e7, nu = 0.3, tip force P L^2 / EI = 1, at the robot
+  // default discretisation (degree 5, 8 elements), against mixed with 64 elements. Prints the table
+  // quoted at formulation_by_slenderness (robot_assembly.hpp).
+  const double L = 1.0;
+  const Material mat = Material::from_poisson_ratio(1e7, 0.3, 0.0);
+  const AssemblyOptions defaults;
+  for (double d : {0.4, 0.25, 0.2, 0.05, 0.01, 0.005}) {
+    RodModel m = test::cantilever(L, Vec3::Ones(), Vec3::Ones());
+    m.set_material_and_section(mat, CrossSection::circle(d / 2));
+    m.tip.force = Vec3(0.0, m.bending_torsion_stiffness[0] / (L * L), 0.0);
+    RodSolveOptions o;
+    o.discretization = {RodFormulation::Mixed, 5, 64};
+    o.tolerance = 1e-11;
+    const RodSolution reference = solve_rod(m, o);
+    BOOST_REQUIRE(reference.summary.converged());
+    double error[2];
+    bool converged[2];
+    int iterations[2];
+    for (RodFormulation f : {RodFormulation::Primal, RodFormulation::Mixed}) {
+      o.discretization = {f, defaults.discretization.degree, defaults.discretization.elements};
+      o.tolerance = 1e-10;
+      o.max_iterations = 200;
+      const RodSolution sol = solve_rod(m, o);
+      const int k = f == RodFormulation::Mixed;
+      converged[k] = sol.summary.converged();
+      iterations[k] = sol.summary.iterations;
+      error[k] = (sol.tip().position - reference.tip().position).norm() / L;
+    }
+    std::cout << "locking d/L = " << d << " (gyration ratio " << d / 4 << "): tip error / L primal "
+              << error[0] << (converged[0] ? "" : " (not converged)") << " in " << iterations[0]
+              << " iterations, mixed " << error[1] << " in " << iterations[1] << "\n";
+    BOOST_TEST(converged[1]);
+    // Mixed: measured <= 1.2e-5 for all d (README "Rods": 8 elements); bound 2e-5.
+    BOOST_TEST(error[1] < 2e-5);
+    // Primal at and above the threshold d / L = 1/4: measured <= 1.0e-5; bound 1.2e-5.
+    if (d / (4 * L) >= defaults.primal_min_gyration_ratio) BOOST_TEST((converged[0] && error[0] < 1.2e-5));
+    // Well below it the primal form degrades (measured 6e-3 at d/L = 0.01) or does not converge.
+    if (d <= 0.01) BOOST_TEST((!converged[0] || error[0] > 100 * error[1]));
+  }
+}
+
+BOOST_AUTO_TEST_CASE(formulation_is_chosen_by_slenderness_unless_given) {
+  // planar_three_rod: lengths up to 0.5 m. Radius 0.5 mm -> gyration ratio 2.5e-4 / 0.5 = 5e-4
+  // (mixed); radius 0.07 m -> 0.035 / 0.5 = 0.07 >= 1/16 (primal).
+  auto formulations = [](const std::shared_ptr<const RobotModel>& model, const AssemblyOptions& o) {
+    const RobotAssembly a(model, o);
+    std::vector<RodFormulation> f;
+    for (int i = 0; i < a.num_rods(); ++i) f.push_back(a.rod(i).discretization().formulation);
+    return f;
+  };
+  const auto slender = load("planar_three_rod");
+  const auto thick = planar_with_radius(0.07);
+  BOOST_TEST(gyration_ratio(slender->rods()[0]) == 2.5e-4 / 0.5, boost::test_tools::tolerance(1e-12));
+  for (RodFormulation f : formulations(slender, {})) BOOST_TEST((f == RodFormulation::Mixed));
+  for (RodFormulation f : formulations(thick, {})) BOOST_TEST((f == RodFormulation::Primal));
+  // Every shipped model is slender: mixed everywhere (unchanged default behaviour).
+  for (const char* name :
+       {"stewart_gough", "stewart_gough_teleop", "two_stage", "cantilever", "slider_actuated"})
+    for (RodFormulation f : formulations(load(name), {})) BOOST_TEST((f == RodFormulation::Mixed), name);
+  // Options switch the choice off.
+  AssemblyOptions explicit_primal;
+  explicit_primal.formulation_by_slenderness = false;
+  explicit_primal.discretization.formulation = RodFormulation::Primal;
+  for (RodFormulation f : formulations(slender, explicit_primal)) BOOST_TEST((f == RodFormulation::Primal));
+  // A model hint wins over the choice.
+  const std::vector<RodFormulation> hinted =
+      formulations(planar_with_radius(0.07, "<discretization formulation=\"mixed\"/>"), {});
+  BOOST_TEST((hinted[0] == RodFormulation::Mixed));
+  BOOST_TEST((hinted[1] == RodFormulation::Primal));
+  AssemblyOptions bad;
+  bad.primal_min_gyration_ratio = 0.0;
+  BOOST_CHECK_THROW(RobotAssembly(slender, bad), InputError);
 }
