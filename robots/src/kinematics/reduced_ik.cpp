@@ -23,7 +23,7 @@ struct ReducedIk::Evaluator {
   KinematicsOptions options;
   Problem fk;       // FK: target rows off, inputs fixed (square)
   Problem targets;  // only the target rows on
-  std::unique_ptr<NewtonSolver> newton;
+  std::unique_ptr<NewtonSolver> newton, newton_short, newton_capped;
   std::vector<int> input_offsets;
   VecX input_scales, reference;
   std::vector<StressPoint> stress_at;
@@ -33,8 +33,10 @@ struct ReducedIk::Evaluator {
   bool pattern_analysed = false;
   // Cache.
   VecX x_warm, x_start, u_cached, x;
-  bool valid = false, ok = false, have_sensitivity = false;
-  MatX S;  // dx/du, num_variables x num_inputs
+  bool valid = false, ok = false, have_sensitivity = false, converged_once = false;
+  MatX S;                     // dx/du, num_variables x num_inputs
+  VecX x_tangent, u_tangent;  // the last point with a sensitivity, for the predictor
+  MatX S_tangent;
   int fk_solves = 0, newton_iterations = 0;
 
   Evaluator(const RobotAssembly& a, const Problem& ik_problem, const KinematicsOptions& o)
@@ -61,6 +63,10 @@ struct ReducedIk::Evaluator {
     n.max_iterations = o.max_iterations;
     n.reuse_factorization = o.reuse_factorization;
     newton = std::make_unique<NewtonSolver>(fk, n);
+    n.max_iterations = std::min(o.max_iterations, 8);
+    newton_short = std::make_unique<NewtonSolver>(fk, n);
+    n.max_iterations = std::min(o.max_iterations, 25);
+    newton_capped = std::make_unique<NewtonSolver>(fk, n);
     free_position.assign(fk.num_variables(), -1);
     for (int v = 0; v < fk.num_variable_blocks(); ++v) {
       if (fk.variable_fixed(v)) continue;
@@ -93,12 +99,26 @@ struct ReducedIk::Evaluator {
       for (int i = 0; i < num_inputs(); ++i)
         fk.fix_variable(assembly.input_variable(i), VecX::Constant(1, u[i]));
       ok = false;
-      // Warm start from the last converged state; once more from the solve's start point.
-      for (const VecX* start : {&x_warm, &x_start}) {
-        if (start->size() == 0 || (start == &x_start && x_start == x_warm)) continue;
-        x = *start;
+      // Start points in turn: the first-order predictor x_t + S_t (u - u_t) from the last point with
+      // a sensitivity, the last converged state, the solve's start point.
+      // The predictor gets 8 Newton iterations, the other starts 25 once an evaluation of this solve
+      // has converged (a diverging solve is cut short; Ipopt then backtracks to a closer u), the full
+      // max_iterations before (cold start). Measured on R5a, distance objective in the reduced space
+      // (test effort_and_energy_optima_beat_nearby_feasible_points): 484 -> 407 Newton iterations; the
+      // predictor took effort from 94 to 33.
+      std::vector<VecX> starts;
+      if (S_tangent.size() > 0) starts.push_back(x_tangent + S_tangent * (u - u_tangent));
+      const bool predicted = !starts.empty();
+      starts.push_back(x_warm);
+      if (x_start != x_warm) starts.push_back(x_start);
+      for (size_t k = 0; k < starts.size(); ++k) {
+        const VecX& start = starts[k];
+        if (start.size() == 0 || !start.allFinite()) continue;
+        x = start;
         for (int i = 0; i < num_inputs(); ++i) x[input_offsets[i]] = u[i];
-        const SolveSummary s = newton->solve(x);
+        NewtonSolver& solver =
+            predicted && k == 0 ? *newton_short : (converged_once ? *newton_capped : *newton);
+        const SolveSummary s = solver.solve(x);
         ++fk_solves;
         newton_iterations += s.iterations;
         if (s.converged() && x.allFinite()) {
@@ -106,7 +126,10 @@ struct ReducedIk::Evaluator {
           break;
         }
       }
-      if (ok) x_warm = x;
+      if (ok) {
+        x_warm = x;
+        converged_once = true;
+      }
     }
     if (ok && derivatives && !have_sensitivity) ok = sensitivity();
     return ok;
@@ -140,6 +163,9 @@ struct ReducedIk::Evaluator {
     for (size_t k = 0; k < free_columns.size(); ++k) S.row(free_columns[k]) = dfree.row(k);
     for (int i = 0; i < num_inputs(); ++i) S(input_offsets[i], i) = 1.0;
     have_sensitivity = true;
+    x_tangent = x;
+    u_tangent = u_cached;
+    S_tangent = S;
     return true;
   }
 
@@ -321,6 +347,8 @@ void ReducedIk::prepare(const VecX& x, const VecX& reference) {
   e.valid = false;
   e.x_warm = x;
   e.x_start = x;
+  e.S_tangent.resize(0, 0);
+  e.converged_once = false;
   e.fk_solves = 0;
   e.newton_iterations = 0;
 }
