@@ -6,8 +6,12 @@
 #define BOOST_TEST_MODULE ik_objectives
 #include <boost/test/unit_test.hpp>
 
+#include <sys/wait.h>
 #include <Eigen/SVD>
+
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -16,6 +20,7 @@
 #include "../../robots/src/kinematics/reduced_ik.hpp"
 #include "../rods/rod_fixtures.hpp"
 #include "pcr/core/error.hpp"
+#include "pcr/math/quaternion.hpp"
 #include "pcr/robots/kinematics.hpp"
 #include "pcr/robots/urdf_loader.hpp"
 #include "pcr/rods/rod_solve.hpp"
@@ -479,4 +484,79 @@ BOOST_AUTO_TEST_CASE(formulation_is_chosen_by_slenderness_unless_given) {
   AssemblyOptions bad;
   bad.primal_min_gyration_ratio = 0.0;
   BOOST_CHECK_THROW(RobotAssembly(slender, bad), InputError);
+}
+
+namespace {
+
+struct Run {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+/// Runs the built pcr tool (shell words), capturing stdout and stderr.
+Run run_pcr(const std::string& arguments) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "pcr_test_ik_objectives";
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  const std::string command =
+      std::string("'") + PCR_TOOL + "' " + arguments + " > '" + out.string() + "' 2> '" + err.string() + "'";
+  const int status = std::system(command.c_str());
+  Run run;
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  for (auto [path, text] : {std::pair{out, &run.out}, std::pair{err, &run.err}}) {
+    std::ifstream in(path);
+    std::stringstream b;
+    b << in.rdbuf();
+    *text = b.str();
+  }
+  return run;
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(cli_objective_and_stress_options) {
+  const std::string ik = "ik '" + model_path("stewart_gough") + "' --target platform=0.01,-0.015,0.41";
+  const Run effort = run_pcr(ik + " --objective effort --json");
+  BOOST_TEST(effort.exit_code == 0, effort.err);
+  BOOST_TEST(contains(effort.out, "objective effort"), effort.out);
+  BOOST_TEST(contains(effort.out, "\"status\": \"converged\""), effort.out);
+  // An unreachable stress limit: solve failed (exit code 1), reported as infeasible.
+  const Run infeasible = run_pcr(ik + " --objective energy --max-stress 1e3 --json");
+  BOOST_TEST(infeasible.exit_code == 1);
+  BOOST_TEST(contains(infeasible.out, "infeasible"), infeasible.out);
+  // Bad values are usage errors (exit code 2) naming the option.
+  const Run bad_objective = run_pcr(ik + " --objective speed");
+  BOOST_TEST(bad_objective.exit_code == 2);
+  BOOST_TEST(contains(bad_objective.err, "--objective speed"), bad_objective.err);
+  const Run bad_stress = run_pcr(ik + " --max-stress -5");
+  BOOST_TEST(bad_stress.exit_code == 2);
+  BOOST_TEST(contains(bad_stress.err, "--max-stress -5"), bad_stress.err);
+  const Run help = run_pcr("ik --help");
+  BOOST_TEST(contains(help.out, "--objective distance|effort|energy"));
+  BOOST_TEST(contains(help.out, "--formulation auto|mixed|primal"));
+}
+
+BOOST_AUTO_TEST_CASE(square_target_gives_the_newton_inputs_whatever_the_objective) {
+  // R5a full pose target: no freedom left, so the reduced-space solve must land on the inputs of the
+  // square Newton path. Both solve to 1e-10 dimensionless residuals; the inputs agree to ~1e-10 m,
+  // tolerance 1e-8 m.
+  const auto model = load("stewart_gough");
+  LinkTarget t;
+  t.link = "platform";
+  t.pose.position = Vec3(0.0, 0.0, 0.4);
+  t.pose.orientation = quat_from_rotation_vector(Vec3(0.0, 10.0 * kPi / 180.0, 0.0));
+  InverseKinematics newton(model, {t});
+  const RobotSolution s_newton = newton.solve({t.pose});
+  BOOST_REQUIRE(s_newton.summary.converged());
+  BOOST_TEST(s_newton.summary.solver == "newton");
+  KinematicsOptions o;
+  o.ik.objective = IkObjective::ElasticEnergy;
+  InverseKinematics reduced(model, {t}, o);
+  const RobotSolution s = reduced.solve({t.pose});
+  BOOST_REQUIRE_MESSAGE(s.summary.converged(), s.summary.brief_report());
+  BOOST_TEST((s.inputs - s_newton.inputs).cwiseAbs().maxCoeff() < 1e-8);
 }
