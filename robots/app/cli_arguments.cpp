@@ -75,9 +75,16 @@ SolveArguments parse_solve_arguments(const std::string& command, int argc, const
       } else if (arg == "--elements") {
         a.elements = parse_count(value, arg, 1);
       } else if (arg == "--formulation") {
-        if (value != "mixed" && value != "primal")
-          throw UsageError("--formulation " + value + ": expected mixed or primal");
+        if (value != "auto" && value != "mixed" && value != "primal")
+          throw UsageError("--formulation " + value + ": expected auto, mixed or primal");
         a.formulation = value;
+      } else if (arg == "--objective" && command == "ik") {
+        if (value != "distance" && value != "effort" && value != "energy")
+          throw UsageError("--objective " + value + ": expected distance, effort or energy");
+        a.objective = value;
+      } else if (arg == "--max-stress" && command == "ik") {
+        a.max_stress = parse_number(value, arg);
+        if (!(a.max_stress > 0.0)) throw UsageError("--max-stress " + value + ": must be positive (Pa)");
       } else if (arg == "--tolerance") {
         a.tolerance = parse_number(value, arg);
         if (!(a.tolerance > 0.0)) throw UsageError("--tolerance " + value + ": must be positive");
@@ -116,9 +123,15 @@ void print_solve_usage(std::ostream& out, const std::string& command) {
   else
     out << "usage: pcr ik MODEL --target LINK=x,y,z[,qw,qx,qy,qz] [--orientation-only LINK=qw,qx,qy,qz] ...\n"
         << "  inverse kinematics: position target (3 numbers, m) or pose target (7 numbers: position and\n"
-        << "  unit quaternion w,x,y,z, normalised); --input NAME=VALUE sets the starting inputs\n";
+        << "  unit quaternion w,x,y,z, normalised); --input NAME=VALUE sets the starting inputs\n"
+        << "  --objective distance|effort|energy   what the inputs minimise among those reaching the\n"
+        << "                     targets: distance to the starting inputs (default), actuation effort\n"
+        << "                     (squared axial forces of the fed rods at their feed points) or the\n"
+        << "                     elastic energy of all rods\n"
+        << "  --max-stress PA    limit on every rod's outer-fibre stress |N|/A + |M_perp| c/I [Pa]\n";
   out << "options:\n"
-      << "  --degree P --elements E --formulation mixed|primal   discretisation of rods without model hints\n"
+      << "  --degree P --elements E --formulation auto|mixed|primal   discretisation of rods without model\n"
+      << "                     hints (auto, the default: primal only for thick rods, d/L >= 1/4)\n"
       << "  --tolerance T      max-abs of the dimensionless residuals (default 1e-10)\n"
       << "  --points N         centerline points per rod in the results (default 21)\n"
       << "  --json             JSON to stdout instead of the table\n"

@@ -53,6 +53,10 @@ pcr::KinematicsOptions kinematics_options(const SolveArguments& args) {
   if (args.elements > 0) d.elements = args.elements;
   if (args.formulation == "primal") d.formulation = pcr::RodFormulation::Primal;
   if (args.formulation == "mixed") d.formulation = pcr::RodFormulation::Mixed;
+  if (args.formulation == "primal" || args.formulation == "mixed") options.assembly.formulation_by_slenderness = false;
+  if (args.objective == "effort") options.ik.objective = pcr::IkObjective::ActuationEffort;
+  if (args.objective == "energy") options.ik.objective = pcr::IkObjective::ElasticEnergy;
+  if (args.max_stress > 0.0) options.ik.max_rod_stress = args.max_stress;
   if (args.tolerance > 0.0) options.tolerance = args.tolerance;
   if (args.centerline_points > 0) options.centerline_points = args.centerline_points;
   return options;

@@ -87,6 +87,7 @@ void RodModel::set_material_and_section(const Material& material, const CrossSec
                                    material.shear_modulus * section.torsion_constant);
   mass_per_length = material.density * section.area;
   outer_radius = section.outer_radius;
+  youngs_modulus = material.youngs_modulus;
 }
 
 Vec3 RodModel::distributed_force() const { return mass_per_length * loads.gravity + loads.force_per_length; }

@@ -14,6 +14,7 @@ namespace {
 
 RodDiscretization discretization_for(const RodElement& e, const AssemblyOptions& o) {
   RodDiscretization d = o.discretization;
+  if (o.formulation_by_slenderness) d.formulation = formulation_by_slenderness(e, o.primal_min_gyration_ratio);
   if (!o.use_model_hints) return d;
   if (e.formulation == RodFormulationHint::Primal) d.formulation = RodFormulation::Primal;
   if (e.formulation == RodFormulationHint::Mixed) d.formulation = RodFormulation::Mixed;

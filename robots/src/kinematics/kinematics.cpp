@@ -13,6 +13,7 @@
 #include "pcr/solve/free_jacobian.hpp"
 #include "pcr/solve/ipopt_solver.hpp"
 #include "pcr/solve/newton_solver.hpp"
+#include "reduced_ik.hpp"
 #include "secant_predictor.hpp"
 
 namespace pcr {
@@ -72,6 +73,15 @@ bool finite_solution(const VecX& x) {
 }
 
 }  // namespace
+
+const char* to_string(IkObjective objective) {
+  switch (objective) {
+    case IkObjective::InputDistance: return "distance";
+    case IkObjective::ActuationEffort: return "effort";
+    case IkObjective::ElasticEnergy: return "energy";
+  }
+  return "unknown";
+}
 
 RobotSolution read_solution(const RobotAssembly& a, const VecX& x, int centerline_points) {
   RobotSolution s;
@@ -248,7 +258,8 @@ struct InverseKinematics::Solvers {
   std::unique_ptr<NewtonSolver> newton;
   std::unique_ptr<IpoptSolver> ipopt;
   VariableId reference = -1;
-  kinematics::SecantPredictor predictor;  // start point along a path of targets
+  kinematics::SecantPredictor predictor;           // start point along a path of targets
+  std::unique_ptr<kinematics::ReducedIk> reduced;  // other objectives, stress limits (IkOptions)
 };
 
 InverseKinematics::InverseKinematics(std::shared_ptr<const RobotModel> model,
@@ -309,6 +320,9 @@ InverseKinematics::InverseKinematics(std::shared_ptr<const RobotModel> model,
   opt.fix_variable(solvers_->reference, m.default_input_values());
   opt.add_objective_term(std::make_shared<kinematics::InputDistance>(inputs, solvers_->reference, scales));
   x_ = solvers_->square.initial_values();
+  if (kinematics::uses_reduced_space(options.ik))
+    solvers_->reduced =
+        std::make_unique<kinematics::ReducedIk>(assembly_, solvers_->square, target_variables_, options);
 }
 
 RobotSolution InverseKinematics::solve(const std::vector<Pose>& target_poses, const VecX* reference) {
@@ -326,6 +340,7 @@ RobotSolution InverseKinematics::solve(const std::vector<Pose>& target_poses, co
     all_targets.segment(7 * k, 7) = z;
     solvers_->square.fix_variable(target_variables_[k], z);
     solvers_->optimised.fix_variable(target_variables_[k], z);
+    if (solvers_->reduced) solvers_->reduced->set_target(static_cast<int>(k), z);
   }
   const VecX previous_inputs = assembly_.inputs(x_);
   const VecX ref = reference ? *reference : previous_inputs;
@@ -339,6 +354,14 @@ RobotSolution InverseKinematics::solve(const std::vector<Pose>& target_poses, co
   };
   SolveSummary summary;
   VecX x = x_;
+  if (solvers_->reduced) {
+    summary = solvers_->reduced->solve(x, ref);
+    summary.wall_time_seconds = seconds_since(start);
+    if (summary.converged() && x.allFinite()) x_ = x;
+    RobotSolution out = read_solution(assembly_, x.allFinite() ? x : x_, options_.centerline_points);
+    out.summary = summary;
+    return out;
+  }
   bool done = false;
   int iterations = 0;
   if (square_) {

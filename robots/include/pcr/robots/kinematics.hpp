@@ -6,10 +6,14 @@
 //  - InverseKinematics: platform targets -> inputs. A full-pose target on every DOF gives a square
 //    system, solved by Newton when the result is inside the input bounds; otherwise (bounds active,
 //    partial targets) Ipopt minimises the distance to the reference inputs subject to all equations.
+//    Other objectives (actuation effort, elastic energy) and rod stress limits (IkOptions) are solved
+//    in the reduced space of the inputs (robots/src/kinematics/reduced_ik.hpp): Ipopt over u only,
+//    every evaluation a warm-started Newton FK solve x(u), gradients by the implicit function theorem.
 //  - Derivatives by the implicit function theorem on the assembled Jacobian.
 // Poses are world-frame; rotations of poses in derivatives are world-frame rotation vectors.
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +23,31 @@
 
 namespace pcr {
 
+/// What inverse kinematics minimises over the inputs u that reach the targets.
+enum class IkObjective {
+  InputDistance,    ///< 1/2 sum ((u_i - r_i) / scale_i)^2, r = reference inputs (scale: longest rod or 1 rad)
+  ActuationEffort,  ///< 1/2 sum over fed rods of (n(0) . d3(0) / F0)^2 (axial force at the feed point)
+  ElasticEnergy,    ///< (1/2 int_rods m_b^T K_BT^-1 m_b + n_b^T K_SE^-1 n_b ds) / M0, all rods
+};
+const char* to_string(IkObjective objective);
+
+struct IkOptions {
+  IkObjective objective = IkObjective::InputDistance;
+  /// Weight of the input-distance term added to the effort or energy objective (regularisation; 0 = none).
+  double distance_weight = 0.0;
+  /// Upper limit [Pa] on every rod's outer-fibre stress |N| / A + |M_perp| c / I_min at
+  /// stress_points_per_rod equally spaced points (c: the section's outer radius). Needs E and the
+  /// outer radius of every rod (set by RodModel::set_material_and_section).
+  std::optional<double> max_rod_stress;
+  int stress_points_per_rod = 0;  ///< 0: 2 elements + 1 (element ends and midpoints)
+  /// Solve InputDistance without stress limit in the reduced space too (default: the full-space Ipopt).
+  bool reduced_space = false;
+  /// Reduced space: Ipopt's "tol" and limit on the dimensionless target residual.
+  double optimality_tolerance = 1e-8;
+  double target_tolerance = 1e-9;
+  int max_iterations = 200;  ///< Ipopt iterations in the reduced space
+};
+
 struct KinematicsOptions {
   AssemblyOptions assembly;
   SolverKind solver = SolverKind::Newton;  ///< FK only; IK picks Newton or Ipopt as described above
@@ -27,6 +56,7 @@ struct KinematicsOptions {
   int centerline_points = 21;  ///< points per rod in the results
   /// Newton reuses its last factorisation across warm-started solves (see NewtonOptions).
   bool reuse_factorization = true;
+  IkOptions ik;  ///< inverse kinematics only
 };
 
 struct RodResult {

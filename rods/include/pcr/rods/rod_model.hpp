@@ -76,6 +76,7 @@ struct RodModel {
   Vec3 bending_torsion_stiffness = Vec3::Zero();
   double mass_per_length = 0.0;  ///< rho A [kg/m]
   double outer_radius = 0.0;     ///< for stress post-processing (0 = unknown)
+  double youngs_modulus = 0.0;   ///< E [Pa], for stresses from forces (0 = unknown)
   IntrinsicStrains intrinsic;
   DistributedLoads loads;
   RodEnd base;  ///< end at s = 0

@@ -1,0 +1,224 @@
+#include "ik_objectives.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+#include "pcr/core/error.hpp"
+#include "pcr/math/quaternion.hpp"
+#include "pcr/splines/basis.hpp"
+
+namespace pcr::kinematics {
+namespace {
+
+constexpr int kQ = 3, kN = 7, kM = 10;  // offsets in a mixed control point [P, Q, N, M]
+constexpr double kPi = 3.14159265358979323846;
+
+/// phi(n_b, m_b) with its partials g_n = dphi/dn_b, g_m = dphi/dm_b (body frame).
+using BodyFunctional = std::function<double(const Vec3& n_b, const Vec3& m_b, Vec3& g_n, Vec3& g_m)>;
+
+/// phi at parameter u of a rod; when gradient is given, adds weight * dphi/dx to it. work: a copy of x
+/// (primal rods perturb it and restore it).
+double point_functional(const CollocationRod& rod, const RodVariables& v, const VecX& x, VecX& work, double u,
+                        const BodyFunctional& phi, double weight, VecX* gradient) {
+  Vec3 g_n, g_m;
+  if (rod.discretization().formulation == RodFormulation::Mixed) {
+    // n = sum b_i N_i, m = sum b_i M_i, q = sum b_i Q_i; dphi/dn = R g_n, dphi/dm = R g_m,
+    // dphi/dq_k = sum_ab (n g_n^T + m g_m^T)_ab (dR/dq_k)_ab.
+    const BasisDerivatives b = basis_derivatives(rod.knots(), u, 0);
+    const int cp = rod.control_point_size();
+    const int degree = rod.discretization().degree;
+    Quat q = Quat::Zero();
+    Vec3 n = Vec3::Zero(), m = Vec3::Zero();
+    for (int j = 0; j <= degree; ++j) {
+      const int o = v.control_point_offset + (b.first + j) * cp;
+      q += b.values(0, j) * x.segment<4>(o + kQ);
+      n += b.values(0, j) * x.segment<3>(o + kN);
+      m += b.values(0, j) * x.segment<3>(o + kM);
+    }
+    Mat3 R;
+    QuatRotationJacobian dR;
+    rotation_matrix_derivatives(q, R, dR);
+    const double value = phi(R.transpose() * n, R.transpose() * m, g_n, g_m);
+    if (gradient) {
+      const Vec3 dn = R * g_n, dm = R * g_m;
+      const Mat3 D = n * g_n.transpose() + m * g_m.transpose();
+      Quat dq;
+      for (int k = 0; k < 4; ++k) dq[k] = D.cwiseProduct(dR[k]).sum();
+      for (int j = 0; j <= degree; ++j) {
+        const int o = v.control_point_offset + (b.first + j) * cp;
+        const double w = weight * b.values(0, j);
+        gradient->segment<4>(o + kQ) += w * dq;
+        gradient->segment<3>(o + kN) += w * dn;
+        gradient->segment<3>(o + kM) += w * dm;
+      }
+    }
+    return value;
+  }
+  // Primal: n, m from the strains (state_at); central differences over the p + 1 control points whose
+  // basis functions do not vanish at u, and the length. Step 1e-6 (1 + |x_e|): truncation ~1e-12,
+  // round-off ~1e-10 relative.
+  auto evaluate = [&](const VecX& xx) {
+    const RodState st = rod.state_at(xx, v, u * rod.length(xx, v));
+    Vec3 gn, gm;
+    return phi(st.rotation.transpose() * st.force, st.rotation.transpose() * st.moment, gn, gm);
+  };
+  const double value = evaluate(x);
+  if (gradient) {
+    const BasisDerivatives b = basis_derivatives(rod.knots(), u, 0);
+    const int cp = rod.control_point_size();
+    std::vector<int> entries;
+    for (int k = 0; k < (rod.discretization().degree + 1) * cp; ++k)
+      entries.push_back(v.control_point_offset + b.first * cp + k);
+    entries.push_back(v.length_offset);
+    for (int e : entries) {
+      const double h = 1e-6 * (1.0 + std::abs(x[e]));
+      work[e] = x[e] + h;
+      const double fp = evaluate(work);
+      work[e] = x[e] - h;
+      const double fm = evaluate(work);
+      work[e] = x[e];
+      (*gradient)[e] += weight * (fp - fm) / (2.0 * h);
+    }
+  }
+  return value;
+}
+
+/// Gauss-Legendre nodes and weights on [-1, 1] (Newton on P_n from the Chebyshev guesses).
+void gauss_legendre(int n, std::vector<double>& nodes, std::vector<double>& weights) {
+  nodes.assign(n, 0.0);
+  weights.assign(n, 0.0);
+  for (int i = 0; i < n; ++i) {
+    double t = std::cos(kPi * (i + 0.75) / (n + 0.5)), dp = 1.0;
+    for (int it = 0; it < 100; ++it) {
+      double p0 = 1.0, p1 = t;  // P_0, P_1; recurrence (k+1) P_{k+1} = (2k+1) t P_k - k P_{k-1}
+      for (int k = 1; k < n; ++k) {
+        const double p2 = ((2.0 * k + 1.0) * t * p1 - k * p0) / (k + 1.0);
+        p0 = p1;
+        p1 = p2;
+      }
+      dp = n * (t * p1 - p0) / (t * t - 1.0);
+      const double dt = p1 / dp;
+      t -= dt;
+      if (std::abs(dt) < 1e-15) break;
+    }
+    nodes[i] = t;
+    weights[i] = 2.0 / ((1.0 - t * t) * dp * dp);
+  }
+}
+
+/// Rods fed by an input (their length is actuated).
+std::vector<int> fed_rods(const RobotAssembly& a) {
+  std::vector<int> rods;
+  for (const ActuationInput& in : a.model().inputs())
+    if (in.kind == ActuationInput::Kind::RodLength) rods.push_back(in.index);
+  return rods;
+}
+
+double smooth_abs(double v, double delta) {
+  return std::sqrt(v * v + delta * delta);
+}
+
+}  // namespace
+
+double actuation_effort(const RobotAssembly& a, const VecX& x, VecX* gradient) {
+  const std::vector<int> rods = fed_rods(a);
+  require(!rods.empty(), "IK objective 'effort': robot '", a.model().name(),
+          "' has no fed rod (joint efforts are not part of the effort objective)");
+  if (gradient) gradient->setZero(x.size());
+  VecX work = x;
+  const double F0 = a.force_scale();
+  // N = n(0) . d3(0) = n_b3 at u = 0.
+  const BodyFunctional axial = [](const Vec3& n_b, const Vec3&, Vec3& g_n, Vec3& g_m) {
+    g_n = Vec3::UnitZ();
+    g_m.setZero();
+    return n_b[2];
+  };
+  double f = 0.0;
+  for (int r : rods) {
+    const double N = point_functional(a.rod(r), a.rod_variables(r), x, work, 0.0, axial, 0.0, nullptr);
+    f += 0.5 * (N / F0) * (N / F0);
+    if (gradient)
+      point_functional(a.rod(r), a.rod_variables(r), x, work, 0.0, axial, N / (F0 * F0), gradient);
+  }
+  return f;
+}
+
+double elastic_energy(const RobotAssembly& a, const VecX& x, VecX* gradient) {
+  if (gradient) gradient->setZero(x.size());
+  VecX work = x;
+  double energy = 0.0;
+  std::vector<double> nodes, weights;
+  for (int r = 0; r < a.num_rods(); ++r) {
+    const CollocationRod& rod = a.rod(r);
+    const RodVariables& v = a.rod_variables(r);
+    const Vec3 c_se = rod.model().shear_extension_stiffness.cwiseInverse();
+    const Vec3 c_bt = rod.model().bending_torsion_stiffness.cwiseInverse();
+    const BodyFunctional density = [&](const Vec3& n_b, const Vec3& m_b, Vec3& g_n, Vec3& g_m) {
+      g_n = c_se.cwiseProduct(n_b);
+      g_m = c_bt.cwiseProduct(m_b);
+      return 0.5 * (n_b.dot(g_n) + m_b.dot(g_m));
+    };
+    const int spans = rod.discretization().elements;
+    gauss_legendre(rod.discretization().degree + 1, nodes, weights);
+    const double L = rod.length(x, v);
+    double integral = 0.0;  // int_0^1 e du
+    for (int k = 0; k < spans; ++k)
+      for (size_t g = 0; g < nodes.size(); ++g) {
+        const double u = std::clamp((k + 0.5 * (nodes[g] + 1.0)) / spans, 0.0, 1.0);
+        const double w = 0.5 * weights[g] / spans;
+        integral += w * point_functional(rod, v, x, work, u, density, L * w, gradient);
+      }
+    energy += L * integral;
+    if (gradient) (*gradient)[v.length_offset] += integral;  // explicit dependence through ds = L du
+  }
+  return energy;
+}
+
+std::vector<StressPoint> stress_points(const RobotAssembly& a, int points_per_rod) {
+  require(points_per_rod >= 2, "stress points per rod must be >= 2, got ", points_per_rod);
+  std::vector<StressPoint> points;
+  for (int r = 0; r < a.num_rods(); ++r)
+    for (int j = 0; j < points_per_rod; ++j)
+      points.push_back({r, static_cast<double>(j) / (points_per_rod - 1)});
+  return points;
+}
+
+void check_stress_data(const RobotAssembly& a) {
+  for (int r = 0; r < a.num_rods(); ++r) {
+    const RodModel& m = a.rod(r).model();
+    require(m.youngs_modulus > 0.0 && std::isfinite(m.youngs_modulus), "rod stress limit: rod '", m.name,
+            "' has no Young's modulus (E = ", m.youngs_modulus, ")");
+    require(m.outer_radius > 0.0 && std::isfinite(m.outer_radius), "rod stress limit: rod '", m.name,
+            "' has no outer radius (", m.outer_radius, ")");
+  }
+}
+
+VecX rod_stresses(const RobotAssembly& a, const VecX& x, const std::vector<StressPoint>& points,
+                  MatX* jacobian) {
+  VecX sigma(points.size());
+  if (jacobian) jacobian->setZero(static_cast<int>(points.size()), x.size());
+  VecX work = x, row(x.size());
+  for (size_t j = 0; j < points.size(); ++j) {
+    const CollocationRod& rod = a.rod(points[j].rod);
+    const RodModel& m = rod.model();
+    const double E = m.youngs_modulus, c = m.outer_radius;
+    const double EA = m.shear_extension_stiffness[2];
+    const double EI = std::min(m.bending_torsion_stiffness[0], m.bending_torsion_stiffness[1]);
+    const double dN = 1e-9 * rod.force_scale(), dM = 1e-9 * rod.moment_scale();
+    const BodyFunctional stress = [&](const Vec3& n_b, const Vec3& m_b, Vec3& g_n, Vec3& g_m) {
+      const double N = smooth_abs(n_b[2], dN);
+      const double M = std::sqrt(m_b[0] * m_b[0] + m_b[1] * m_b[1] + dM * dM);
+      g_n = Vec3(0.0, 0.0, E * n_b[2] / (N * EA));
+      g_m = Vec3(m_b[0], m_b[1], 0.0) * (E * c / (EI * M));
+      return E * (N / EA + M * c / EI);
+    };
+    row.setZero();
+    sigma[j] = point_functional(rod, a.rod_variables(points[j].rod), x, work, points[j].u, stress, 1.0,
+                                jacobian ? &row : nullptr);
+    if (jacobian) jacobian->row(j) = row.transpose();
+  }
+  return sigma;
+}
+
+}  // namespace pcr::kinematics

@@ -1,0 +1,562 @@
+// IK objectives (actuation effort, elastic energy), the rod stress limit and the reduced-space IK:
+// values against independent computations (strain-form energy, read_solution's axial forces, the
+// stress formula on state_at), gradients against finite differences, optima against nearby feasible
+// points found independently (null-space moves re-projected onto the target with FK), the stress
+// limit active / infeasible, bad options rejected.
+#define BOOST_TEST_MODULE ik_objectives
+#include <boost/test/unit_test.hpp>
+
+#include <sys/wait.h>
+#include <Eigen/SVD>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "../../robots/src/kinematics/ik_objectives.hpp"
+#include "../../robots/src/kinematics/reduced_ik.hpp"
+#include "../rods/rod_fixtures.hpp"
+#include "pcr/core/error.hpp"
+#include "pcr/math/quaternion.hpp"
+#include "pcr/robots/kinematics.hpp"
+#include "pcr/robots/urdf_loader.hpp"
+#include "pcr/rods/rod_solve.hpp"
+#include "pcr/solve/jacobian_check.hpp"
+
+using namespace pcr;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+std::string model_path(const std::string& name) {
+  return std::string(PCR_MODEL_DIR) + "/" + name + ".urdf";
+}
+
+std::shared_ptr<const RobotModel> load(const std::string& name) {
+  return std::make_shared<const RobotModel>(load_robot_model(model_path(name)));
+}
+
+/// The planar robot with rods of the given radius instead of 0.5 mm; first_rod_extra: XML put into
+/// the first rod element.
+std::shared_ptr<const RobotModel> planar_with_radius(double radius, const std::string& first_rod_extra = "") {
+  std::ifstream in(model_path("planar_three_rod"));
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  std::string xml = buffer.str();
+  const std::string from = "radius=\"0.0005\"", to = "radius=\"" + std::to_string(radius) + "\"";
+  int replaced = 0;
+  for (size_t at = xml.find(from); at != std::string::npos; at = xml.find(from, at + to.size()), ++replaced)
+    xml.replace(at, from.size(), to);
+  BOOST_REQUIRE(replaced == 3);
+  xml.insert(xml.find("</pcr_rod>"), first_rod_extra);
+  return std::make_shared<const RobotModel>(parse_robot_model(xml, "planar_thick"));
+}
+
+/// Inputs moved from the defaults by an asymmetric pattern (so that rods bend).
+VecX moved_inputs(const RobotModel& m, double fraction) {
+  const double pattern[] = {1.0, -0.6, 0.35, -0.8, 0.5, -0.2};
+  VecX u = m.default_input_values();
+  for (int i = 0; i < u.size(); ++i)
+    u[i] += pattern[i % 6] * fraction * (m.inputs()[i].upper - m.inputs()[i].lower);
+  return u;
+}
+
+/// Elastic energy in the strain form, 1/2 int (kappa^T K_BT kappa + eps^T K_SE eps) ds (the test
+/// models have no intrinsic strains), by Simpson's rule on 2000 intervals per rod.
+double strain_energy(const RobotAssembly& a, const VecX& x) {
+  double energy = 0.0;
+  for (int r = 0; r < a.num_rods(); ++r) {
+    const CollocationRod& rod = a.rod(r);
+    BOOST_REQUIRE(rod.model().intrinsic.is_zero());
+    const double L = rod.length(x, a.rod_variables(r));
+    const int n = 2000;
+    for (int i = 0; i <= n; ++i) {
+      const RodState st = rod.state_at(x, a.rod_variables(r), L * i / n);
+      const double e =
+          0.5 *
+          (st.curvature_body.dot(rod.model().bending_torsion_stiffness.cwiseProduct(st.curvature_body)) +
+           st.shear_extension_body.dot(
+               rod.model().shear_extension_stiffness.cwiseProduct(st.shear_extension_body)));
+      const double w = (i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0);
+      energy += w * e * L / (3.0 * n);
+    }
+  }
+  return energy;
+}
+
+/// Outer-fibre stress of a solid circle of radius c: |N| / (pi c^2) + |M_perp| c / (pi c^4 / 4).
+double circle_stress(const RodState& st, double c) {
+  const Vec3 d3 = st.rotation.col(2);
+  const double N = st.force.dot(d3);
+  const Vec3 m_perp = st.moment - st.moment.dot(d3) * d3;
+  return std::abs(N) / (kPi * c * c) + m_perp.norm() * c / (kPi * std::pow(c, 4) / 4.0);
+}
+
+/// Max stress at points_per_rod equally spaced points of every rod (radius 1 mm: stewart_gough).
+double max_stress(const RobotAssembly& a, const VecX& x, int points_per_rod, double radius) {
+  double s = 0.0;
+  for (int r = 0; r < a.num_rods(); ++r) {
+    const double L = a.rod(r).length(x, a.rod_variables(r));
+    for (int j = 0; j < points_per_rod; ++j)
+      s = std::max(
+          s, circle_stress(a.rod(r).state_at(x, a.rod_variables(r), L * j / (points_per_rod - 1)), radius));
+  }
+  return s;
+}
+
+/// Central differences of f over every entry of x, h = 1e-6 (1 + |x_i|).
+template <class F>
+VecX numeric_gradient(F f, VecX x) {
+  VecX g(x.size());
+  for (int i = 0; i < x.size(); ++i) {
+    const double xi = x[i], h = 1e-6 * (1.0 + std::abs(xi));
+    x[i] = xi + h;
+    const double fp = f(x);
+    x[i] = xi - h;
+    const double fm = f(x);
+    x[i] = xi;
+    g[i] = (fp - fm) / (2.0 * h);
+  }
+  return g;
+}
+
+LinkTarget position_target(const Vec3& p) {
+  LinkTarget t;
+  t.link = "platform";
+  t.mode = LinkTarget::Mode::Position;
+  t.pose.position = p;
+  return t;
+}
+
+/// A position-only target near R5a's (3 of 6 inputs redundant), off the symmetry axis: at the
+/// symmetric point (0, 0, 0.4) every objective is stationary by symmetry and Ipopt started from equal
+/// inputs stays on equal inputs (a saddle of the distance).
+const Vec3 kTarget(0.01, -0.015, 0.41);
+
+/// Effort and energy of the FK solution at u (independent of the IK code): sum of squared axial
+/// forces at the feed points [N^2] from read_solution, strain-form energy [J].
+struct FkObjectives {
+  bool converged = false;
+  Vec3 position = Vec3::Zero();
+  double effort = 0.0, energy = 0.0;
+};
+FkObjectives fk_objectives(ForwardKinematics& fk, const VecX& u) {
+  FkObjectives o;
+  const RobotSolution s = fk.solve(u);
+  o.converged = s.summary.converged();
+  o.position = s.platforms[0].position;
+  for (const RodResult& r : s.rods) o.effort += r.axial_force * r.axial_force;
+  o.energy = strain_energy(fk.assembly(), fk.state());
+  return o;
+}
+
+/// Projects u onto {u : platform position(u) = target} by Gauss-Newton with the minimum-norm step
+/// u <- u - J^+ (p(u) - target) (J: position rows of FK's input Jacobian); false if FK fails.
+bool project_onto_target(ForwardKinematics& fk, VecX& u, const Vec3& target) {
+  for (int it = 0; it < 30; ++it) {
+    const RobotSolution s = fk.solve(u);
+    if (!s.summary.converged()) return false;
+    const Vec3 d = s.platforms[0].position - target;
+    if (d.norm() < 1e-13) return true;  // 1e-13 m: round-off level of positions ~0.4 m
+    const MatX J = fk.input_jacobian().topRows(3);
+    u -= J.transpose() * (J * J.transpose()).ldlt().solve(d);
+  }
+  return false;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(objective_and_stress_values_match_independent_computations) {
+  // 32 elements: the strain form's shear energy (from p', K_SE ~ 6e5 N) is 3x off at 8 elements
+  // (3.4e-3 J vs 1.0e-3 J), within 2e-4 relative at 16 and 32 elements; the bending parts agree to
+  // 5e-5 already at 8 (Simpson, 2000 intervals per rod).
+  const auto model = load("stewart_gough");
+  KinematicsOptions o;
+  o.assembly.discretization.elements = 32;
+  ForwardKinematics fk(model, o);
+  const RobotSolution s = fk.solve(moved_inputs(*model, 0.05));
+  BOOST_REQUIRE(s.summary.converged());
+  const RobotAssembly& a = fk.assembly();
+  const VecX& x = fk.state();
+  // Effort: the same axial forces as read_solution's (interpolated at s = 0: round-off only, 1e-12).
+  double effort = 0.0;
+  for (const RodResult& r : s.rods) effort += 0.5 * std::pow(r.axial_force / a.force_scale(), 2);
+  BOOST_TEST(kinematics::actuation_effort(a, x, nullptr) == effort, boost::test_tools::tolerance(1e-12));
+  // Energy: the complementary form (n, m interpolated) against the strain form (p', q' interpolated);
+  // the mixed form satisfies the constitutive law only at the collocation points, so they differ by
+  // the discretisation error: measured 1.6e-8 relative here (32 elements); tolerance 1e-5.
+  const double e_strain = strain_energy(a, x);
+  BOOST_TEST(e_strain > 0.0);
+  BOOST_TEST(kinematics::elastic_energy(a, x, nullptr) == e_strain, boost::test_tools::tolerance(1e-5));
+  // Stress: the smoothing delta = 1e-9 F0 changes the value by < 1e-9 relative; tolerance 1e-8.
+  const auto points = kinematics::stress_points(a, 9);
+  const VecX sigma = kinematics::rod_stresses(a, x, points, nullptr);
+  for (size_t j = 0; j < points.size(); ++j) {
+    const CollocationRod& rod = a.rod(points[j].rod);
+    const RodState st = rod.state_at(x, a.rod_variables(points[j].rod),
+                                     points[j].u * rod.length(x, a.rod_variables(points[j].rod)));
+    BOOST_TEST(sigma[j] == circle_stress(st, 0.001), boost::test_tools::tolerance(1e-8));
+  }
+}
+
+BOOST_AUTO_TEST_CASE(objective_and_stress_gradients_match_finite_differences) {
+  // Mixed rods (analytic chain rule) on R5a and primal rods (local central differences) on the planar
+  // robot. Central differences with h = 1e-6 (1 + |x|): truncation ~1e-12, round-off ~1e-16 f / h
+  // ~1e-10 relative; tolerance 1e-6 of the gradient's max-abs.
+  for (const bool primal : {false, true}) {
+    KinematicsOptions o;
+    // Primal rods lock at R5a's slenderness (FK does not converge); 1 cm rods on the planar robot.
+    if (primal) o.assembly.discretization = RodDiscretization{RodFormulation::Primal, 5, 8};
+    o.assembly.formulation_by_slenderness = false;
+    const auto model = primal ? planar_with_radius(0.01) : load("stewart_gough");
+    ForwardKinematics fk(model, o);
+    BOOST_REQUIRE(fk.solve(moved_inputs(*model, 0.05)).summary.converged());
+    const RobotAssembly& a = fk.assembly();
+    const VecX x = fk.state();
+    auto check = [&](const std::string& what, const VecX& analytic, const VecX& numeric) {
+      const double scale = analytic.cwiseAbs().maxCoeff();
+      BOOST_TEST(scale > 0.0);
+      BOOST_TEST((analytic - numeric).cwiseAbs().maxCoeff() <= 1e-6 * scale,
+                 what << (primal ? " (primal)" : " (mixed)") << ": error "
+                      << (analytic - numeric).cwiseAbs().maxCoeff() << " of " << scale);
+    };
+    VecX g;
+    kinematics::actuation_effort(a, x, &g);
+    check("effort", g,
+          numeric_gradient([&](const VecX& y) { return kinematics::actuation_effort(a, y, nullptr); }, x));
+    kinematics::elastic_energy(a, x, &g);
+    check("energy", g,
+          numeric_gradient([&](const VecX& y) { return kinematics::elastic_energy(a, y, nullptr); }, x));
+    const auto points = kinematics::stress_points(a, 5);
+    MatX H;
+    kinematics::rod_stresses(a, x, points, &H);
+    for (size_t j = 0; j < points.size(); j += 3)
+      check("stress " + std::to_string(j), H.row(j).transpose(),
+            numeric_gradient(
+                [&](const VecX& y) { return kinematics::rod_stresses(a, y, {points[j]}, nullptr)[0]; }, x));
+  }
+}
+
+BOOST_AUTO_TEST_CASE(reduced_gradients_match_finite_differences_of_fk) {
+  // The reduced objective, target rows and stress rows over u (each evaluation an FK solve) against
+  // central differences with relative step 1e-6. Measured on the worst stress row (|N| near 0, where
+  // its smoothing is strongly curved): error 0.17 at step 1e-4, 1.7e-3 at 1e-5 (O(h^2) truncation,
+  // so ~2e-5 at 1e-6, of a derivative ~134), plus FK noise (x(u) to ~1e-12 relative / 1e-6 step);
+  // tolerance 2e-5 absolute + relative.
+  const auto model = load("stewart_gough");
+  InverseKinematics ik(model, {position_target(kTarget)});
+  const Problem& p = ik.assembly().problem();
+  VariableId target = -1;
+  for (int v = 0; v < p.num_variable_blocks(); ++v)
+    if (p.variable(v).name == "target.platform") target = v;
+  BOOST_REQUIRE(target >= 0);
+  KinematicsOptions o;
+  o.tolerance = 1e-12;
+  ForwardKinematics fk(model, o);
+  const VecX u = moved_inputs(*model, 0.05);
+  BOOST_REQUIRE(fk.solve(u).summary.converged());
+  VecX z(7);
+  z << kTarget, 1, 0, 0, 0;
+  VecX x(p.num_variables());
+  x << fk.state(), z;
+  for (const IkObjective objective : {IkObjective::ActuationEffort, IkObjective::ElasticEnergy}) {
+    o.ik.objective = objective;
+    o.ik.distance_weight = 0.1;
+    o.ik.max_rod_stress = 1e8;
+    kinematics::ReducedIk reduced(ik.assembly(), p, {target}, o);
+    reduced.set_target(0, z);
+    reduced.prepare(x, model->default_input_values());
+    JacobianCheckOptions c;
+    c.absolute_tolerance = 2e-5;
+    c.relative_tolerance = 2e-5;
+    const JacobianCheckResult r = check_problem_jacobian(reduced.problem(), u, c);
+    BOOST_TEST(r.passed, to_string(objective) << ": " << r.to_string());
+    BOOST_TEST(r.entries_checked > 6 * 3);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(effort_and_energy_optima_beat_nearby_feasible_points) {
+  const auto model = load("stewart_gough");
+  KinematicsOptions fo;
+  fo.tolerance = 1e-12;
+  ForwardKinematics fk(model, fo);
+  const VecX reference = model->default_input_values();
+  const double L0 = 0.45;  // any positive scale gives the same comparisons; the assembly's (model length)
+  std::map<IkObjective, VecX> optimum;
+  for (const IkObjective objective :
+       {IkObjective::InputDistance, IkObjective::ActuationEffort, IkObjective::ElasticEnergy}) {
+    KinematicsOptions o;
+    o.ik.objective = objective;
+    o.ik.reduced_space = true;
+    InverseKinematics ik(model, {position_target(kTarget)}, o);
+    const RobotSolution s = ik.solve({Pose{kTarget, Quat(1, 0, 0, 0)}}, &reference);
+    BOOST_REQUIRE_MESSAGE(s.summary.converged(), to_string(objective) << ": " << s.summary.brief_report());
+    BOOST_TEST_MESSAGE(to_string(objective) << ": " << s.summary.brief_report());
+    // Target reached: target_tolerance 1e-9 on (x - x_t) / L0 (L0 = 0.45 m), plus FK noise.
+    BOOST_TEST((s.platforms[0].position - kTarget).norm() < 1e-8);
+    optimum[objective] = s.inputs;
+    // The objective at the optimum and at nearby feasible points: u* moved by 5 mm along each null
+    // vector of the position Jacobian, both ways, re-projected onto the target. A local minimum is
+    // no worse than any of them; the margin 1e-7 relative covers Ipopt's tol 1e-8 on the scaled problem.
+    auto value = [&](const VecX& u) {
+      const FkObjectives f = fk_objectives(fk, u);
+      BOOST_REQUIRE(f.converged);
+      if (objective == IkObjective::ActuationEffort) return f.effort;
+      if (objective == IkObjective::ElasticEnergy) return f.energy;
+      return 0.5 * ((u - reference) / L0).squaredNorm();
+    };
+    const double f_opt = value(s.inputs);
+    BOOST_REQUIRE(fk.solve(s.inputs).summary.converged());
+    const MatX J = fk.input_jacobian().topRows(3);
+    const Eigen::JacobiSVD<MatX> svd(J, Eigen::ComputeFullV);
+    int compared = 0;
+    for (int k = 3; k < 6; ++k)
+      for (const double sign : {-1.0, 1.0}) {
+        VecX u = s.inputs + sign * 0.005 * svd.matrixV().col(k);
+        BOOST_REQUIRE(project_onto_target(fk, u, kTarget));
+        const double f_near = value(u);
+        BOOST_TEST(f_opt <= f_near * (1.0 + 1e-7), to_string(objective)
+                                                       << ": f* = " << f_opt << ", nearby " << f_near);
+        ++compared;
+      }
+    BOOST_TEST(compared == 6);
+  }
+  // The optima differ: each is strictly better in its own measure than the others' optima (margins
+  // 1e-4 relative, far above the optimality tolerance).
+  const FkObjectives at_distance = fk_objectives(fk, optimum[IkObjective::InputDistance]);
+  const FkObjectives at_effort = fk_objectives(fk, optimum[IkObjective::ActuationEffort]);
+  const FkObjectives at_energy = fk_objectives(fk, optimum[IkObjective::ElasticEnergy]);
+  BOOST_TEST(at_effort.effort < at_distance.effort * (1.0 - 1e-4));
+  BOOST_TEST(at_energy.energy < at_distance.energy * (1.0 - 1e-4));
+  BOOST_TEST(at_effort.effort < at_energy.effort * (1.0 - 1e-4));
+  BOOST_TEST(at_energy.energy < at_effort.energy * (1.0 - 1e-4));
+  BOOST_TEST((optimum[IkObjective::ActuationEffort] - optimum[IkObjective::InputDistance]).norm() > 1e-4);
+}
+
+BOOST_AUTO_TEST_CASE(stress_limit_is_active_and_satisfied) {
+  // The distance optimum (reduced space; the full-space IK finds another local optimum, 1.09e9 Pa)
+  // has a max stress of 9.5e8 Pa at the stress points; 90 % of it is reachable (measured: the
+  // effort optimum has 4.6e8 Pa).
+  const auto model = load("stewart_gough");
+  const VecX reference = model->default_input_values();
+  const std::vector<Pose> target{Pose{kTarget, Quat(1, 0, 0, 0)}};
+  KinematicsOptions reduced;
+  reduced.ik.reduced_space = true;
+  InverseKinematics free_ik(model, {position_target(kTarget)}, reduced);
+  const RobotSolution s_free = free_ik.solve(target, &reference);
+  BOOST_REQUIRE(s_free.summary.converged());
+  const int points = 17;  // the default for 8 elements: 2 elements + 1
+  const double sigma_free = max_stress(free_ik.assembly(), free_ik.state(), points, 0.001);
+  BOOST_TEST_MESSAGE("max stress at the distance optimum: " << sigma_free << " Pa");
+  KinematicsOptions o;
+  o.ik.max_rod_stress = 0.9 * sigma_free;
+  InverseKinematics ik(model, {position_target(kTarget)}, o);
+  const RobotSolution s = ik.solve(target, &reference);
+  BOOST_REQUIRE_MESSAGE(s.summary.converged(), s.summary.brief_report());
+  BOOST_TEST_MESSAGE(s.summary.brief_report());
+  const double sigma = max_stress(ik.assembly(), ik.state(), points, 0.001);
+  // Satisfied: rows sigma / sigma_max <= 1 within target_tolerance 1e-9 (the smoothing only
+  // overestimates); active: the unconstrained optimum violates the limit, so it must bind (to
+  // Ipopt's tol 1e-8 on the complementarity); tolerances 1e-8 and 1e-6 relative.
+  BOOST_TEST(sigma <= *o.ik.max_rod_stress * (1.0 + 1e-8));
+  BOOST_TEST(sigma >= *o.ik.max_rod_stress * (1.0 - 1e-6));
+  BOOST_TEST((s.platforms[0].position - kTarget).norm() < 1e-8);
+  // The limit costs distance (margin 1e-6 relative, above the optimality tolerance).
+  const double d_free = (s_free.inputs - reference).squaredNorm(), d = (s.inputs - reference).squaredNorm();
+  BOOST_TEST(d > d_free * (1.0 + 1e-6));
+}
+
+BOOST_AUTO_TEST_CASE(infeasible_stress_limit_is_reported) {
+  // 1 kPa: gravity alone (platform 0.1 kg on six 1 mm rods) gives axial stresses ~1e5 Pa.
+  const auto model = load("stewart_gough");
+  KinematicsOptions o;
+  o.ik.objective = IkObjective::ElasticEnergy;
+  o.ik.max_rod_stress = 1e3;
+  InverseKinematics ik(model, {position_target(kTarget)}, o);
+  const RobotSolution s = ik.solve({Pose{kTarget, Quat(1, 0, 0, 0)}});
+  BOOST_TEST(!s.summary.converged(), s.summary.brief_report());
+  BOOST_TEST(s.inputs.allFinite());
+  BOOST_TEST(s.platforms[0].position.allFinite());
+  BOOST_TEST(std::isfinite(s.summary.objective));
+}
+
+BOOST_AUTO_TEST_CASE(bad_ik_options_are_rejected_with_names) {
+  const auto model = load("stewart_gough");
+  auto make = [&](const KinematicsOptions& o) { InverseKinematics ik(model, {position_target(kTarget)}, o); };
+  KinematicsOptions o;
+  o.ik.objective = IkObjective::ActuationEffort;
+  o.ik.distance_weight = -1.0;
+  BOOST_CHECK_THROW(make(o), InputError);
+  o.ik.distance_weight = 0.0;
+  o.ik.max_rod_stress = -5.0;
+  BOOST_CHECK_THROW(make(o), InputError);
+  o.ik.max_rod_stress = 1e8;
+  o.ik.stress_points_per_rod = 1;
+  BOOST_CHECK_THROW(make(o), InputError);
+  try {
+    o.ik.stress_points_per_rod = 1;
+    make(o);
+  } catch (const InputError& e) {
+    BOOST_TEST(std::string(e.what()).find("stress_points_per_rod = 1") != std::string::npos, e.what());
+  }
+  // A robot without fed rods has no effort objective.
+  const auto slider = load("slider_actuated");
+  LinkTarget t = position_target(kTarget);
+  KinematicsOptions e;
+  e.ik.objective = IkObjective::ActuationEffort;
+  BOOST_CHECK_THROW(InverseKinematics(slider, {t}, e), InputError);
+}
+BOOST_AUTO_TEST_CASE(primal_locking_study) {
+  // Cantilever, solid circle of diameter d, E = 1e7, nu = 0.3, tip force P L^2 / EI = 1, at the robot
+  // default discretisation (degree 5, 8 elements), against mixed with 64 elements. Prints the table
+  // quoted at formulation_by_slenderness (robot_assembly.hpp).
+  const double L = 1.0;
+  const Material mat = Material::from_poisson_ratio(1e7, 0.3, 0.0);
+  const AssemblyOptions defaults;
+  for (double d : {0.4, 0.25, 0.2, 0.05, 0.01, 0.005}) {
+    RodModel m = test::cantilever(L, Vec3::Ones(), Vec3::Ones());
+    m.set_material_and_section(mat, CrossSection::circle(d / 2));
+    m.tip.force = Vec3(0.0, m.bending_torsion_stiffness[0] / (L * L), 0.0);
+    RodSolveOptions o;
+    o.discretization = {RodFormulation::Mixed, 5, 64};
+    o.tolerance = 1e-11;
+    const RodSolution reference = solve_rod(m, o);
+    BOOST_REQUIRE(reference.summary.converged());
+    double error[2];
+    bool converged[2];
+    int iterations[2];
+    for (RodFormulation f : {RodFormulation::Primal, RodFormulation::Mixed}) {
+      o.discretization = {f, defaults.discretization.degree, defaults.discretization.elements};
+      o.tolerance = 1e-10;
+      o.max_iterations = 200;
+      const RodSolution sol = solve_rod(m, o);
+      const int k = f == RodFormulation::Mixed;
+      converged[k] = sol.summary.converged();
+      iterations[k] = sol.summary.iterations;
+      error[k] = (sol.tip().position - reference.tip().position).norm() / L;
+    }
+    std::cout << "locking d/L = " << d << " (gyration ratio " << d / 4 << "): tip error / L primal "
+              << error[0] << (converged[0] ? "" : " (not converged)") << " in " << iterations[0]
+              << " iterations, mixed " << error[1] << " in " << iterations[1] << "\n";
+    BOOST_TEST(converged[1]);
+    // Mixed: measured <= 1.2e-5 for all d (README "Rods": 8 elements); bound 2e-5.
+    BOOST_TEST(error[1] < 2e-5);
+    // Primal at and above the threshold d / L = 1/4: measured <= 1.0e-5; bound 1.2e-5.
+    if (d / (4 * L) >= defaults.primal_min_gyration_ratio) BOOST_TEST((converged[0] && error[0] < 1.2e-5));
+    // Well below it the primal form degrades (measured 6e-3 at d/L = 0.01) or does not converge.
+    if (d <= 0.01) BOOST_TEST((!converged[0] || error[0] > 100 * error[1]));
+  }
+}
+
+BOOST_AUTO_TEST_CASE(formulation_is_chosen_by_slenderness_unless_given) {
+  // planar_three_rod: lengths up to 0.5 m. Radius 0.5 mm -> gyration ratio 2.5e-4 / 0.5 = 5e-4
+  // (mixed); radius 0.07 m -> 0.035 / 0.5 = 0.07 >= 1/16 (primal).
+  auto formulations = [](const std::shared_ptr<const RobotModel>& model, const AssemblyOptions& o) {
+    const RobotAssembly a(model, o);
+    std::vector<RodFormulation> f;
+    for (int i = 0; i < a.num_rods(); ++i) f.push_back(a.rod(i).discretization().formulation);
+    return f;
+  };
+  const auto slender = load("planar_three_rod");
+  const auto thick = planar_with_radius(0.07);
+  // sqrt(EI / EA) = r / 2 for a circle: equal up to round-off (1e-12 relative).
+  BOOST_TEST(gyration_ratio(slender->rods()[0]) == 2.5e-4 / 0.5, boost::test_tools::tolerance(1e-12));
+  for (RodFormulation f : formulations(slender, {})) BOOST_TEST((f == RodFormulation::Mixed));
+  for (RodFormulation f : formulations(thick, {})) BOOST_TEST((f == RodFormulation::Primal));
+  // Every shipped model is slender: mixed everywhere (unchanged default behaviour).
+  for (const char* name :
+       {"stewart_gough", "stewart_gough_teleop", "two_stage", "cantilever", "slider_actuated"})
+    for (RodFormulation f : formulations(load(name), {})) BOOST_TEST((f == RodFormulation::Mixed), name);
+  // Options switch the choice off.
+  AssemblyOptions explicit_primal;
+  explicit_primal.formulation_by_slenderness = false;
+  explicit_primal.discretization.formulation = RodFormulation::Primal;
+  for (RodFormulation f : formulations(slender, explicit_primal)) BOOST_TEST((f == RodFormulation::Primal));
+  // A model hint wins over the choice.
+  const std::vector<RodFormulation> hinted =
+      formulations(planar_with_radius(0.07, "<discretization formulation=\"mixed\"/>"), {});
+  BOOST_TEST((hinted[0] == RodFormulation::Mixed));
+  BOOST_TEST((hinted[1] == RodFormulation::Primal));
+  AssemblyOptions bad;
+  bad.primal_min_gyration_ratio = 0.0;
+  BOOST_CHECK_THROW(RobotAssembly(slender, bad), InputError);
+}
+
+namespace {
+
+struct Run {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+/// Runs the built pcr tool (shell words), capturing stdout and stderr.
+Run run_pcr(const std::string& arguments) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "pcr_test_ik_objectives";
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  const std::string command =
+      std::string("'") + PCR_TOOL + "' " + arguments + " > '" + out.string() + "' 2> '" + err.string() + "'";
+  const int status = std::system(command.c_str());
+  Run run;
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  for (auto [path, text] : {std::pair{out, &run.out}, std::pair{err, &run.err}}) {
+    std::ifstream in(path);
+    std::stringstream b;
+    b << in.rdbuf();
+    *text = b.str();
+  }
+  return run;
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(cli_objective_and_stress_options) {
+  const std::string ik = "ik '" + model_path("stewart_gough") + "' --target platform=0.01,-0.015,0.41";
+  const Run effort = run_pcr(ik + " --objective effort --json");
+  BOOST_TEST(effort.exit_code == 0, effort.err);
+  BOOST_TEST(contains(effort.out, "objective effort"), effort.out);
+  BOOST_TEST(contains(effort.out, "\"status\": \"converged\""), effort.out);
+  // An unreachable stress limit: solve failed (exit code 1), reported as infeasible.
+  const Run infeasible = run_pcr(ik + " --objective energy --max-stress 1e3 --json");
+  BOOST_TEST(infeasible.exit_code == 1);
+  BOOST_TEST(contains(infeasible.out, "infeasible"), infeasible.out);
+  // Bad values are usage errors (exit code 2) naming the option.
+  const Run bad_objective = run_pcr(ik + " --objective speed");
+  BOOST_TEST(bad_objective.exit_code == 2);
+  BOOST_TEST(contains(bad_objective.err, "--objective speed"), bad_objective.err);
+  const Run bad_stress = run_pcr(ik + " --max-stress -5");
+  BOOST_TEST(bad_stress.exit_code == 2);
+  BOOST_TEST(contains(bad_stress.err, "--max-stress -5"), bad_stress.err);
+  const Run help = run_pcr("ik --help");
+  BOOST_TEST(contains(help.out, "--objective distance|effort|energy"));
+  BOOST_TEST(contains(help.out, "--formulation auto|mixed|primal"));
+}
+
+BOOST_AUTO_TEST_CASE(square_target_gives_the_newton_inputs_whatever_the_objective) {
+  // R5a full pose target: no freedom left, so the reduced-space solve must land on the inputs of the
+  // square Newton path. Both solve to 1e-10 dimensionless residuals; the inputs agree to ~1e-10 m,
+  // tolerance 1e-8 m.
+  const auto model = load("stewart_gough");
+  LinkTarget t;
+  t.link = "platform";
+  t.pose.position = Vec3(0.0, 0.0, 0.4);
+  t.pose.orientation = quat_from_rotation_vector(Vec3(0.0, 10.0 * kPi / 180.0, 0.0));
+  InverseKinematics newton(model, {t});
+  const RobotSolution s_newton = newton.solve({t.pose});
+  BOOST_REQUIRE(s_newton.summary.converged());
+  BOOST_TEST(s_newton.summary.solver == "newton");
+  KinematicsOptions o;
+  o.ik.objective = IkObjective::ElasticEnergy;
+  InverseKinematics reduced(model, {t}, o);
+  const RobotSolution s = reduced.solve({t.pose});
+  BOOST_REQUIRE_MESSAGE(s.summary.converged(), s.summary.brief_report());
+  BOOST_TEST((s.inputs - s_newton.inputs).cwiseAbs().maxCoeff() < 1e-8);
+}
