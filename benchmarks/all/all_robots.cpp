@@ -53,13 +53,6 @@ KinematicsOptions collocation_options(RodFormulation formulation, int degree, in
   return o;
 }
 
-ShootingRobotOptions shooting_reference_options() {
-  ShootingRobotOptions o;
-  o.rel_tol = o.abs_tol = 1e-12;
-  o.residual_tolerance = 1e-12;
-  return o;
-}
-
 References shooting_references(const Scenes& sc, const AllConfig& config, Recorder& out) {
   References ref;
   ShootingRobotSolver a(sc.r5a, shooting_reference_options());

@@ -50,4 +50,11 @@ LinkTarget platform_target() {
   return t;
 }
 
+ShootingRobotOptions shooting_reference_options() {
+  ShootingRobotOptions o;
+  o.rel_tol = o.abs_tol = 1e-12;
+  o.residual_tolerance = 1e-12;
+  return o;
+}
+
 }  // namespace pcr::bench

@@ -7,6 +7,7 @@
 #include "pcr/robots/kinematics.hpp"
 #include "pcr/robots/pose.hpp"
 #include "pcr/robots/robot_model.hpp"
+#include "pcr/robots/shooting/shooting_robot_solver.hpp"
 
 namespace pcr::bench {
 
@@ -24,5 +25,8 @@ Pose r5a_target();
 std::vector<Pose> r5b_path(int steps = 100);
 /// Collocation IK target on the link "platform" (full pose).
 LinkTarget platform_target();
+/// Shooting settings of the robot references: Dormand-Prince with rel_tol = abs_tol = 1e-12 and
+/// residual tolerance 1e-12.
+ShootingRobotOptions shooting_reference_options();
 
 }  // namespace pcr::bench

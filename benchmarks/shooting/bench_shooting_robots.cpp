@@ -49,13 +49,6 @@ std::vector<Method> methods() {
   return out;
 }
 
-ShootingRobotOptions reference_options() {
-  ShootingRobotOptions o;
-  o.rel_tol = o.abs_tol = 1e-12;
-  o.residual_tolerance = 1e-12;
-  return o;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -80,7 +73,7 @@ int main(int argc, char** argv) {
   // R5a references.
   const VecX u = r5a_moved_inputs(*r5a);
   const Pose target = r5a_target();
-  ShootingRobotSolver ref_a(r5a, reference_options());
+  ShootingRobotSolver ref_a(r5a, bench::shooting_reference_options());
   const ShootingRobotResult fk_ref = ref_a.fk(u);
   const ShootingRobotResult ik_ref = ref_a.ik({target});
   if (!fk_ref.summary.converged() || !ik_ref.summary.converged()) {
@@ -122,7 +115,7 @@ int main(int argc, char** argv) {
   const std::vector<Pose> path = r5b_path();
   std::vector<VecX> reference;
   {
-    ShootingRobotSolver ref_b(r5b, reference_options());
+    ShootingRobotSolver ref_b(r5b, bench::shooting_reference_options());
     for (const Pose& p : path) {
       const ShootingRobotResult s = ref_b.ik({p});
       if (!s.summary.converged()) {
