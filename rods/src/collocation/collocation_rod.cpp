@@ -1,9 +1,12 @@
 #include "pcr/rods/collocation_rod.hpp"
 
+#include <Eigen/SparseLU>
 #include <algorithm>
 #include <cmath>
 
 #include "pcr/core/error.hpp"
+#include "pcr/math/quaternion.hpp"
+#include "pcr/math/so3.hpp"
 #include "pcr/rods/collocation/end_equations.hpp"
 #include "pcr/rods/collocation/equations.hpp"
 #include "pcr/rods/collocation/point_block.hpp"
@@ -102,6 +105,46 @@ VecX CollocationRod::straight_configuration() const {
     x.segment<3>(i * cp + kP) = p;
     x.segment<4>(i * cp + kQ) = q;
   }
+  return x;
+}
+
+VecX CollocationRod::stress_free_configuration() const {
+  if (model_.base.kind != RodEndKind::Clamped || model_.intrinsic.is_zero()) return straight_configuration();
+  // Second-order Lie midpoint steps, fine enough that the shape error (O(h^2)) is far below what an
+  // initial guess needs: p(s + h) = p + h R(s + h/2) v(s + h/2), R(s + h) = R exp(h hat(kappa0(s + h/2))).
+  const double L = model_.length;
+  const std::vector<double> tau = knots_->greville();
+  const int n = num_control_points(), cp = control_point_size();
+  const int steps_per_point = 64;
+  MatX values = MatX::Zero(n, cp);
+  Vec3 p = model_.base.position;
+  Mat3 R = rotation_matrix(model_.base.orientation.normalized());
+  Quat q_previous = model_.base.orientation.normalized();
+  double s = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double s_target = tau[i] * L;
+    const double h = (s_target - s) / steps_per_point;
+    for (int k = 0; k < steps_per_point && h > 0.0; ++k) {
+      Vec3 eps0, kappa0;
+      model_.intrinsic.at(s + 0.5 * h, eps0, kappa0);
+      const Mat3 R_mid = R * so3_exp(0.5 * h * kappa0);
+      p += h * R_mid * (Vec3::UnitZ() + eps0);
+      R = R * so3_exp(h * kappa0);
+      s += h;
+    }
+    s = s_target;
+    Quat q = quat_from_rotation(R);
+    if (q.dot(q_previous) < 0.0) q = -q;  // continuous sign along the rod
+    q_previous = q;
+    values.block<1, 3>(i, kP) = p.transpose();
+    values.block<1, 4>(i, kQ) = q.transpose();
+  }
+  // Control points interpolating these values at the Greville abscissae.
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(collocation_matrix(*knots_, tau, 0));
+  require(lu.info() == Eigen::Success, "rod '", model_.name, "': Greville interpolation matrix is singular");
+  const MatX points = lu.solve(values);
+  VecX x(n * cp);
+  for (int i = 0; i < n; ++i) x.segment(i * cp, cp) = points.row(i).transpose();
   return x;
 }
 

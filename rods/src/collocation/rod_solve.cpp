@@ -68,12 +68,22 @@ RodSolution solve_rod(const RodModel& model, const RodSolveOptions& options, con
   RodSolution sol;
   sol.rod = std::make_shared<const CollocationRod>(model, options.discretization);
   const CollocationRod& rod = *sol.rod;
+  // The direct solve starts from `initial` or the stress-free shape (the straight rod without intrinsic
+  // strains); load stepping from `initial` or the straight rod, exact at load factor 0.
+  VecX x0;
   {
     Problem probe;
-    sol.variables = rod.add_to_problem(probe, {}, 1.0, false, -1, initial);
+    sol.variables = rod.add_to_problem(probe, {}, 0.0, false, -1, initial);
+    x0 = probe.initial_values();
+  }
+  if (initial) {
+    sol.x = x0;
+  } else {
+    const VecX stress_free = rod.stress_free_configuration();
+    Problem probe;
+    rod.add_to_problem(probe, {}, 1.0, false, -1, &stress_free);
     sol.x = probe.initial_values();
   }
-  const VecX x0 = sol.x;
   sol.summary = solve_at(rod, options, 1.0, sol.x, sol.variables);
   int iterations = sol.summary.iterations;
   // Continuation helps a Newton iteration that is lost far from the solution, not one that stalls at

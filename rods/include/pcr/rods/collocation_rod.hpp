@@ -32,10 +32,10 @@ struct RodDiscretization {
 struct RodState {
   double s = 0.0;
   Vec3 position = Vec3::Zero();
-  Quat quaternion = Quat(1, 0, 0, 0);  ///< as interpolated (|q| ~ 1)
-  Mat3 rotation = Mat3::Identity();    ///< R(q)
-  Vec3 force = Vec3::Zero();           ///< n: force of the part s+ on the part s-
-  Vec3 moment = Vec3::Zero();          ///< m
+  Quat quaternion = Quat(1, 0, 0, 0);        ///< as interpolated (|q| ~ 1)
+  Mat3 rotation = Mat3::Identity();          ///< R(q)
+  Vec3 force = Vec3::Zero();                 ///< n: force of the part s+ on the part s-
+  Vec3 moment = Vec3::Zero();                ///< m
   Vec3 shear_extension_body = Vec3::Zero();  ///< eps = R^T p' - e3
   Vec3 curvature_body = Vec3::Zero();        ///< kappa
 };
@@ -76,6 +76,10 @@ class CollocationRod {
 
   /// Control point values of the straight rod along the frame of `end` (or the base frame if free).
   VecX straight_configuration() const;
+  /// Control point values of the stress-free shape (intrinsic strains, no load) leaving the base frame:
+  /// p' = R (e3 + eps0), R' = R hat(kappa0), integrated from the base, interpolated at the Greville
+  /// abscissae (n = m = 0). The straight configuration when the base is not clamped.
+  VecX stress_free_configuration() const;
 
   /// Post-processing at arc length s in [0, L] (L read from x): p, R, n, m and strains.
   RodState state_at(const VecX& x, const RodVariables& vars, double s) const;

@@ -1,8 +1,8 @@
 #pragma once
 // Solving one rod with its own end conditions: build the collocation problem, solve it with Newton
-// (default for this square system) or Ipopt, and fall back to load stepping — continuation in a load
-// factor lambda from 0 to 1 scaling all loads and intrinsic strains, warm-started with a secant
-// predictor — when the direct solve fails.
+// (default for this square system) or Ipopt from the stress-free shape, and fall back to load stepping —
+// continuation in a load factor lambda from 0 to 1 scaling all loads and intrinsic strains, warm-started with
+// a secant predictor — when the direct solve fails.
 #include <memory>
 #include <vector>
 
@@ -55,8 +55,9 @@ struct RodSolution {
   RodState tip() const { return at(rod->length(x, variables)); }
 };
 
-/// Solves the rod; `initial` (control point values, size n * control_point_size) replaces the
-/// straight initial guess.
+/// Solves the rod, directly from the stress-free shape (CollocationRod::stress_free_configuration),
+/// then if needed by load stepping from the straight rod; `initial` (control point values, size
+/// n * control_point_size) replaces both starts.
 RodSolution solve_rod(const RodModel& model, const RodSolveOptions& options = {},
                       const VecX* initial = nullptr);
 
