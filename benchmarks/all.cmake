@@ -4,7 +4,7 @@ pcr_add_benchmark(NAME bench_all SOURCES ${CMAKE_CURRENT_LIST_DIR}/all/bench_all
                   ${CMAKE_CURRENT_LIST_DIR}/all/all_recorder.cpp ${CMAKE_CURRENT_LIST_DIR}/all/all_rods.cpp
                   ${CMAKE_CURRENT_LIST_DIR}/all/all_robots.cpp)
 # Smoke test (quick R1 sweep, a few seconds), label "bench"; not part of the sanitizer pass.
-if(PCR_BUILD_TESTS)
+if(PCR_BUILD_TESTS AND TARGET bench_all)
   add_test(NAME bench_all_smoke COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/all/smoke_test.sh $<TARGET_FILE:bench_all>
                                         ${CMAKE_CURRENT_BINARY_DIR}/bench_all_smoke.csv)
   set_tests_properties(bench_all_smoke PROPERTIES LABELS bench)
