@@ -220,19 +220,24 @@ class ReducedObjective final : public ObjectiveTerm {
   EvaluatorPtr e_;
 };
 
+/// Solves FK at the block's inputs u = values (with dx/du when derivatives); a failed FK leaves the
+/// rows NaN, a failed evaluation for Ipopt, which then shortens its step.
+bool solve_at_inputs(ReducedIk::Evaluator& e, const double* values, double* residual, int rows,
+                     bool derivatives) {
+  if (e.at(Eigen::Map<const VecX>(values, e.num_inputs()), derivatives)) return true;
+  Eigen::Map<VecX>(residual, rows).setConstant(std::numeric_limits<double>::quiet_NaN());
+  return false;
+}
+
 /// Rows g(x(u)) of the target blocks (dimensionless, as in the full-space IK).
 class ReducedTargets final : public ResidualBlock {
  public:
   ReducedTargets(VariableId u, int rows, EvaluatorPtr e)
       : ResidualBlock("ik.target", "targets", rows, {u}), e_(std::move(e)) {}
   void evaluate(const double* const* values, double* residual, double* const* jacobians) const override {
-    const VecX u = Eigen::Map<const VecX>(values[0], e_->num_inputs());
     const bool jac = jacobians && jacobians[0];
+    if (!solve_at_inputs(*e_, values[0], residual, num_rows(), jac)) return;
     Eigen::Map<VecX> r(residual, num_rows());
-    if (!e_->at(u, jac)) {
-      r.setConstant(std::numeric_limits<double>::quiet_NaN());
-      return;
-    }
     VecX c;
     Eigen::SparseMatrix<double, Eigen::RowMajor> G;
     e_->targets.evaluate_residuals_and_jacobian(e_->x, c, G);
@@ -257,13 +262,9 @@ class ReducedStress final : public ResidualBlock {
     set_row_bounds(VecX::Constant(rows, -INFINITY), VecX::Ones(rows));
   }
   void evaluate(const double* const* values, double* residual, double* const* jacobians) const override {
-    const VecX u = Eigen::Map<const VecX>(values[0], e_->num_inputs());
     const bool jac = jacobians && jacobians[0];
+    if (!solve_at_inputs(*e_, values[0], residual, num_rows(), jac)) return;
     Eigen::Map<VecX> r(residual, num_rows());
-    if (!e_->at(u, jac)) {
-      r.setConstant(std::numeric_limits<double>::quiet_NaN());
-      return;
-    }
     MatX H;
     r = rod_stresses(e_->assembly, e_->x, e_->stress_at, jac ? &H : nullptr) / sigma_max_;
     if (jac) {
