@@ -143,6 +143,23 @@ BOOST_AUTO_TEST_CASE(max_iterations_is_reported) {
   BOOST_TEST(s.iterations == 1);
 }
 
+BOOST_AUTO_TEST_CASE(jacobian_budget_is_reported_and_per_solve) {
+  Problem p = broyden_problem(20);
+  NewtonSolver newton(p);  // fresh Jacobian every iteration (no reuse): Jacobians = iterations
+  VecX x = p.initial_values();
+  // From x = -1 the full solve needs more than two Newton steps to reach 1e-10 (quadratic convergence
+  // from |r| ~ 1: about 5), so a budget of 2 Jacobians must stop it after exactly 2 iterations.
+  const SolveSummary s = newton.solve(x, 50, 2);
+  BOOST_TEST((s.status == SolveStatus::MaxIterations), s.brief_report());
+  BOOST_TEST(s.iterations == 2);
+  BOOST_TEST(s.message.find("2 Jacobian evaluations") != std::string::npos, s.message);
+  BOOST_TEST(std::isfinite(s.residual_max_abs));
+  // The budget holds for that solve only: the next one uses the options again and converges.
+  const SolveSummary rest = newton.solve(x);
+  BOOST_TEST(rest.converged(), rest.brief_report());
+  BOOST_CHECK_THROW(newton.solve(x, 10, -1), InputError);
+}
+
 BOOST_AUTO_TEST_CASE(rejects_problems_newton_cannot_solve) {
   Problem objective = hs071_problem();  // objective, bounds, inequality
   BOOST_CHECK_THROW(NewtonSolver{objective}, InputError);

@@ -136,8 +136,15 @@ const NewtonOptions& NewtonSolver::options() const {
 }
 
 SolveSummary NewtonSolver::solve(VecX& x) {
+  return solve(x, impl_->options.max_iterations);
+}
+
+SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_evaluations) {
   const auto start_time = std::chrono::steady_clock::now();
   Impl& w = *impl_;
+  require(max_iterations >= 0, "NewtonSolver::solve: max_iterations = ", max_iterations, " < 0");
+  require(max_jacobian_evaluations >= 0, "NewtonSolver::solve: max_jacobian_evaluations = ",
+          max_jacobian_evaluations, " < 0");
   const NewtonOptions& o = w.options;
   w.prepare();
   const Problem& problem = w.problem;
@@ -214,9 +221,9 @@ SolveSummary NewtonSolver::solve(VecX& x) {
       return finish(SolveStatus::Converged,
                     o.reuse_factorization ? std::to_string(jacobian_evaluations) + " Jacobian evaluations"
                                           : std::string());
-    if (iteration >= o.max_iterations)
+    if (iteration >= max_iterations)
       return finish(SolveStatus::MaxIterations,
-                    format("no convergence in %.0f iterations (|r|max = %.3g)", o.max_iterations, r_max));
+                    format("no convergence in %.0f iterations (|r|max = %.3g)", max_iterations, r_max));
     const double r_norm = w.r.norm();
 
     if (!refresh) {
@@ -240,6 +247,10 @@ SolveSummary NewtonSolver::solve(VecX& x) {
     }
 
     // Newton direction: J_free dx = -r.
+    if (jacobian_evaluations >= max_jacobian_evaluations)
+      return finish(SolveStatus::MaxIterations,
+                    format("no convergence with %.0f Jacobian evaluations (|r|max = %.3g)",
+                           max_jacobian_evaluations, r_max));
     problem.evaluate_residuals_and_jacobian(x, w.c, w.J);
     ++jacobian_evaluations;
     if (w.value_map.size() != static_cast<size_t>(w.J.nonZeros())) w.build_free_pattern();

@@ -4,6 +4,7 @@
 //   J dx = -(c(x) - c_l)   (sparse LU: pattern analysed once, numeric factorisation per iteration)
 //   x <- x + alpha dx,  alpha = 1, 1/2, ... until |r(x + alpha dx)|_2 <= (1 - armijo alpha) |r(x)|_2.
 // Converged when max_i |c_i - c_l,i| <= tolerance (unscaled) and x is finite.
+#include <limits>
 #include <memory>
 
 #include "pcr/core/types.hpp"
@@ -42,6 +43,10 @@ class NewtonSolver {
 
   /// x: start point in, final iterate out (size num_variables(); fixed entries are set to their values).
   SolveSummary solve(VecX& x);
+  /// The same with other limits for this solve: iterations (quasi-Newton steps included) and fresh
+  /// Jacobians (e.g. a short budget for a continuation step, which fails fast when it is too long).
+  SolveSummary solve(VecX& x, int max_iterations,
+                     int max_jacobian_evaluations = std::numeric_limits<int>::max());
   const NewtonOptions& options() const;
 
  private:

@@ -12,6 +12,7 @@
 //  - Derivatives by the implicit function theorem on the assembled Jacobian.
 // Poses are world-frame; rotations of poses in derivatives are world-frame rotation vectors.
 #include <array>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -95,7 +96,12 @@ class ForwardKinematics {
   MatX compliance(int platform) const;
 
  private:
-  SolveSummary solve_once(VecX& x);
+  /// One Newton (or Ipopt) solve from x; Newton stops after max_jacobian_evaluations fresh Jacobians.
+  SolveSummary solve_once(VecX& x, int max_jacobian_evaluations = std::numeric_limits<int>::max());
+  /// Fresh-Jacobian budgets of a direct attempt that has a continuation to fall back on, and of one
+  /// continuation step (see solve()).
+  static constexpr int kDirectJacobianEvaluations = 10;
+  static constexpr int kContinuationStepJacobianEvaluations = 8;
   RobotAssembly assembly_;
   KinematicsOptions options_;
   VecX x_;
