@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Report of a bench_all CSV (scene,method,settings,error,time_median_s,time_min_s,time_max_s,iterations;
-# rows with error nan — failed solves — are left out):
-#  - OUT_DIR/<scene>.png: error (log) against median run time per solve (log), every setting as a point
+# Report of a bench_all CSV (scene,method,settings,error,time_median_s,time_min_s,time_max_s,iterations,
+# time_mean_s; rows with error nan — failed solves — are left out). Time per solve: the median, except
+# on path scenes (*_path: different warm-started solves along a path) the mean, i.e. the throughput:
+#  - OUT_DIR/<scene>.png: error (log) against run time per solve (log), every setting as a point
 #    and each method's Pareto front (the settings that no faster setting of the method beats in error)
 #    as a line;
 #  - Markdown on stdout and in OUT_DIR/report.md: per scene and method the fastest setting reaching
@@ -18,7 +19,7 @@ trap 'rm -rf "$tmp"' EXIT
 
 # One data file per (scene, method): "time error", and its Pareto front.
 awk -F, -v dir="$tmp" 'FNR > 1 && $4 + 0 > 0 && $4 != "nan" && $4 != "-nan" && $4 != "inf" {
-  print $5, $4 > (dir "/" $1 "@" $2 ".dat")
+  print (($1 ~ /_path$/ && NF >= 9) ? $9 : $5), $4 > (dir "/" $1 "@" $2 ".dat")
 }' "$csv"
 for scene in $(ls "$tmp" | grep '\.dat$' | sed 's/@.*//' | sort -u); do
   plot=""
@@ -37,7 +38,7 @@ set output '$out_dir/$scene.png'
 set logscale xy
 set format x '10^{%L}'
 set format y '10^{%L}'
-set xlabel 'median run time per solve [s]'
+set xlabel '$( [[ $scene == *_path ]] && echo "mean" || echo "median") run time per solve [s]'
 set ylabel 'error [length units; m for R5]'
 set title '$scene: error vs run time, lines = Pareto front of each method' noenhanced
 set key outside bottom center horizontal noenhanced
@@ -48,7 +49,7 @@ GP
 done
 
 {
-  echo "Fastest setting of each method reaching the error (settings: median time per solve, error):"
+  echo "Fastest setting of each method reaching the error (settings: time per solve, error; median, on *_path scenes mean):"
   echo
   bash "$root/scripts/bench_pareto.sh" "$csv"
   echo
@@ -59,12 +60,13 @@ done
   $4 == "nan" || $4 == "-nan" || $4 == "inf" { next }
   {
     if (!($1 in seen)) { seen[$1] = 1; order[++n] = $1 }
+    t = ($1 ~ /_path$/ && NF >= 9) ? $9 : $5
     family = ($2 ~ /^collocation/) ? "c" : (($2 ~ /^shooting/) ? "s" : "")
     if (family == "") next
     for (k = 1; k <= 3; ++k) {
       key = $1 SUBSEP family SUBSEP k
-      if ($4 + 0 <= 10 ^ (-3 * k) && (!(key in best) || $5 + 0 < best[key])) {
-        best[key] = $5 + 0; what[key] = sprintf("%s %s: %.3g ms, %.1e", $2, $3, 1e3 * $5, $4)
+      if ($4 + 0 <= 10 ^ (-3 * k) && (!(key in best) || t + 0 < best[key])) {
+        best[key] = t + 0; what[key] = sprintf("%s %s: %.3g ms, %.1e", $2, $3, 1e3 * t, $4)
       }
     }
   }

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # One log-log PNG per scene of error against median run time per solve, one series per method, from
-# benchmark CSVs (scene,method,settings,error,time_median_s,time_min_s,time_max_s,iterations; rows with
+# benchmark CSVs (scene,method,settings,error,time_median_s,time_min_s,time_max_s,iterations[,time_mean_s]; rows with
 # a non-finite error — failed solves — are left out).
 # usage: scripts/plot_bench.sh [csv...]   (default: every benchmarks/results/*.csv but all.csv, whose scenes
 # and methods repeat those of the per-harness CSVs: scripts/bench_report.sh plots it)

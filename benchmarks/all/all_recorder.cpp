@@ -21,9 +21,9 @@ void Recorder::record(const std::string& scene, const std::string& method, const
                       double error, const Timing& timing, double iterations, const std::string& status) {
   csv_.row(scene, method, settings, error, timing, iterations);
   ++rows_;
-  std::printf("[%6.1f s] %-12s %-26s %-12s error %9.2e  median %10.4f ms  it %6.1f  %s\n",
+  std::printf("[%6.1f s] %-12s %-26s %-12s error %9.2e  median %10.4f ms  mean %10.4f ms  it %6.1f  %s\n",
               seconds_since(start_), scene.c_str(), method.c_str(), settings.c_str(), error,
-              1e3 * timing.median, iterations, status.c_str());
+              1e3 * timing.median, 1e3 * timing.mean, iterations, status.c_str());
   std::fflush(stdout);
 }
 

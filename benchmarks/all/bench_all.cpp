@@ -1,5 +1,5 @@
 // bench_all (issue #7): run time against error of every method on every scene, into ONE CSV
-//   scene,method,settings,error,time_median_s,time_min_s,time_max_s,iterations
+//   scene,method,settings,error,time_median_s,time_min_s,time_max_s,iterations,time_mean_s
 // Methods: collocation (primal and mixed form, Newton and Ipopt paths, degree p and E elements per rod)
 // and shooting (RK4 with N steps per rod, adaptive Dormand-Prince 5(4) with tolerance tol).
 // Scenes: R1_phi_2pi, R2_alpha_10, R3_helix, spring_20deg (single rods, cold solves), R5a_fk_cold,

@@ -11,12 +11,12 @@ set -euo pipefail
 "$1" --quick --scenes R1 --out "$2" > "$2.log"
 awk -F, '
 NR == 1 {
-  if ($0 != "scene,method,settings,error,time_median_s,time_min_s,time_max_s,iterations") { print "bad header: " $0; bad = 1 }
+  if ($0 != "scene,method,settings,error,time_median_s,time_min_s,time_max_s,iterations,time_mean_s") { print "bad header: " $0; bad = 1 }
   next
 }
 {
   rows++
-  if (NF != 8) { print "row " NR ": " NF " fields"; bad = 1 }
+  if (NF != 9) { print "row " NR ": " NF " fields"; bad = 1 }
   if ($1 != "R1_phi_2pi") { print "row " NR ": unexpected scene " $1; bad = 1 }
   if (!($5 + 0 > 0 && $6 + 0 > 0 && $7 + 0 >= $5 + 0)) { print "row " NR ": bad times"; bad = 1 }
   if ($2 == "collocation-mixed-newton" || $2 ~ /^shooting-/) {

@@ -1,7 +1,10 @@
 #pragma once
-// What every run-time-vs-error harness shares: the timing of repeated solves (median, min, max wall
-// time) and the CSV they all write, one row per (scene, method, settings):
-//   scene,method,settings,error,time_median_s,time_min_s,time_max_s,iterations
+// What every run-time-vs-error harness shares: the timing of repeated solves (median, min, max, mean
+// wall time) and the CSV they all write, one row per (scene, method, settings):
+//   scene,method,settings,error,time_median_s,time_min_s,time_max_s,iterations,time_mean_s
+// The mean is the throughput figure of a path of different solves (R5b: total time / solves; a few
+// solves with a fresh factorisation cost several times the median one); the median that of repeats of
+// one solve.
 // (error nan = failed solve; scripts/plot_bench.sh, bench_pareto.sh and bench_report.sh skip those rows).
 #include <chrono>
 #include <fstream>
@@ -12,10 +15,10 @@
 namespace pcr::bench {
 
 struct Timing {
-  double median = 0.0, min = 0.0, max = 0.0;  ///< seconds
+  double median = 0.0, min = 0.0, max = 0.0, mean = 0.0;  ///< seconds
 };
 
-/// Median (mean of the two middle values for an even count), min and max; zeros when empty.
+/// Median (mean of the two middle values for an even count), min, max and mean; zeros when empty.
 Timing summarise(std::vector<double> seconds);
 
 /// Wall seconds since t0.
