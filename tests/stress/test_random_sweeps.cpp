@@ -233,7 +233,7 @@ void report(const std::string& name, const std::string& mode, const Stats& s) {
 }
 
 /// `ci_solves` warm solves (CI: 240 over the three models, about 50 s in Release; FK from a random jump
-/// needs continuation, about 0.5 s CPU per Stewart-Gough solve and 0.13 s per planar one), or
+/// needs continuation, about 0.7 s CPU per Stewart-Gough solve and 0.16 s per planar one), or
 /// --solves=N; one cold solve per 5 warm ones.
 void sweep(const std::string& name, unsigned seed, long ci_solves) {
   const long solves = argument("solves", ci_solves);
