@@ -235,14 +235,30 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
       take_step_from(x, w.steps[w.num_steps - 1]);
       problem.evaluate_residuals(w.x_trial, w.c);
       w.r_trial = w.c - w.target;
-      if (w.r_trial.allFinite() && broyden_next(w.r_trial)) {
+      const bool finite = w.r_trial.allFinite();
+      // A step that lands within the tolerance is kept whatever the contraction test would say: near the
+      // solution the corrections are dominated by round-off (|J0^-1| times the residual's noise), and a
+      // fresh Jacobian there would be wasted.
+      if (finite && w.r_trial.lpNorm<Eigen::Infinity>() <= o.tolerance) {
+        x.swap(w.x_trial);
+        w.r.swap(w.r_trial);
+        have_correction = false;
+        continue;
+      }
+      if (finite && broyden_next(w.r_trial)) {
         x.swap(w.x_trial);
         w.r.swap(w.r_trial);
         have_correction = true;
         continue;
       }
-      refresh = true;  // too slow or diverging: redo this iteration with a fresh Jacobian
+      // Too slow or diverging: a fresh Jacobian, at the trial point if the step still reduced |r|.
+      refresh = true;
       have_correction = false;
+      if (finite && w.r_trial.norm() < r_norm) {
+        x.swap(w.x_trial);
+        w.r.swap(w.r_trial);
+        continue;  // convergence test and Newton step from the new point
+      }
       problem.evaluate_residuals(x, w.c);
     }
 
