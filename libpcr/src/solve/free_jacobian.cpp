@@ -5,6 +5,13 @@
 namespace pcr {
 
 FreeJacobian free_jacobian(const Problem& problem, const VecX& x) {
+  VecX c;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> J;
+  problem.evaluate_residuals_and_jacobian(x, c, J);
+  return free_jacobian(problem, J);
+}
+
+FreeJacobian free_jacobian(const Problem& problem, const Eigen::SparseMatrix<double, Eigen::RowMajor>& J) {
   FreeJacobian out;
   std::vector<int> position(problem.num_variables(), -1);
   for (int v = 0; v < problem.num_variable_blocks(); ++v) {
@@ -15,9 +22,6 @@ FreeJacobian free_jacobian(const Problem& problem, const VecX& x) {
       out.columns.push_back(b.offset + k);
     }
   }
-  VecX c;
-  Eigen::SparseMatrix<double, Eigen::RowMajor> J;
-  problem.evaluate_residuals_and_jacobian(x, c, J);
   std::vector<Eigen::Triplet<double>> entries;
   entries.reserve(J.nonZeros());
   for (int r = 0; r < J.outerSize(); ++r)

@@ -41,10 +41,11 @@ IpoptOptions ipopt_options(const KinematicsOptions& o) {
   return i;
 }
 
-/// Solves J_free dX = -rhs for the free columns (implicit function theorem); returns dX over all
-/// variables (zero rows for fixed ones), one column per rhs column.
-MatX implicit_derivative(const Problem& problem, const VecX& x, const MatX& rhs) {
-  const FreeJacobian J = free_jacobian(problem, x);
+/// Solves J_free dX = -rhs for the free columns of the evaluated Jacobian J (implicit function theorem);
+/// returns dX over all variables (zero rows for fixed ones), one column per rhs column.
+MatX implicit_derivative(const Problem& problem, const Eigen::SparseMatrix<double, Eigen::RowMajor>& J_all,
+                         const MatX& rhs) {
+  const FreeJacobian J = free_jacobian(problem, J_all);
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
   lu.compute(J.matrix);
   require(lu.info() == Eigen::Success,
@@ -230,7 +231,7 @@ MatX ForwardKinematics::input_jacobian() const {
   const int m = static_cast<int>(assembly_.model().inputs().size());
   MatX rhs = MatX::Zero(problem.num_rows(), m);
   for (int i = 0; i < m; ++i) rhs.col(i) = J.col(problem.variable(assembly_.input_variable(i)).offset);
-  const MatX dX = implicit_derivative(problem, x_, rhs);
+  const MatX dX = implicit_derivative(problem, J, rhs);
   const int np = static_cast<int>(assembly_.model().platforms().size());
   MatX out(6 * np, m);
   for (int p = 0; p < np; ++p) out.middleRows(6 * p, 6) = platform_rows(assembly_, x_, p, dX);
@@ -256,7 +257,10 @@ MatX ForwardKinematics::compliance(int platform) const {
     dR(row + k, k) = 1.0 / assembly_.force_scale();
     dR(row + 3 + k, 3 + k) = 1.0 / assembly_.moment_scale();
   }
-  return platform_rows(assembly_, x_, platform, implicit_derivative(problem, x_, dR));
+  VecX c;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> J;
+  problem.evaluate_residuals_and_jacobian(x_, c, J);
+  return platform_rows(assembly_, x_, platform, implicit_derivative(problem, J, dR));
 }
 
 // ---------------------------------------------------------------------------------------------------

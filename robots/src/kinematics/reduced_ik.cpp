@@ -8,6 +8,7 @@
 
 #include "ik_objectives.hpp"
 #include "pcr/core/error.hpp"
+#include "pcr/solve/free_jacobian.hpp"
 #include "pcr/solve/ipopt_solver.hpp"
 #include "pcr/solve/newton_solver.hpp"
 
@@ -27,9 +28,7 @@ struct ReducedIk::Evaluator {
   std::vector<int> input_offsets;
   VecX input_scales, reference;
   std::vector<StressPoint> stress_at;
-  // Free columns of the FK Jacobian (implicit function theorem).
-  std::vector<int> free_columns, free_position;
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;  // of the free FK Jacobian (implicit function theorem)
   bool pattern_analysed = false;
   // Cache.
   VecX x_warm, x_start, u_cached, x;
@@ -63,14 +62,6 @@ struct ReducedIk::Evaluator {
     n.max_iterations = o.max_iterations;
     n.reuse_factorization = o.reuse_factorization;
     newton = std::make_unique<NewtonSolver>(fk, n);
-    free_position.assign(fk.num_variables(), -1);
-    for (int v = 0; v < fk.num_variable_blocks(); ++v) {
-      if (fk.variable_fixed(v)) continue;
-      for (int k = 0; k < fk.variable(v).size; ++k) {
-        free_position[fk.variable(v).offset + k] = static_cast<int>(free_columns.size());
-        free_columns.push_back(fk.variable(v).offset + k);
-      }
-    }
     if (o.ik.max_rod_stress) {
       check_stress_data(a);
       int points = o.ik.stress_points_per_rod;
@@ -136,27 +127,19 @@ struct ReducedIk::Evaluator {
     VecX c;
     Eigen::SparseMatrix<double, Eigen::RowMajor> J;
     fk.evaluate_residuals_and_jacobian(x, c, J);
-    std::vector<Eigen::Triplet<double>> t;
-    MatX rhs = MatX::Zero(J.rows(), num_inputs());
-    std::vector<int> input_of(fk.num_variables(), -1);
-    for (int i = 0; i < num_inputs(); ++i) input_of[input_offsets[i]] = i;
-    for (int r = 0; r < J.outerSize(); ++r)
-      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(J, r); it; ++it) {
-        if (free_position[it.col()] >= 0) t.emplace_back(r, free_position[it.col()], it.value());
-        if (input_of[it.col()] >= 0) rhs(r, input_of[it.col()]) = -it.value();
-      }
-    Eigen::SparseMatrix<double> Jf(J.rows(), static_cast<int>(free_columns.size()));
-    Jf.setFromTriplets(t.begin(), t.end());
+    const FreeJacobian Jf = free_jacobian(fk, J);
+    MatX rhs(J.rows(), num_inputs());
+    for (int i = 0; i < num_inputs(); ++i) rhs.col(i) = -J.col(input_offsets[i]);
     if (!pattern_analysed) {
-      lu.analyzePattern(Jf);
+      lu.analyzePattern(Jf.matrix);
       pattern_analysed = true;
     }
-    lu.factorize(Jf);
+    lu.factorize(Jf.matrix);
     if (lu.info() != Eigen::Success) return false;
     const MatX dfree = lu.solve(rhs);
     if (!dfree.allFinite()) return false;
     S.setZero(fk.num_variables(), num_inputs());
-    for (size_t k = 0; k < free_columns.size(); ++k) S.row(free_columns[k]) = dfree.row(k);
+    for (size_t k = 0; k < Jf.columns.size(); ++k) S.row(Jf.columns[k]) = dfree.row(k);
     for (int i = 0; i < num_inputs(); ++i) S(input_offsets[i], i) = 1.0;
     have_sensitivity = true;
     x_tangent = x;

@@ -17,6 +17,8 @@ struct FreeJacobian {
 
 /// dc/dx_free at x (all active rows; fixed variables are left out).
 FreeJacobian free_jacobian(const Problem& problem, const VecX& x);
+/// The free columns of a Jacobian J of the problem already evaluated (Problem::evaluate_residuals_and_jacobian).
+FreeJacobian free_jacobian(const Problem& problem, const Eigen::SparseMatrix<double, Eigen::RowMajor>& J);
 
 /// Sign of det(dc/dx_free) at x: +1 or -1, and 0 when the problem is not square or the sparse LU finds
 /// the matrix singular. Costs one Jacobian evaluation and one sparse LU factorisation.
