@@ -43,6 +43,51 @@ double input_error(const VecX& a, const VecX& b) {
   return (a - b).lpNorm<Eigen::Infinity>();
 }
 
+/// IK along the path with one warm-started solver, `solve(pose)` returning a result with `summary` and
+/// `inputs`; the inputs at every pose into `inputs`, or false (and a note) at the first failure.
+template <typename Solve>
+bool reference_path(const std::vector<Pose>& path, const std::string& label, Solve solve, Recorder& out,
+                    std::vector<VecX>& inputs) {
+  for (const Pose& p : path) {
+    const auto s = solve(p);
+    if (!s.summary.converged()) {
+      out.note(label + " failed: " + s.summary.brief_report());
+      return false;
+    }
+    inputs.push_back(s.inputs);
+  }
+  out.note(label + ": " + std::to_string(path.size()) + " poses");
+  return true;
+}
+
+/// Warm-started solves along the path, `solve(pose)` as above: wall time and iterations of each warm
+/// solve (the first, cold, one excluded), max input error against `reference` until the first failure.
+struct PathRun {
+  std::vector<double> times;
+  double error = 0.0, iterations = 0.0;
+  bool failed = false;
+};
+template <typename Solve>
+PathRun run_path(const std::vector<Pose>& path, const std::vector<VecX>& reference, Solve solve) {
+  PathRun run;
+  for (size_t k = 0; k < path.size(); ++k) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto s = solve(path[k]);
+    if (k > 0) {  // warm-started solves only
+      run.times.push_back(seconds_since(t0));
+      run.iterations += s.summary.iterations;
+    }
+    run.failed = run.failed || !s.summary.converged();
+    if (!run.failed) run.error = std::max(run.error, input_error(s.inputs, reference[k]));
+  }
+  return run;
+}
+
+void record_path(const PathRun& run, const std::string& method, const std::string& settings, Recorder& out) {
+  out.record("R5b_ik_path", method, settings, run.failed ? NAN : run.error, summarise(run.times),
+             run.iterations / run.times.size(), run.failed ? "failed" : "converged");
+}
+
 KinematicsOptions collocation_options(RodFormulation formulation, int degree, int elements, SolverKind solver,
                                       double tolerance = 1e-10) {
   KinematicsOptions o;
@@ -70,16 +115,10 @@ References shooting_references(const Scenes& sc, const AllConfig& config, Record
   }
   if (config.selected("R5b_ik_path")) {
     ShootingRobotSolver b(sc.r5b, shooting_reference_options());
-    for (const Pose& p : sc.path) {
-      const ShootingRobotResult s = b.ik({p});
-      if (!s.summary.converged()) {
-        out.note("R5b reference (shooting) failed: " + s.summary.brief_report());
-        return ref;
-      }
-      ref.path_inputs.push_back(s.inputs);
-    }
-    out.note("R5b path reference (shooting, Dormand-Prince 1e-12): " + std::to_string(sc.path.size()) +
-             " poses");
+    if (!reference_path(
+            sc.path, "R5b path reference (shooting, Dormand-Prince 1e-12)",
+            [&](const Pose& p) { return b.ik({p}); }, out, ref.path_inputs))
+      return ref;
   }
   ref.ok = true;
   return ref;
@@ -104,16 +143,10 @@ References collocation_references(const Scenes& sc, const AllConfig& config, Rec
   }
   if (config.selected("R5b_ik_path")) {
     InverseKinematics ik(sc.r5b, {platform_target()}, o);
-    for (const Pose& p : sc.path) {
-      const RobotSolution s = ik.solve({p});
-      if (!s.summary.converged()) {
-        out.note("R5b reference (collocation) failed: " + s.summary.brief_report());
-        return ref;
-      }
-      ref.path_inputs.push_back(s.inputs);
-    }
-    out.note("R5b path reference (collocation, mixed p=8 E=32): " + std::to_string(sc.path.size()) +
-             " poses");
+    if (!reference_path(
+            sc.path, "R5b path reference (collocation, mixed p=8 E=32)",
+            [&](const Pose& p) { return ik.solve({p}); }, out, ref.path_inputs))
+      return ref;
   }
   ref.ok = true;
   return ref;
@@ -159,23 +192,13 @@ void collocation_setting(const Scenes& sc, const References& ref, const AllConfi
   }
   if (path && config.selected("R5b_ik_path")) {
     InverseKinematics ik(sc.r5b, {platform_target()}, o);
-    std::vector<double> times;
-    double error = 0.0, iterations = 0.0;
-    bool failed = false;
     std::string used = to_string(solver);
-    for (size_t k = 0; k < sc.path.size(); ++k) {
-      const auto t0 = std::chrono::steady_clock::now();
-      const RobotSolution s = ik.solve({sc.path[k]});
-      if (k > 0) {  // warm-started solves only
-        times.push_back(seconds_since(t0));
-        iterations += s.summary.iterations;
-      }
-      failed = failed || !s.summary.converged();
-      if (!failed) error = std::max(error, input_error(s.inputs, ref.path_inputs[k]));
+    const PathRun run = run_path(sc.path, ref.path_inputs, [&](const Pose& p) {
+      RobotSolution s = ik.solve({p});
       if (!s.summary.solver.empty()) used = s.summary.solver;
-    }
-    out.record("R5b_ik_path", form + used, settings, failed ? NAN : error, summarise(times),
-               iterations / times.size(), failed ? "failed" : "converged");
+      return s;
+    });
+    record_path(run, form + used, settings, out);
   }
 }
 
@@ -248,21 +271,8 @@ void shooting_sweep(const Scenes& sc, const References& ref, const AllConfig& co
     }
     if (config.selected("R5b_ik_path")) {
       ShootingRobotSolver solver(sc.r5b, run.options);
-      std::vector<double> times;
-      double error = 0.0, iterations = 0.0;
-      bool failed = false;
-      for (size_t k = 0; k < sc.path.size(); ++k) {
-        const auto t0 = std::chrono::steady_clock::now();
-        const ShootingRobotResult s = solver.ik({sc.path[k]});
-        if (k > 0) {  // warm-started solves only
-          times.push_back(seconds_since(t0));
-          iterations += s.summary.iterations;
-        }
-        failed = failed || !s.summary.converged();
-        if (!failed) error = std::max(error, input_error(s.inputs, ref.path_inputs[k]));
-      }
-      out.record("R5b_ik_path", run.method, run.settings, failed ? NAN : error, summarise(times),
-                 iterations / times.size(), failed ? "failed" : "converged");
+      record_path(run_path(sc.path, ref.path_inputs, [&](const Pose& p) { return solver.ik({p}); }),
+                  run.method, run.settings, out);
     }
   }
 }
