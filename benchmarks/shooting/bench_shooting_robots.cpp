@@ -81,35 +81,31 @@ int main(int argc, char** argv) {
     return 1;
   }
   const Repeats repeats{21, 21, 0.0};
-  for (const Method& m : methods()) {
-    ShootingRobotSolver solver(r5a, m.options);
-    double error = 0.0;
-    int iterations = 0;
-    const Timing tm = time_repeated(
-        [&] {
-          solver.reset();
-          const ShootingRobotResult s = solver.fk(u);
-          error =
-              s.summary.converged() ? (s.platforms[0].position - fk_ref.platforms[0].position).norm() : NAN;
-          iterations = s.summary.iterations;
-        },
-        repeats);
-    row("R5a_fk_cold", m, error, tm, iterations, 1.0 / tm.median);
-  }
-  for (const Method& m : methods()) {
-    ShootingRobotSolver solver(r5a, m.options);
-    double error = 0.0;
-    int iterations = 0;
-    const Timing tm = time_repeated(
-        [&] {
-          solver.reset();
-          const ShootingRobotResult s = solver.ik({target});
-          error = s.summary.converged() ? (s.inputs - ik_ref.inputs).lpNorm<Eigen::Infinity>() : NAN;
-          iterations = s.summary.iterations;
-        },
-        repeats);
-    row("R5a_ik_cold", m, error, tm, iterations, 1.0 / tm.median);
-  }
+  // Cold R5a solves of every method: `solve(solver, iterations)` returns the error of one solve.
+  auto cold_rows = [&](const char* scene, auto solve) {
+    for (const Method& m : methods()) {
+      ShootingRobotSolver solver(r5a, m.options);
+      double error = 0.0;
+      int iterations = 0;
+      const Timing tm = time_repeated(
+          [&] {
+            solver.reset();
+            error = solve(solver, iterations);
+          },
+          repeats);
+      row(scene, m, error, tm, iterations, 1.0 / tm.median);
+    }
+  };
+  cold_rows("R5a_fk_cold", [&](ShootingRobotSolver& solver, int& iterations) {
+    const ShootingRobotResult s = solver.fk(u);
+    iterations = s.summary.iterations;
+    return s.summary.converged() ? (s.platforms[0].position - fk_ref.platforms[0].position).norm() : NAN;
+  });
+  cold_rows("R5a_ik_cold", [&](ShootingRobotSolver& solver, int& iterations) {
+    const ShootingRobotResult s = solver.ik({target});
+    iterations = s.summary.iterations;
+    return s.summary.converged() ? (s.inputs - ik_ref.inputs).lpNorm<Eigen::Infinity>() : NAN;
+  });
 
   // R5b path: converged references, then warm-started runs (the first solve of each run is cold).
   const std::vector<Pose> path = r5b_path();
