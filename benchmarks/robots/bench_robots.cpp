@@ -53,6 +53,10 @@ int main(int argc, char** argv) {
     return 1;
   }
   for (int E : elements) {
+    // The cold solves' first part: building the solver (assembly of the rods' collocation blocks and the
+    // couplings). Printed only, there is no error to put beside it.
+    const Timing assembly = time_repeated([&] { ForwardKinematics fk(r5a, options(5, E)); }, {5, 50, 0.2});
+    std::printf("R5a assembly p=5 E=%2d  median %.2f ms\n", E, assembly.median * 1e3);
     for (const std::string problem : {"FK", "IK"}) {
       double error = 0;
       int iterations = 0;
@@ -85,7 +89,8 @@ int main(int argc, char** argv) {
   for (int E : {8, 16}) {  // size of the square IK system (structural zeros of the blocks left out)
     const InverseKinematics ik(r5b, {platform_target()}, options(5, E));
     const Problem& problem = ik.assembly().problem();
-    std::printf("R5b IK p=5 E=%2d: %d rows, %d Jacobian nonzeros\n", E, problem.num_rows(), problem.jacobian_nonzeros());
+    std::printf("R5b IK p=5 E=%2d: %d rows, %d Jacobian nonzeros\n", E, problem.num_rows(),
+                problem.jacobian_nonzeros());
   }
   std::vector<VecX> reference;
   {

@@ -3,6 +3,7 @@
 #include <Eigen/SparseLU>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "pcr/core/error.hpp"
 #include "pcr/math/quaternion.hpp"
@@ -218,6 +219,12 @@ RodVariables CollocationRod::add_to_problem(Problem& problem, const RodEndOption
     return v;
   };
 
+  // Kernel sparsity patterns: detected at the first point that uses each kernel, shared by the others
+  // (point_block.hpp: they do not depend on the point's constants). Detecting per point was about two
+  // thirds of a Stewart-Gough assembly.
+  std::optional<KernelPattern<24, 13>> mixed_interior_pattern;
+  std::optional<KernelPattern<19, 7>> primal_interior_pattern;
+  std::optional<KernelPattern<24, 6>> mixed_constitutive_pattern;
   const std::vector<double> tau = knots_->greville();
   for (int j = 0; j < n; ++j) {
     const double u = tau[j];
@@ -227,23 +234,29 @@ RodVariables CollocationRod::add_to_problem(Problem& problem, const RodEndOption
     if (!is_end) {
       if (mixed) {
         const PointBasis b = basis_at(u, 1, false);
-        problem.add_residual_block(make_point_block<24, 13>(
-            "rod.mixed_equilibrium", where, variables_of(b, true), cp, b, kMixedPoint, 23,
-            [c](const auto& z, auto* r) { mixed_interior(z, c, r); }, /*detect_sparsity=*/true));
+        auto kernel = [c](const auto& z, auto* r) { mixed_interior(z, c, r); };
+        if (!mixed_interior_pattern) mixed_interior_pattern = detect_kernel_pattern<24, 13>(kernel);
+        problem.add_residual_block(make_point_block<24, 13>("rod.mixed_equilibrium", where,
+                                                            variables_of(b, true), cp, b, kMixedPoint, 23,
+                                                            kernel, *mixed_interior_pattern));
       } else {
         const PointBasis b = basis_at(u, 2, false);
-        problem.add_residual_block(make_point_block<19, 7>(
-            "rod.primal_equilibrium", where, variables_of(b, true), cp, b, kPrimalInterior, 18,
-            [c](const auto& z, auto* r) { primal_interior(z, c, r); }, /*detect_sparsity=*/true));
+        auto kernel = [c](const auto& z, auto* r) { primal_interior(z, c, r); };
+        if (!primal_interior_pattern) primal_interior_pattern = detect_kernel_pattern<19, 7>(kernel);
+        problem.add_residual_block(make_point_block<19, 7>("rod.primal_equilibrium", where,
+                                                           variables_of(b, true), cp, b, kPrimalInterior, 18,
+                                                           kernel, *primal_interior_pattern));
       }
       continue;
     }
     const bool at_base = j == 0;
     if (mixed) {
       const PointBasis b = basis_at(u, 1, false);
-      problem.add_residual_block(make_point_block<24, 6>(
-          "rod.mixed_constitutive", where, variables_of(b, true), cp, b, kMixedPoint, 23,
-          [c](const auto& z, auto* r) { mixed_constitutive(z, c, r); }, /*detect_sparsity=*/true));
+      auto kernel = [c](const auto& z, auto* r) { mixed_constitutive(z, c, r); };
+      if (!mixed_constitutive_pattern) mixed_constitutive_pattern = detect_kernel_pattern<24, 6>(kernel);
+      problem.add_residual_block(make_point_block<24, 6>("rod.mixed_constitutive", where,
+                                                         variables_of(b, true), cp, b, kMixedPoint, 23,
+                                                         kernel, *mixed_constitutive_pattern));
     }
     if (!(at_base ? ends.base : ends.tip)) continue;
     const EndData e = end_data(at_base ? model_.base : model_.tip, at_base, load_factor);

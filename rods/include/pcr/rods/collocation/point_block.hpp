@@ -8,12 +8,14 @@
 // dense Jacobian per control point (and dr/dL into the length block).
 //
 // Structural sparsity: control point components that no local group reads, and basis functions whose
-// value is zero at the point, give zero columns. With `detect_sparsity`, the kernel's own zero
-// derivatives dr_row/dz_k are found once by evaluating it with dual numbers at two pseudo-random z
-// (entries of [0.5, 1.5]): a derivative of a smooth (rational) kernel that vanishes at a random point
-// is identically zero with probability one. Only for kernels whose constants enter additively or as
-// nonzero factors (material stiffness), so that a zero constant (e.g. no load yet) cannot hide a
-// dependency. The problem's Jacobian check compares every left-out entry with finite differences.
+// value is zero at the point, give zero columns. The kernel's own zero derivatives dr_row/dz_k come from
+// detect_kernel_pattern: the kernel evaluated with dual numbers at two pseudo-random z (entries of
+// [0.5, 1.5]); a derivative of a smooth (rational) kernel that vanishes at a random point is identically
+// zero with probability one. Only for kernels whose constants enter additively or as nonzero factors
+// (material stiffness), so that a zero constant (e.g. no load yet) cannot hide a dependency; then the
+// pattern does not depend on the constants either, and one detection serves every point of a rod that
+// uses the same kernel function. The problem's Jacobian check compares every left-out entry with finite
+// differences.
 #include <array>
 #include <cstdint>
 #include <utility>
@@ -40,22 +42,52 @@ struct PointBasis {
   std::array<std::array<double, 10>, 3> B{};
 };
 
+/// depends[row * NL + k]: dr_row / dz_k is not identically zero.
+template <int NL, int NR>
+using KernelPattern = std::array<bool, NR * NL>;
+
+template <int NL, int NR>
+KernelPattern<NL, NR> dense_kernel_pattern() {
+  KernelPattern<NL, NR> depends;
+  depends.fill(true);
+  return depends;
+}
+
+/// The kernel's nonzero derivatives (see the file comment for when this is valid).
+template <int NL, int NR, typename Kernel>
+KernelPattern<NL, NR> detect_kernel_pattern(const Kernel& kernel) {
+  KernelPattern<NL, NR> depends;
+  depends.fill(false);
+  std::uint32_t state = 12345u;  // fixed-seed linear congruential generator: reproducible patterns
+  for (int trial = 0; trial < 2; ++trial) {
+    Eigen::Matrix<Dual<NL>, NL, 1> z;
+    for (int k = 0; k < NL; ++k) {
+      state = state * 1664525u + 1013904223u;
+      z[k] = Dual<NL>::variable(0.5 + (state >> 8) * (1.0 / 16777216.0), k);
+    }
+    std::array<Dual<NL>, NR> r;
+    kernel(z, r.data());
+    for (int row = 0; row < NR; ++row)
+      for (int k = 0; k < NL; ++k)
+        if (r[row].v[k] != 0.0) depends[row * NL + k] = true;
+  }
+  return depends;
+}
+
 template <int NL, int NR, typename Kernel>
 class PointBlock final : public ResidualBlock {
  public:
   /// variables: the `basis.count` control point blocks, then the length block (if length_local >= 0).
   PointBlock(std::string kind, std::string name, std::vector<VariableId> variables, int control_point_size,
              PointBasis basis, std::vector<LocalGroup> groups, int length_local, Kernel kernel,
-             bool detect_sparsity = false)
+             const KernelPattern<NL, NR>& depends = dense_kernel_pattern<NL, NR>())
       : ResidualBlock(std::move(kind), std::move(name), NR, std::move(variables)),
         cp_size_(control_point_size),
+        depends_(depends),
         basis_(basis),
         groups_(std::move(groups)),
         length_local_(length_local),
-        kernel_(std::move(kernel)) {
-    depends_.fill(true);
-    if (detect_sparsity) detect_kernel_sparsity();
-  }
+        kernel_(std::move(kernel)) {}
 
   bool structural_nonzero(int k, int row, int column) const override {
     if (k == basis_.count) return length_local_ >= 0 && depends(row, length_local_);
@@ -109,25 +141,8 @@ class PointBlock final : public ResidualBlock {
 
   bool depends(int row, int local) const { return depends_[row * NL + local]; }
 
-  void detect_kernel_sparsity() {
-    depends_.fill(false);
-    std::uint32_t state = 12345u;  // fixed-seed linear congruential generator: reproducible patterns
-    for (int trial = 0; trial < 2; ++trial) {
-      Eigen::Matrix<Dual<NL>, NL, 1> z;
-      for (int k = 0; k < NL; ++k) {
-        state = state * 1664525u + 1013904223u;
-        z[k] = Dual<NL>::variable(0.5 + (state >> 8) * (1.0 / 16777216.0), k);
-      }
-      std::array<Dual<NL>, NR> r;
-      kernel_(z, r.data());
-      for (int row = 0; row < NR; ++row)
-        for (int k = 0; k < NL; ++k)
-          if (r[row].v[k] != 0.0) depends_[row * NL + k] = true;
-    }
-  }
-
   int cp_size_;
-  std::array<bool, NR * NL> depends_;  ///< dr_row / dz_local not identically zero
+  KernelPattern<NL, NR> depends_;
   PointBasis basis_;
   std::vector<LocalGroup> groups_;
   int length_local_;
@@ -135,14 +150,13 @@ class PointBlock final : public ResidualBlock {
 };
 
 template <int NL, int NR, typename Kernel>
-std::shared_ptr<const ResidualBlock> make_point_block(std::string kind, std::string name,
-                                                      std::vector<VariableId> variables, int cp_size,
-                                                      const PointBasis& basis, std::vector<LocalGroup> groups,
-                                                      int length_local, Kernel kernel,
-                                                      bool detect_sparsity = false) {
+std::shared_ptr<const ResidualBlock> make_point_block(
+    std::string kind, std::string name, std::vector<VariableId> variables, int cp_size,
+    const PointBasis& basis, std::vector<LocalGroup> groups, int length_local, Kernel kernel,
+    const KernelPattern<NL, NR>& depends = dense_kernel_pattern<NL, NR>()) {
   return std::make_shared<PointBlock<NL, NR, Kernel>>(std::move(kind), std::move(name), std::move(variables),
                                                       cp_size, basis, std::move(groups), length_local,
-                                                      std::move(kernel), detect_sparsity);
+                                                      std::move(kernel), depends);
 }
 
 }  // namespace pcr::collocation
