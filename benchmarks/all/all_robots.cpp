@@ -161,9 +161,13 @@ Repeats cold_repeats(const AllConfig& config) {
 /// One collocation setting on the selected scenes; `cold` repeats the cold FK/IK solves.
 void collocation_setting(const Scenes& sc, const References& ref, const AllConfig& config,
                          RodFormulation formulation, SolverKind solver, int degree, int elements, bool ik,
-                         bool path, Recorder& out, const Repeats& cold) {
-  const KinematicsOptions o = collocation_options(formulation, degree, elements, solver);
-  const std::string settings = "p=" + std::to_string(degree) + ";E=" + std::to_string(elements);
+                         bool path, Recorder& out, const Repeats& cold, int tolerance_exponent = 10) {
+  const KinematicsOptions o =
+      collocation_options(formulation, degree, elements, solver, std::pow(10.0, -tolerance_exponent));
+  // The library's default tolerance 1e-10 is left out of the name (rows comparable with older CSVs).
+  const std::string settings =
+      "p=" + std::to_string(degree) + ";E=" + std::to_string(elements) +
+      (tolerance_exponent == 10 ? "" : ";tol=1e-" + std::to_string(tolerance_exponent));
   const std::string form = std::string("collocation-") + to_string(formulation) + "-";
   if (config.selected("R5a_fk_cold")) {
     RobotSolution s;
@@ -208,10 +212,16 @@ void collocation_sweep(const Scenes& sc, const References& ref, const AllConfig&
   const std::vector<int> mixed_elements = quick ? std::vector<int>{4, 8, 16} : std::vector<int>{4, 8, 16, 32};
   // The path from 8 elements: at 4 (p = 5) warm solves fail along it, each failure retried by continuation
   // (6.5 s for the 41 poses of the quick path).
+  // Newton tolerance as a setting (default 1e-10, 1e-8, 1e-6), as the shooting runs tie theirs to the
+  // integration tolerance: iterations past the discretisation error buy nothing. On R5b the solver's share
+  // of the input error is about 1e-2 x tolerance in m (p = 6, E = 32: 1.1e-10 m at 1e-10, 2.1e-10 m at
+  // 1e-8, 1.6e-8 m at 1e-6 in benchmarks/results/all.csv).
+  const std::vector<int> tolerance_exponents = quick ? std::vector<int>{10} : std::vector<int>{10, 8, 6};
   for (int p : mixed_degrees)
     for (int e : mixed_elements)
-      collocation_setting(sc, ref, config, RodFormulation::Mixed, SolverKind::Newton, p, e, true, e >= 8, out,
-                          cold_repeats(config));
+      for (int t : tolerance_exponents)
+        collocation_setting(sc, ref, config, RodFormulation::Mixed, SolverKind::Newton, p, e, true, e >= 8,
+                            out, cold_repeats(config), t);
   // Ipopt path: FK only (IK chooses its solver itself), fewer sizes: 10-60x slower than Newton on rods.
   for (int e : quick ? std::vector<int>{8} : std::vector<int>{4, 8, 16})
     collocation_setting(sc, ref, config, RodFormulation::Mixed, SolverKind::Ipopt, 5, e, false, false, out,
