@@ -7,6 +7,7 @@
 #include <Eigen/SparseLU>
 
 #include "../assembly/robot_blocks.hpp"
+#include "input_continuation.hpp"
 #include "input_objective.hpp"
 #include "pcr/core/error.hpp"
 #include "pcr/math/quaternion.hpp"
@@ -148,61 +149,56 @@ RobotSolution ForwardKinematics::solve(const VecX& inputs) {
     iterations += summary.iterations;
   }
   if (!summary.converged()) {
-    // Continuation in the inputs u(t) = u0 + t (inputs - u0), adaptive steps in t: first from the last
-    // converged state, then (on a cold start, only) from the model's default inputs solved from the
-    // straight initial guess. The warm path starts in a deformed state that may be far from the new
-    // inputs and fails more often than the cold one (random input sweeps), hence the second attempt.
-    // Each step starts from the secant extrapolation of the last two converged steps and may take at most
-    // kContinuationStepJacobianEvaluations fresh Jacobians: a step that needs more is too long (outside
-    // Newton's contraction region) and halving it is cheaper than iterating on. Steps grow by 2 after a
-    // fast step (<= 4 iterations), else by 1.25. (Random sweeps, README "Stress tests": 5x less time per
-    // Stewart-Gough solve than full-budget steps growing by 1.5 from the last step, and more converge.)
-    auto continuation = [&](const VecX& x_start, const char* from) {
-      const VecX u0 = assembly_.inputs(x_start);
-      double t = 0.0, step = 0.5, t_prev = -1.0;
-      VecX xc = x_start, x_prev;
-      SolveSummary last;
-      int steps = 0;
-      while (t < 1.0 && step > 1e-4 && steps < 200) {
-        const double target = std::min(1.0, t + step);
-        const VecX u = u0 + target * (inputs - u0);
-        assembly_.fix_inputs(u);
-        VecX trial = xc;
-        if (t_prev >= 0.0) trial += ((target - t) / (t - t_prev)) * (xc - x_prev);
-        assembly_.set_inputs(trial, u);
-        last = solve_once(trial, kContinuationStepJacobianEvaluations);
-        iterations += last.iterations;
-        ++steps;
-        if (last.converged()) {
-          x_prev.swap(xc);
-          xc.swap(trial);
-          t_prev = t;
-          t = target;
-          step *= last.iterations <= 4 ? 2.0 : 1.25;
-        } else {
-          step *= 0.5;
-        }
-      }
-      if (t >= 1.0 && last.converged()) {
-        x = xc;
-        summary = last;
-        summary.message = "converged by continuation in the inputs from " + std::string(from) + " (" +
-                          std::to_string(steps) + " steps)";
-        return true;
-      }
-      summary.message += "; continuation from " + std::string(from) + " stopped at t = " + std::to_string(t);
-      return false;
+    // Continuation in the inputs (input_continuation.hpp): first from the last converged state (if any),
+    // then from the model's default inputs solved from the straight initial guess, along the straight line
+    // and then one input at a time. The warm path starts in a deformed state that may be far from the new
+    // inputs and fails more often than the cold one (random input sweeps), hence the attempts from the
+    // default inputs after it. (Random sweeps, README "Stress tests": limited fresh Jacobians per step took
+    // 5x less time per Stewart-Gough solve than full-budget steps, and more converged.)
+    const kinematics::SolveAtInputs solve_at = [&](const VecX& u, VecX& xs, int max_jacobians) {
+      assembly_.fix_inputs(u);
+      assembly_.set_inputs(xs, u);
+      return solve_once(xs, max_jacobians);
     };
-    bool done = has_solution_ && continuation(x_, "the last solution");
+    auto finish = [&](const kinematics::ContinuationResult& r, const VecX& xr, const std::string& how) {
+      iterations += r.iterations;
+      if (!r.converged) {
+        summary.message += "; " + how + " stopped at " + r.stopped_at;
+        return false;
+      }
+      x = xr;
+      summary = r.last;
+      summary.message = "converged by " + how + " (" + std::to_string(r.steps) + " steps)";
+      return true;
+    };
+    bool done = false;
+    if (has_solution_) {
+      VecX xs = x_;
+      const kinematics::ContinuationResult r = kinematics::continue_along_line(
+          solve_at, assembly_.inputs(x_), inputs, kContinuationStepJacobianEvaluations, xs);
+      done = finish(r, xs, "continuation in the inputs from the last solution");
+    }
     if (!done) {
-      assembly_.fix_inputs(assembly_.model().default_input_values());
+      const VecX u_default = assembly_.model().default_input_values();
+      assembly_.fix_inputs(u_default);
       VecX x_default = assembly_.initial_guess();
       const SolveSummary s0 = solve_once(x_default);
       iterations += s0.iterations;
-      if (s0.converged())
-        continuation(x_default, "the default inputs");
-      else
+      if (s0.converged()) {
+        VecX xs = x_default;
+        done = finish(kinematics::continue_along_line(solve_at, u_default, inputs,
+                                                      kContinuationStepJacobianEvaluations, xs),
+                      xs, "continuation in the inputs from the default inputs");
+        if (!done) {
+          xs = x_default;
+          done = finish(kinematics::continue_one_input_at_a_time(
+                            solve_at, u_default, inputs, kDirectJacobianEvaluations,
+                            kContinuationStepJacobianEvaluations, kOneInputOrders, xs),
+                        xs, "continuation from the default inputs one input at a time");
+        }
+      } else {
         summary.message += "; the default inputs did not converge from the straight initial guess";
+      }
     }
     assembly_.fix_inputs(inputs);
   }

@@ -74,8 +74,8 @@ struct RodResult {
 
 struct RobotSolution {
   SolveSummary summary;
-  VecX inputs;                 ///< in the model's input order
-  std::vector<Pose> platforms; ///< in the model's platform order
+  VecX inputs;                  ///< in the model's input order
+  std::vector<Pose> platforms;  ///< in the model's platform order
   std::vector<RodResult> rods;
 };
 
@@ -102,6 +102,9 @@ class ForwardKinematics {
   /// continuation step (see solve()).
   static constexpr int kDirectJacobianEvaluations = 10;
   static constexpr int kContinuationStepJacobianEvaluations = 8;
+  /// Orders tried by the one-input-at-a-time continuation (the last fallback; bounds its cost on inputs
+  /// without a reachable equilibrium: at most this many orders of one leg per input).
+  static constexpr int kOneInputOrders = 3;
   RobotAssembly assembly_;
   KinematicsOptions options_;
   VecX x_;

@@ -1,0 +1,44 @@
+#pragma once
+// Continuation in the actuation inputs, the fallback of ForwardKinematics::solve when the direct
+// Newton solve fails (the start is outside Newton's contraction region):
+//  - along a straight line u(t) = u0 + t (u1 - u0), adaptive steps in t: each step starts from the
+//    secant extrapolation of the last two converged steps and may take a limited number of fresh
+//    Jacobians (a step that needs more is too long and is halved); steps grow by 2 after a fast step
+//    (<= 4 iterations), else by 1.25;
+//  - one input at a time: legs that each change a single input, in a few orders. A straight
+//    line through input space can run into a fold of the equilibrium manifold (its end state then lies
+//    on another branch, out of reach of small steps) where a path around it does not: of the cold
+//    planar FK solves whose straight continuation from the default inputs stopped, 58 of 61 reached
+//    their inputs one input at a time (README, Stress tests).
+#include <functional>
+#include <string>
+
+#include "pcr/core/types.hpp"
+#include "pcr/solve/solve_summary.hpp"
+
+namespace pcr::kinematics {
+
+/// Solves the FK system at inputs u from the start x (in: start, out: last iterate) with at most
+/// max_jacobians fresh Jacobians.
+using SolveAtInputs = std::function<SolveSummary(const VecX& u, VecX& x, int max_jacobians)>;
+
+struct ContinuationResult {
+  bool converged = false;
+  SolveSummary last;       ///< summary of the last step's solve
+  int steps = 0;           ///< solves attempted (all legs)
+  int iterations = 0;      ///< Newton iterations of all steps
+  std::string stopped_at;  ///< where it stopped, for the failure message (empty when converged)
+};
+
+/// x: converged state at u0 in; on success the converged state at u1 (unchanged otherwise).
+ContinuationResult continue_along_line(const SolveAtInputs& solve_at, const VecX& u0, const VecX& u1,
+                                       int step_jacobians, VecX& x);
+
+/// Legs from u0 to u1 changing one input each, in the orders (k, k+1, ..., k-1) for k < max_orders;
+/// every order starts again from the converged state at u0. Each leg is first tried as one direct solve
+/// (at most direct_jacobians fresh Jacobians), then along its line. x as above.
+ContinuationResult continue_one_input_at_a_time(const SolveAtInputs& solve_at, const VecX& u0, const VecX& u1,
+                                                int direct_jacobians, int step_jacobians, int max_orders,
+                                                VecX& x);
+
+}  // namespace pcr::kinematics

@@ -1,0 +1,125 @@
+// Continuation in the actuation inputs (robots/src/kinematics/input_continuation.hpp) on a model problem
+// whose answers are known: the "equilibrium" at inputs u is x*(u) = u, a solve converges when it starts
+// within 0.3 of x*(u) (its contraction region) and fails for u in a blocked region (no equilibrium
+// reachable there, like the region behind a fold). Paths that run through the region must stop, paths
+// around it must arrive at x*(u1) exactly.
+#define BOOST_TEST_MODULE input_continuation
+#include <boost/test/unit_test.hpp>
+#include <cmath>
+#include <functional>
+#include <utility>
+#include <vector>
+
+#include "../../robots/src/kinematics/input_continuation.hpp"
+
+using namespace pcr;
+using namespace pcr::kinematics;
+using Vec2 = Eigen::Vector2d;
+
+namespace {
+
+struct ModelProblem {
+  explicit ModelProblem(std::function<bool(const VecX&)> is_blocked) : blocked(std::move(is_blocked)) {}
+  std::function<bool(const VecX&)> blocked;
+  std::vector<VecX> solved_at;  // inputs of every converged solve, to check the path taken
+
+  SolveSummary solve(const VecX& u, VecX& x, int max_jacobians) {
+    SolveSummary s;
+    s.iterations = 3;
+    if (!blocked(u) && (x - u).norm() < 0.3 && max_jacobians >= 1) {
+      x = u;
+      s.status = SolveStatus::Converged;
+      solved_at.push_back(u);
+    } else {
+      x.setConstant(1e3);  // a failed solve leaves an arbitrary iterate
+      s.status = SolveStatus::MaxIterations;
+      s.message = "model problem: outside the contraction region or blocked";
+    }
+    return s;
+  }
+  SolveAtInputs solver() {
+    return [this](const VecX& u, VecX& x, int j) { return solve(u, x, j); };
+  }
+};
+
+const Vec2 kStart(0.0, 0.0), kEnd(1.0, 1.0);
+bool nothing_blocked(const VecX&) {
+  return false;
+}
+/// A band along the diagonal, entered at t = 0.1 and left at t = 0.9: too long to step over.
+bool diagonal_band(const VecX& u) {
+  return std::abs(u[0] - u[1]) < 0.1 && u[0] + u[1] > 0.2 && u[0] + u[1] < 1.8;
+}
+/// A band along the u0 axis that contains the corner (1, 0).
+bool axis_band(const VecX& u) {
+  return std::abs(u[1]) < 0.1 && u[0] > 0.2 && u[0] < 1.5;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(straight_line_reaches_the_end_in_steps_and_leaves_x_on_failure) {
+  ModelProblem free_plane(nothing_blocked);
+  VecX x = kStart;
+  const ContinuationResult r = continue_along_line(free_plane.solver(), kStart, kEnd, 8, x);
+  BOOST_TEST(r.converged);
+  BOOST_TEST((x - kEnd).norm() == 0.0);
+  // |u1 - u0| = 1.41 and each start must lie within 0.3 of the answer: several steps, the last at t = 1.
+  BOOST_TEST(r.steps >= 5);
+  BOOST_TEST(r.iterations == 3 * r.steps);
+  BOOST_TEST(r.stopped_at.empty());
+
+  ModelProblem blocked(diagonal_band);
+  x = kStart;
+  const ContinuationResult s = continue_along_line(blocked.solver(), kStart, kEnd, 8, x);
+  BOOST_TEST(!s.converged);
+  BOOST_TEST((x - kStart).norm() == 0.0);  // unchanged on failure
+  BOOST_TEST(s.stopped_at.find("t = 0.") == 0u, s.stopped_at);
+  // It stops before the band: every converged step lies on the diagonal short of it.
+  for (const VecX& u : blocked.solved_at) BOOST_TEST(u[0] + u[1] <= 0.2);
+}
+
+BOOST_AUTO_TEST_CASE(one_input_at_a_time_goes_around_a_blocked_diagonal) {
+  ModelProblem blocked(diagonal_band);
+  VecX x = kStart;
+  const ContinuationResult r = continue_one_input_at_a_time(blocked.solver(), kStart, kEnd, 10, 8, 3, x);
+  BOOST_TEST(r.converged);
+  BOOST_TEST((x - kEnd).norm() == 0.0);
+  // First order: input 0 first, through the corner (1, 0).
+  bool passed_corner = false;
+  for (const VecX& u : blocked.solved_at) passed_corner = passed_corner || (u - Vec2(1.0, 0.0)).norm() == 0.0;
+  BOOST_TEST(passed_corner);
+}
+
+BOOST_AUTO_TEST_CASE(a_blocked_first_order_is_followed_by_the_next) {
+  // The band blocks the first leg of order (0, 1) and its end (1, 0); order (1, 0) via (0, 1) is free.
+  ModelProblem blocked(axis_band);
+  VecX x = kStart;
+  const ContinuationResult r = continue_one_input_at_a_time(blocked.solver(), kStart, kEnd, 10, 8, 3, x);
+  BOOST_TEST(r.converged);
+  BOOST_TEST((x - kEnd).norm() == 0.0);
+  // With one order only it fails and says where.
+  ModelProblem again(axis_band);
+  x = kStart;
+  const ContinuationResult s = continue_one_input_at_a_time(again.solver(), kStart, kEnd, 10, 8, 1, x);
+  BOOST_TEST(!s.converged);
+  BOOST_TEST((x - kStart).norm() == 0.0);
+  BOOST_TEST(s.stopped_at.find("input 0 at t = ") == 0u, s.stopped_at);
+}
+
+BOOST_AUTO_TEST_CASE(a_long_leg_is_solved_directly_when_it_can_be) {
+  // Inputs 0.2 apart: each leg is within the contraction region, so one direct solve per leg.
+  ModelProblem free_plane(nothing_blocked);
+  VecX x = kStart;
+  const ContinuationResult r =
+      continue_one_input_at_a_time(free_plane.solver(), kStart, Vec2(0.2, 0.2), 10, 8, 3, x);
+  BOOST_TEST(r.converged);
+  BOOST_TEST(r.steps == 2);
+  BOOST_TEST((x - Vec2(0.2, 0.2)).norm() == 0.0);
+  // Equal end points: no leg, solved at u1 along the (zero-length) line.
+  x = kStart;
+  const ContinuationResult same =
+      continue_one_input_at_a_time(free_plane.solver(), kStart, kStart, 10, 8, 3, x);
+  BOOST_TEST(same.converged);
+  BOOST_TEST(same.steps >= 1);
+  BOOST_TEST((x - kStart).norm() == 0.0);
+}
