@@ -9,13 +9,13 @@
 #include "../assembly/robot_blocks.hpp"
 #include "input_continuation.hpp"
 #include "input_objective.hpp"
+#include "path_predictor.hpp"
 #include "pcr/core/error.hpp"
 #include "pcr/math/quaternion.hpp"
 #include "pcr/solve/free_jacobian.hpp"
 #include "pcr/solve/ipopt_solver.hpp"
 #include "pcr/solve/newton_solver.hpp"
 #include "reduced_ik.hpp"
-#include "secant_predictor.hpp"
 
 namespace pcr {
 namespace {
@@ -113,7 +113,7 @@ RobotSolution read_solution(const RobotAssembly& a, const VecX& x, int centerlin
 struct ForwardKinematics::Solvers {
   std::unique_ptr<NewtonSolver> newton;
   std::unique_ptr<IpoptSolver> ipopt;
-  kinematics::SecantPredictor predictor;  // start point along a path of inputs
+  kinematics::PathPredictor predictor;  // start point along a path of inputs
 };
 
 ForwardKinematics::ForwardKinematics(std::shared_ptr<const RobotModel> model,
@@ -266,7 +266,7 @@ struct InverseKinematics::Solvers {
   std::unique_ptr<NewtonSolver> newton;
   std::unique_ptr<IpoptSolver> ipopt;
   VariableId reference = -1;
-  kinematics::SecantPredictor predictor;           // start point along a path of targets
+  kinematics::PathPredictor predictor;             // start point along a path of targets
   std::unique_ptr<kinematics::ReducedIk> reduced;  // other objectives, stress limits (IkOptions)
 };
 

@@ -1,0 +1,79 @@
+// Start points along a path (robots/src/kinematics/path_predictor.hpp): polynomial extrapolation is exact
+// for solutions that are polynomials of the arc length of the same degree (two points: linear, three:
+// quadratic), falls back to the last solution where the path turns or reverses.
+#define BOOST_TEST_MODULE path_predictor
+#include <boost/test/unit_test.hpp>
+#include <cmath>
+
+#include "../../robots/src/kinematics/path_predictor.hpp"
+
+using namespace pcr;
+using pcr::kinematics::PathPredictor;
+
+namespace {
+
+/// A straight path z(s) = z0 + s d (|d| = 1) and a solution x(s) = c0 + c1 s + c2 s^2.
+struct Path {
+  VecX z0 = (VecX(3) << 0.1, -0.2, 0.3).finished();
+  VecX d = (VecX(3) << 2.0, 1.0, 2.0).finished() / 3.0;
+  VecX c0 = (VecX(2) << 1.0, -1.0).finished();
+  VecX c1 = (VecX(2) << 0.5, 2.0).finished();
+  VecX c2 = (VecX(2) << -3.0, 0.7).finished();
+  VecX z(double s) const { return z0 + s * d; }
+  VecX x(double s) const { return c0 + s * c1 + s * s * c2; }
+};
+
+double error_at(const Path& p, const PathPredictor& predictor, double s_last, double s_new) {
+  return (predictor.predict(p.x(s_last), p.z(s_new)) - p.x(s_new)).lpNorm<Eigen::Infinity>();
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(three_points_extrapolate_a_quadratic_exactly_on_uneven_steps) {
+  Path p;
+  PathPredictor predictor;
+  const double s[] = {0.0, 0.3, 0.45};  // steps 0.3 and 0.15, next step 0.2
+  for (double si : s) predictor.accept(p.x(si), p.z(si));
+  // Exact up to round-off of the weights (values of order 1; 1e-12 leaves a margin of ~1e3 eps).
+  BOOST_TEST(error_at(p, predictor, 0.45, 0.65) < 1e-12);
+}
+
+BOOST_AUTO_TEST_CASE(two_points_extrapolate_a_line_exactly_but_not_a_parabola) {
+  Path line;
+  line.c2.setZero();
+  PathPredictor predictor;
+  predictor.accept(line.x(0.0), line.z(0.0));
+  predictor.accept(line.x(0.3), line.z(0.3));
+  BOOST_TEST(error_at(line, predictor, 0.3, 0.5) < 1e-12);
+
+  Path parabola;
+  PathPredictor linear_only;
+  linear_only.accept(parabola.x(0.0), parabola.z(0.0));
+  linear_only.accept(parabola.x(0.3), parabola.z(0.3));
+  // Linear extrapolation misses c2 s (s - 0.3) at s = 0.5: |c2|max * 0.5 * 0.2 = 0.3.
+  BOOST_TEST(std::abs(error_at(parabola, linear_only, 0.3, 0.5) - 0.3) < 1e-12);
+}
+
+BOOST_AUTO_TEST_CASE(a_reversal_or_a_turn_starts_from_the_last_solution) {
+  Path p;
+  PathPredictor predictor;
+  for (double si : {0.0, 0.3, 0.45}) predictor.accept(p.x(si), p.z(si));
+  const VecX last = p.x(0.45);
+  BOOST_TEST((predictor.predict(last, p.z(0.3)) - last).norm() == 0.0);  // back along the path
+  const VecX sideways = p.z(0.45) + 0.1 * (VecX(3) << 1.0, -2.0, 0.0).finished() / std::sqrt(5.0);
+  BOOST_TEST((predictor.predict(last, sideways) - last).norm() == 0.0);  // at right angles (d . e = 0)
+  // A step more than twice the last one is not extrapolated either.
+  BOOST_TEST((predictor.predict(last, p.z(0.45 + 0.31)) - last).norm() == 0.0);
+}
+
+BOOST_AUTO_TEST_CASE(after_a_turn_the_quadratic_waits_for_three_points_on_the_new_line) {
+  // The older step is at right angles to the last: only the linear extrapolation is used.
+  Path p;
+  PathPredictor predictor;
+  const VecX e = (VecX(3) << 1.0, -2.0, 0.0).finished() / std::sqrt(5.0);
+  predictor.accept(p.x(-1.0), p.z(0.0) - 0.2 * e);  // before the turn
+  predictor.accept(p.x(0.0), p.z(0.0));
+  predictor.accept(p.x(0.3), p.z(0.3));
+  const double linear_error = 0.3;  // as in the test above
+  BOOST_TEST(std::abs(error_at(p, predictor, 0.3, 0.5) - linear_error) < 1e-12);
+}
