@@ -214,8 +214,8 @@ void collocation_sweep(const Scenes& sc, const References& ref, const AllConfig&
   // (6.5 s for the 41 poses of the quick path).
   // Newton tolerance as a setting (default 1e-10, 1e-8, 1e-6), as the shooting runs tie theirs to the
   // integration tolerance: iterations past the discretisation error buy nothing. On R5b the solver's share
-  // of the input error is about 1e-2 x tolerance in m (p = 6, E = 32: 1.1e-10 m at 1e-10, 2.1e-10 m at
-  // 1e-8, 1.6e-8 m at 1e-6 in benchmarks/results/all.csv).
+  // of the input error is about 1e-2 x tolerance in m (p = 6, E = 32: 1.1e-10 m at 1e-10, 1.8e-10 m at
+  // 1e-8, 9.9e-9 m at 1e-6 in benchmarks/results/all.csv).
   const std::vector<int> tolerance_exponents = quick ? std::vector<int>{10} : std::vector<int>{10, 8, 6};
   for (int p : mixed_degrees)
     for (int e : mixed_elements)

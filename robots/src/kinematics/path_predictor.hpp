@@ -9,8 +9,8 @@
 //   O(|dz|^3)).
 // Used only when the new step continues the old one (angle between dz and the last step below ~25 deg and
 // 0 < theta <= 2); otherwise the start is x_k. Saves simplified-Newton iterations on smooth paths
-// (teleoperation, trajectories): on the R5b path (p = 6, E = 8) the quadratic took 1.2 instead of 2.9
-// iterations per warm IK solve at tolerance 1e-6, 3.9 instead of 4.8 at 1e-10 (README, Robots).
+// (teleoperation, trajectories): on the R5b path (p = 6, E = 8) the quadratic took 1.3 instead of 2.9
+// iterations per warm IK solve at tolerance 1e-6, 3.9 instead of 4.9 at 1e-10 (README, Robots).
 #include <cmath>
 
 #include "pcr/core/types.hpp"
