@@ -40,6 +40,11 @@ struct ModelProblem {
   SolveAtInputs solver() {
     return [this](const VecX& u, VecX& x, int j) { return solve(u, x, j); };
   }
+  bool passed_through(const Vec2& u) const {
+    for (const VecX& v : solved_at)
+      if ((v - u).norm() == 0.0) return true;
+    return false;
+  }
 };
 
 const Vec2 kStart(0.0, 0.0), kEnd(1.0, 1.0);
@@ -53,6 +58,13 @@ bool diagonal_band(const VecX& u) {
 /// A band along the u0 axis that contains the corner (1, 0).
 bool axis_band(const VecX& u) {
   return std::abs(u[1]) < 0.1 && u[0] > 0.2 && u[0] < 1.5;
+}
+
+/// From kStart to `end` one input at a time (direct legs with 10 fresh Jacobians, steps with 8); x: the
+/// state reached (kStart when it fails).
+ContinuationResult one_input_at_a_time(ModelProblem& problem, const Vec2& end, int max_orders, VecX& x) {
+  x = kStart;
+  return continue_one_input_at_a_time(problem.solver(), kStart, end, 10, 8, max_orders, x);
 }
 
 }  // namespace
@@ -80,27 +92,24 @@ BOOST_AUTO_TEST_CASE(straight_line_reaches_the_end_in_steps_and_leaves_x_on_fail
 
 BOOST_AUTO_TEST_CASE(one_input_at_a_time_goes_around_a_blocked_diagonal) {
   ModelProblem blocked(diagonal_band);
-  VecX x = kStart;
-  const ContinuationResult r = continue_one_input_at_a_time(blocked.solver(), kStart, kEnd, 10, 8, 3, x);
+  VecX x;
+  const ContinuationResult r = one_input_at_a_time(blocked, kEnd, 3, x);
   BOOST_TEST(r.converged);
   BOOST_TEST((x - kEnd).norm() == 0.0);
-  // First order: input 0 first, through the corner (1, 0).
-  bool passed_corner = false;
-  for (const VecX& u : blocked.solved_at) passed_corner = passed_corner || (u - Vec2(1.0, 0.0)).norm() == 0.0;
-  BOOST_TEST(passed_corner);
+  BOOST_TEST(blocked.passed_through(Vec2(1.0, 0.0)));  // first order: input 0 first
 }
 
 BOOST_AUTO_TEST_CASE(a_blocked_first_order_is_followed_by_the_next) {
   // The band blocks the first leg of order (0, 1) and its end (1, 0); order (1, 0) via (0, 1) is free.
   ModelProblem blocked(axis_band);
-  VecX x = kStart;
-  const ContinuationResult r = continue_one_input_at_a_time(blocked.solver(), kStart, kEnd, 10, 8, 3, x);
+  VecX x;
+  const ContinuationResult r = one_input_at_a_time(blocked, kEnd, 3, x);
   BOOST_TEST(r.converged);
   BOOST_TEST((x - kEnd).norm() == 0.0);
+  BOOST_TEST(blocked.passed_through(Vec2(0.0, 1.0)));  // second order: input 1 first
   // With one order only it fails and says where.
   ModelProblem again(axis_band);
-  x = kStart;
-  const ContinuationResult s = continue_one_input_at_a_time(again.solver(), kStart, kEnd, 10, 8, 1, x);
+  const ContinuationResult s = one_input_at_a_time(again, kEnd, 1, x);
   BOOST_TEST(!s.converged);
   BOOST_TEST((x - kStart).norm() == 0.0);
   BOOST_TEST(s.stopped_at.find("input 0 at t = ") == 0u, s.stopped_at);
@@ -109,16 +118,13 @@ BOOST_AUTO_TEST_CASE(a_blocked_first_order_is_followed_by_the_next) {
 BOOST_AUTO_TEST_CASE(a_long_leg_is_solved_directly_when_it_can_be) {
   // Inputs 0.2 apart: each leg is within the contraction region, so one direct solve per leg.
   ModelProblem free_plane(nothing_blocked);
-  VecX x = kStart;
-  const ContinuationResult r =
-      continue_one_input_at_a_time(free_plane.solver(), kStart, Vec2(0.2, 0.2), 10, 8, 3, x);
+  VecX x;
+  const ContinuationResult r = one_input_at_a_time(free_plane, Vec2(0.2, 0.2), 3, x);
   BOOST_TEST(r.converged);
   BOOST_TEST(r.steps == 2);
   BOOST_TEST((x - Vec2(0.2, 0.2)).norm() == 0.0);
   // Equal end points: no leg, solved at u1 along the (zero-length) line.
-  x = kStart;
-  const ContinuationResult same =
-      continue_one_input_at_a_time(free_plane.solver(), kStart, kStart, 10, 8, 3, x);
+  const ContinuationResult same = one_input_at_a_time(free_plane, kStart, 3, x);
   BOOST_TEST(same.converged);
   BOOST_TEST(same.steps >= 1);
   BOOST_TEST((x - kStart).norm() == 0.0);
