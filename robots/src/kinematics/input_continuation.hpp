@@ -7,9 +7,9 @@
 //    (<= 4 iterations), else by 1.25;
 //  - one input at a time: legs that each change a single input, in a few orders. A straight
 //    line through input space can run into a fold of the equilibrium manifold (its end state then lies
-//    on another branch, out of reach of small steps) where a path around it does not: of the cold
-//    planar FK solves whose straight continuation from the default inputs stopped, 58 of 61 reached
-//    their inputs one input at a time (README, Stress tests).
+//    on another branch, out of reach of small steps) where a path around it does not: with this fallback the
+//    long random planar sweep converged 97.3 % of its cold FK solves instead of 78.3 % (README, Stress
+//    tests).
 #include <functional>
 #include <string>
 
