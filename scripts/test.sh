@@ -9,16 +9,24 @@
 #     20 minutes on 2 cores. -Og rather than -O1: the sanitizer build takes 7.5 instead of about 10
 #     minutes (collocation_rod.cpp alone: 62 s against 136 s), its tests 118 instead of 82 s.
 set -euo pipefail
+# Elapsed time of each stage in the log (CI budget: 20 minutes for the whole of .ci/run).
+stage() { echo "test.sh: $1 at $((SECONDS / 60)) min $((SECONDS % 60)) s"; }
 root=$(cd "$(dirname "$0")/.." && pwd)
 mkdir -p "$root/build"
+bash "$root/scripts/install-deps.sh"
+stage "dependencies installed"
 PCR_BENCHMARK_TARGETS=bench_all bash "$root/scripts/build.sh" "$root/build/release"
+stage "Release build done"
 (cd "$root/build/release" && ctest --output-on-failure -j "$(nproc)")
+stage "Release tests done"
 
 bash "$root/scripts/build.sh" "$root/build/sanitize" -DPCR_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-Og -g1" -DPCR_BUILD_BENCHMARKS=OFF \
   -DPCR_SKIP_TESTS="test_hard_rods;test_rod_convergence;test_shooting_crosscheck;test_singular_poses"
+stage "sanitizer build done"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 cd "$root/build/sanitize"
 ctest --output-on-failure -j "$(nproc)" -LE "stress|install|bench"
 ./tests/test_random_sweeps --log_level=warning --run_test=planar_three_rod_random_inputs -- --solves=3
+stage "sanitizer tests done"

@@ -1,7 +1,8 @@
 // Run time against error of the collocation robot solver (issue "benchmarks"):
 //  - R5a (models/stewart_gough.urdf): cold FK at the default inputs and cold IK to the scene target;
 //  - R5b (models/stewart_gough_teleop.urdf): warm-started IK along the teleoperation path (from
-//    (0, 0.02, 0.48) m in 100 steps of (0, 0.001, 0.001) m and back), solves per second.
+//    (0, 0.02, 0.48) m in 100 steps of (0, 0.001, 0.001) m and back), solves per second, and the cost
+//    of the operations a warm solve is made of (printed).
 // Error: max over the inputs (IK) or platform position (FK) against a reference computed in the same
 // run with 32 elements of degree 5 (converged to < 1e-9 m, see README). Scenes:
 // benchmarks/common/robot_scenes.hpp. CSV columns as the other
@@ -15,8 +16,11 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/SparseLU>
+
 #include "common/bench_csv.hpp"
 #include "common/robot_scenes.hpp"
+#include "pcr/solve/free_jacobian.hpp"
 
 using namespace pcr;
 using namespace pcr::bench;
@@ -29,6 +33,34 @@ KinematicsOptions options(int degree, int elements, double tolerance = 1e-10) {
   o.assembly.discretization = {RodFormulation::Mixed, degree, elements};
   o.tolerance = tolerance;
   return o;
+}
+
+// What one Newton step of a warm R5b IK solve is made of, at the path's start solution: one residual
+// evaluation and one solve with the LU factors of the free Jacobian (the Newton solver's Eigen SparseLU
+// with COLAMD ordering), plus, when a fresh Jacobian is taken, its evaluation (dual numbers) and a
+// numeric factorisation on the kept symbolic analysis. Printed only (no error to put beside it).
+void print_operation_costs(const InverseKinematics& ik) {
+  const Problem& problem = ik.assembly().problem();
+  const VecX& x = ik.state();
+  VecX c(problem.num_rows());
+  Eigen::SparseMatrix<double, Eigen::RowMajor> J;
+  problem.evaluate_residuals_and_jacobian(x, c, J);
+  const FreeJacobian free = free_jacobian(problem, J);
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
+  lu.analyzePattern(free.matrix);
+  lu.factorize(free.matrix);
+  const VecX rhs = c;
+  VecX dx;
+  const Repeats many{20, 2000, 0.2}, few{5, 200, 0.2};
+  const Timing residual = time_repeated([&] { problem.evaluate_residuals(x, c); }, many);
+  const Timing jacobian = time_repeated([&] { problem.evaluate_residuals_and_jacobian(x, c, J); }, few);
+  const Timing factorize = time_repeated([&] { lu.factorize(free.matrix); }, few);
+  const Timing solve = time_repeated([&] { dx = lu.solve(rhs); }, many);
+  std::printf(
+      "  per operation (median): residual %.1f us, LU solve %.1f us (factors %ld + %ld nonzeros), "
+      "Jacobian %.2f ms, numeric factorisation %.2f ms\n",
+      residual.median * 1e6, solve.median * 1e6, static_cast<long>(lu.nnzL()), static_cast<long>(lu.nnzU()),
+      jacobian.median * 1e3, factorize.median * 1e3);
 }
 
 }  // namespace
@@ -87,10 +119,11 @@ int main(int argc, char** argv) {
   // R5b teleoperation: reference inputs along the path at 32 elements, then timed warm solves.
   const std::vector<Pose> path = r5b_path();
   for (int E : {8, 16}) {  // size of the square IK system (structural zeros of the blocks left out)
-    const InverseKinematics ik(r5b, {platform_target()}, options(5, E));
+    InverseKinematics ik(r5b, {platform_target()}, options(5, E));
     const Problem& problem = ik.assembly().problem();
     std::printf("R5b IK p=5 E=%2d: %d rows, %d Jacobian nonzeros\n", E, problem.num_rows(),
                 problem.jacobian_nonzeros());
+    if (ik.solve({path[0]}).summary.converged()) print_operation_costs(ik);
   }
   std::vector<VecX> reference;
   {
