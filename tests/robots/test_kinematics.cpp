@@ -129,8 +129,8 @@ BOOST_AUTO_TEST_CASE(fk_then_ik_round_trip_on_every_model) {
     const auto model = load(c.model);
     ForwardKinematics fk(model);
     // 0.5 % of the input ranges (mm): moderate deformations. (Larger unequal length changes of the
-    // planar robot make a direct FK jump to a straight, axially overloaded, unstable equilibrium;
-    // see the notes on stability monitoring.)
+    // planar robot can make a direct FK jump to an unstable equilibrium; KinematicsOptions::check_stability
+    // monitors that, test_stability_monitor.)
     const VecX u = moved_inputs(*model, 0.005);
     const RobotSolution s = fk.solve(u);
     BOOST_REQUIRE_MESSAGE(s.summary.converged(), c.model << " FK: " << s.summary.brief_report());

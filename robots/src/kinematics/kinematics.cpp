@@ -215,6 +215,13 @@ RobotSolution ForwardKinematics::solve(const VecX& inputs) {
   RobotSolution out = read_solution(assembly_, summary.converged() ? x_ : (x.allFinite() ? x : x_),
                                     options_.centerline_points);
   out.summary = summary;
+  if (options_.check_stability && summary.converged()) {
+    out.jacobian_sign = jacobian_determinant_sign(assembly_.problem(), x_);
+    if (out.jacobian_sign != 0) {
+      out.jacobian_sign_changed = last_jacobian_sign_ != 0 && out.jacobian_sign != last_jacobian_sign_;
+      last_jacobian_sign_ = out.jacobian_sign;
+    }
+  }
   return out;
 }
 

@@ -57,6 +57,9 @@ struct KinematicsOptions {
   int centerline_points = 21;  ///< points per rod in the results
   /// Newton reuses its last factorisation across warm-started solves (see NewtonOptions).
   bool reuse_factorization = true;
+  /// FK only: stability monitoring along the solves (RobotSolution::jacobian_sign); costs one Jacobian
+  /// evaluation and one sparse LU factorisation per converged solve (R5a: about 5 ms).
+  bool check_stability = false;
   IkOptions ik;  ///< inverse kinematics only
 };
 
@@ -77,6 +80,17 @@ struct RobotSolution {
   VecX inputs;                  ///< in the model's input order
   std::vector<Pose> platforms;  ///< in the model's platform order
   std::vector<RodResult> rods;
+  /// FK with KinematicsOptions::check_stability (DESIGN.md §4): sign of det J, J = dR/dx of the FK system
+  /// over its free unknowns at the solution: +1 or -1; 0 when not checked, not converged or singular.
+  int jacobian_sign = 0;
+  /// jacobian_sign differs from that of the previous converged, checked solve of this solver: det J
+  /// vanishes where equilibria pass a fold or a bifurcation (buckling), so an odd number of them lies
+  /// between the two equilibria, and for conservative loads (dead loads, gravity) this one has an odd
+  /// number of unstable modes more or fewer than the previous one. Along a path that starts at a stable
+  /// equilibrium the first change means: unstable (e.g. a rod fed past its buckling length stays straight
+  /// by symmetry). No change does not prove stability (an even number of crossings, or a double mode
+  /// such as a round rod's buckling in both bending planes at once, keeps the sign).
+  bool jacobian_sign_changed = false;
 };
 
 class ForwardKinematics {
@@ -109,6 +123,7 @@ class ForwardKinematics {
   KinematicsOptions options_;
   VecX x_;
   bool has_solution_ = false;
+  int last_jacobian_sign_ = 0;  // of the last checked converged solve (check_stability)
   struct Solvers;
   std::shared_ptr<Solvers> solvers_;
 };

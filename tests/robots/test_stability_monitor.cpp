@@ -1,0 +1,128 @@
+// FK stability monitoring (KinematicsOptions::check_stability, RobotSolution::jacobian_sign): a column
+// fed through the base past its Euler buckling length.
+//
+// Model: one steel rod with a 2 mm x 1 mm rectangular section, clamped upright at the base, fed through
+// it (input: its length L), its free upper end under a dead load F downwards. Clamped-free Euler column:
+// it buckles in its weak plane at F = pi^2 E I_min / (4 L^2), i.e. at the length
+//   L_cr = (pi / 2) sqrt(E I_min / F);
+// the strong plane follows at 2 L_cr (I_max = 4 I_min), the weak plane's second mode at 3 L_cr. Axial
+// and shear strains shift these by F / (E A) ~ 1e-5 relative, the 8-element discretisation by less than
+// that (test_rod_stability: R4 at 1e-4): negligible against the 10 % steps of the paths below.
+#define BOOST_TEST_MODULE stability_monitor
+#include <boost/test/unit_test.hpp>
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "pcr/robots/kinematics.hpp"
+#include "pcr/robots/urdf_loader.hpp"
+
+using namespace pcr;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kE = 200e9, kWidth = 2e-3, kHeight = 1e-3, kLoad = 1.0;  // Pa, m, m, N
+const double kEulerLength = kPi / 2 * std::sqrt(kE * kWidth * std::pow(kHeight, 3) / 12 / kLoad);
+
+// lateral: dead force along x and y at the tip (an imperfection), besides -kLoad along z.
+std::shared_ptr<const RobotModel> fed_column(double lateral) {
+  const std::string force =
+      std::to_string(lateral) + " " + std::to_string(lateral) + " " + std::to_string(-kLoad);
+  const std::string xml = R"(<robot name="fed_column">
+  <link name="base"/>
+  <pcr_rod name="column">
+    <start link="base" xyz="0 0 0" rpy="0 0 0" coupling="clamped"/>
+    <end coupling="free" force=")" +
+                          force + R"(" moment="0 0 0"/>
+    <material youngs_modulus="200e9" shear_modulus="80e9" density="8000"/>
+    <section type="rectangle" width="0.002" height="0.001"/>
+    <length value="0.1" actuated="true" lower="0.05" upper="1.0"/>
+  </pcr_rod>
+</robot>)";
+  return std::make_shared<const RobotModel>(parse_robot_model(xml, "fed_column"));
+}
+
+KinematicsOptions monitored() {
+  KinematicsOptions o;
+  o.check_stability = true;
+  return o;
+}
+
+double tip_offset(const RobotSolution& s) {
+  return s.rods[0].centerline.back().head<2>().norm();
+}
+
+}  // namespace
+
+// Without imperfection the straight column is an equilibrium at every length, and the warm-started FK
+// stays on it past L_cr, where it is unstable: the sign of det J must change between the two solves
+// that bracket L_cr and at no other step.
+BOOST_AUTO_TEST_CASE(straight_column_flags_the_buckling_length) {
+  ForwardKinematics fk(fed_column(0.0), monitored());
+  int changes = 0;
+  double previous = 0.0;
+  for (double ratio = 0.55; ratio < 1.5; ratio += 0.1) {
+    const double length = ratio * kEulerLength;
+    const RobotSolution s = fk.solve(VecX::Constant(1, length));
+    BOOST_REQUIRE_MESSAGE(s.summary.converged(), "L / L_cr = " << ratio << ": " << s.summary.brief_report());
+    BOOST_TEST(s.jacobian_sign != 0);
+    // Still straight (1e-9 m: round-off of the solve, far below any buckled shape's millimetres).
+    BOOST_TEST(tip_offset(s) < 1e-9, "L / L_cr = " << ratio << ": tip offset " << tip_offset(s));
+    const bool crossed = previous > 0.0 && previous < kEulerLength && length > kEulerLength;
+    BOOST_TEST(s.jacobian_sign_changed == crossed, "L / L_cr = " << ratio);
+    changes += s.jacobian_sign_changed;
+    previous = length;
+  }
+  BOOST_TEST(changes == 1);
+}
+
+// With a lateral load (an imperfection) there is no bifurcation: the column bends more and more along the
+// load, its equilibria stay stable and the sign of det J never changes. A 5 % load bends it enough before
+// L_cr that the warm steps follow this branch.
+BOOST_AUTO_TEST_CASE(imperfect_column_keeps_the_sign) {
+  ForwardKinematics fk(fed_column(5e-2 * kLoad), monitored());
+  int sign = 0;
+  for (double ratio = 0.55; ratio < 1.5; ratio += 0.1) {
+    const RobotSolution s = fk.solve(VecX::Constant(1, ratio * kEulerLength));
+    BOOST_REQUIRE_MESSAGE(s.summary.converged(), "L / L_cr = " << ratio << ": " << s.summary.brief_report());
+    BOOST_TEST(!s.jacobian_sign_changed, "L / L_cr = " << ratio);
+    if (sign == 0) sign = s.jacobian_sign;
+    BOOST_TEST(s.jacobian_sign == sign);
+    // Past L_cr the column is bent: the clamped-free elastica's tip offset is 2 k / K(k) L with
+    // K(k) = (pi / 2) L / L_cr (complete elliptic integral), 0.73 L at 1.15 L_cr and 0.79 L at 1.45 L_cr;
+    // half the length shows the path followed the bent branch.
+    if (ratio > 1.1) BOOST_TEST(tip_offset(s) > 0.5 * ratio * kEulerLength, "L / L_cr = " << ratio);
+  }
+}
+
+// With a 0.1 % lateral load, past L_cr three equilibria lie near the path: bent along the load (stable),
+// nearly straight (unstable) and bent against it (stable). A warm step across L_cr starts from an almost
+// straight column and may land on the nearly straight one. Whichever it reaches, the sign must tell:
+// changed from the first (stable, L < L_cr) solve exactly when the column is nearly straight (tip offset
+// below 0.1 L; the bent ones are beyond 0.38 L at L >= 1.05 L_cr, see above).
+BOOST_AUTO_TEST_CASE(sign_tells_the_nearly_straight_branch) {
+  ForwardKinematics fk(fed_column(1e-3 * kLoad), monitored());
+  int first_sign = 0, straight_after_cr = 0;
+  for (double ratio = 0.55; ratio < 1.5; ratio += 0.1) {
+    const double length = ratio * kEulerLength;
+    const RobotSolution s = fk.solve(VecX::Constant(1, length));
+    BOOST_REQUIRE_MESSAGE(s.summary.converged(), "L / L_cr = " << ratio << ": " << s.summary.brief_report());
+    if (first_sign == 0) first_sign = s.jacobian_sign;
+    const bool nearly_straight = tip_offset(s) < 0.1 * length;
+    const bool unstable_expected = ratio > 1.0 && nearly_straight;
+    BOOST_TEST((s.jacobian_sign != first_sign) == unstable_expected,
+               "L / L_cr = " << ratio << ": tip offset " << tip_offset(s) / length << " L");
+    straight_after_cr += unstable_expected;
+  }
+  BOOST_TEST_MESSAGE("nearly straight solves past L_cr: " << straight_after_cr);
+}
+
+// Not asked: nothing computed, nothing claimed.
+BOOST_AUTO_TEST_CASE(unmonitored_solves_report_no_sign) {
+  ForwardKinematics fk(fed_column(0.0));
+  const RobotSolution s = fk.solve(VecX::Constant(1, 1.2 * kEulerLength));
+  BOOST_REQUIRE(s.summary.converged());
+  BOOST_TEST(s.jacobian_sign == 0);
+  BOOST_TEST(!s.jacobian_sign_changed);
+}
