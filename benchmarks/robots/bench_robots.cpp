@@ -16,11 +16,10 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/SparseLU>
-
 #include "common/bench_csv.hpp"
 #include "common/robot_scenes.hpp"
 #include "pcr/solve/free_jacobian.hpp"
+#include "pcr/solve/sparse_lu.hpp"
 
 using namespace pcr;
 using namespace pcr::bench;
@@ -36,9 +35,9 @@ KinematicsOptions options(int degree, int elements, double tolerance = 1e-10) {
 }
 
 // What one Newton step of a warm R5b IK solve is made of, at the path's start solution: one residual
-// evaluation and one solve with the LU factors of the free Jacobian (the Newton solver's Eigen SparseLU
-// with COLAMD ordering), plus, when a fresh Jacobian is taken, its evaluation (dual numbers) and a
-// numeric factorisation on the kept symbolic analysis. Printed only (no error to put beside it).
+// evaluation and one solve with the LU factors of the free Jacobian (the Newton solver's SparseLu), plus,
+// when a fresh Jacobian is taken, its evaluation (dual numbers) and a numeric factorisation on the kept
+// symbolic analysis. Printed only (no error to put beside it).
 void print_operation_costs(const InverseKinematics& ik) {
   const Problem& problem = ik.assembly().problem();
   const VecX& x = ik.state();
@@ -46,21 +45,20 @@ void print_operation_costs(const InverseKinematics& ik) {
   Eigen::SparseMatrix<double, Eigen::RowMajor> J;
   problem.evaluate_residuals_and_jacobian(x, c, J);
   const FreeJacobian free = free_jacobian(problem, J);
-  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
-  lu.analyzePattern(free.matrix);
-  lu.factorize(free.matrix);
+  SparseLu lu;
+  lu.compute(free.matrix);
   const VecX rhs = c;
   VecX dx;
   const Repeats many{20, 2000, 0.2}, few{5, 200, 0.2};
   const Timing residual = time_repeated([&] { problem.evaluate_residuals(x, c); }, many);
   const Timing jacobian = time_repeated([&] { problem.evaluate_residuals_and_jacobian(x, c, J); }, few);
   const Timing factorize = time_repeated([&] { lu.factorize(free.matrix); }, few);
-  const Timing solve = time_repeated([&] { dx = lu.solve(rhs); }, many);
+  const Timing solve = time_repeated([&] { lu.solve(rhs, dx); }, many);
   std::printf(
       "  per operation (median): residual %.1f us, LU solve %.1f us (factors %ld + %ld nonzeros), "
       "Jacobian %.2f ms, numeric factorisation %.2f ms\n",
-      residual.median * 1e6, solve.median * 1e6, static_cast<long>(lu.nnzL()), static_cast<long>(lu.nnzU()),
-      jacobian.median * 1e3, factorize.median * 1e3);
+      residual.median * 1e6, solve.median * 1e6, lu.nonzeros_l(), lu.nonzeros_u(), jacobian.median * 1e3,
+      factorize.median * 1e3);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 #include "pcr/solve/free_jacobian.hpp"
 
-#include <Eigen/SparseLU>
+#include "pcr/solve/sparse_lu.hpp"
 
 namespace pcr {
 
@@ -36,11 +36,8 @@ FreeJacobian free_jacobian(const Problem& problem, const Eigen::SparseMatrix<dou
 int jacobian_determinant_sign(const Problem& problem, const VecX& x) {
   const FreeJacobian J = free_jacobian(problem, x);
   if (J.matrix.rows() != J.matrix.cols() || J.matrix.rows() == 0) return 0;
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
-  lu.compute(J.matrix);
-  if (lu.info() != Eigen::Success) return 0;
-  const double sign = lu.signDeterminant();  // diagonal of U and both permutations
-  return sign > 0.0 ? 1 : (sign < 0.0 ? -1 : 0);
+  SparseLu lu;
+  return lu.compute(J.matrix) ? lu.determinant_sign() : 0;
 }
 
 }  // namespace pcr

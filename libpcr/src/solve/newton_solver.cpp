@@ -1,7 +1,6 @@
 // Damped Newton with sparse LU on the free columns (see newton_solver.hpp).
 #include "pcr/solve/newton_solver.hpp"
 
-#include <Eigen/SparseLU>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -10,6 +9,7 @@
 #include <vector>
 
 #include "pcr/core/error.hpp"
+#include "pcr/solve/sparse_lu.hpp"
 
 namespace pcr {
 
@@ -32,9 +32,9 @@ struct NewtonSolver::Impl {
   std::vector<int> reduced_column;  // global column -> free column, -1 for a fixed one
   VecX target;                      // c_l = c_u of every row
   SparseRowMajor J;                 // full Jacobian in the problem's pattern
-  SparseColMajor J_free;            // free columns, column-major for SparseLU
+  SparseColMajor J_free;            // free columns, column-major for the sparse LU
   std::vector<int> value_map;       // J value index -> J_free value index, -1 for fixed columns
-  Eigen::SparseLU<SparseColMajor, Eigen::COLAMDOrdering<int>> lu;
+  SparseLu lu;
   bool have_factorization = false;  // lu holds a factorisation of this structure (for reuse)
   VecX c, r, r_trial, x_trial, dx_free, dx, linear_check;
   // Quasi-Newton steps on the last factorisation J0 (free columns): steps[0 .. num_steps), see solve().
@@ -114,7 +114,7 @@ void NewtonSolver::Impl::build_free_pattern() {
       value_map[p] = static_cast<int>(std::lower_bound(begin, end, i) - J_free.innerIndexPtr());
     }
   }
-  lu.analyzePattern(J_free);
+  lu.analyze_pattern(J_free);
 }
 
 NewtonSolver::NewtonSolver(const Problem& problem, NewtonOptions options)
@@ -201,7 +201,7 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
   // step and returns true if it contracts, false if a fresh Jacobian is needed.
   auto broyden_next = [&](const VecX& r_new) {
     if (w.num_steps >= Impl::kMaxSteps) return false;
-    w.dx_free = w.lu.solve(r_new);
+    w.lu.solve(r_new, w.dx_free);
     w.dx_free = -w.dx_free;
     for (int j = 0; j + 1 < w.num_steps; ++j)
       w.dx_free += w.steps[j + 1] * (w.steps[j].dot(w.dx_free) / w.steps[j].squaredNorm());
@@ -228,7 +228,7 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
 
     if (!refresh) {
       if (!have_correction) {  // a new sequence on J0: the simplified Newton step
-        w.steps[0] = w.lu.solve(w.r);
+        w.lu.solve(w.r, w.steps[0]);
         w.steps[0] = -w.steps[0];
         w.num_steps = 1;
       }
@@ -277,12 +277,11 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
     }
     if (!w.J_free.coeffs().allFinite()) return finish(SolveStatus::Diverged, "non-finite Jacobian entry");
     w.have_factorization = false;
-    w.lu.factorize(w.J_free);
-    if (w.lu.info() != Eigen::Success) {
-      return finish(SolveStatus::Singular, "sparse LU failed: " + w.lu.lastErrorMessage());
+    if (!w.lu.factorize(w.J_free)) {
+      return finish(SolveStatus::Singular, "sparse LU failed: " + w.lu.error_message());
     }
     w.have_factorization = true;
-    w.dx_free = w.lu.solve(w.r);
+    w.lu.solve(w.r, w.dx_free);
     w.dx_free = -w.dx_free;
     w.linear_check.noalias() = w.J_free * w.dx_free;
     w.linear_check += w.r;
@@ -314,7 +313,7 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
       w.r_trial = w.c - w.target;
       if (w.r_trial.allFinite()) {
         if (w.r_trial.norm() <= (1.0 - o.armijo * alpha) * r_norm) break;
-        w.linear_check = w.lu.solve(w.r_trial);
+        w.lu.solve(w.r_trial, w.linear_check);
         if (w.linear_check.allFinite() && w.linear_check.norm() <= (1.0 - 0.5 * alpha) * dx_norm) break;
       }
       alpha *= o.backtrack;

@@ -4,8 +4,6 @@
 #include <chrono>
 #include <sstream>
 
-#include <Eigen/SparseLU>
-
 #include "../assembly/robot_blocks.hpp"
 #include "input_continuation.hpp"
 #include "input_objective.hpp"
@@ -15,6 +13,7 @@
 #include "pcr/solve/free_jacobian.hpp"
 #include "pcr/solve/ipopt_solver.hpp"
 #include "pcr/solve/newton_solver.hpp"
+#include "pcr/solve/sparse_lu.hpp"
 #include "reduced_ik.hpp"
 
 namespace pcr {
@@ -47,11 +46,9 @@ IpoptOptions ipopt_options(const KinematicsOptions& o) {
 MatX implicit_derivative(const Problem& problem, const Eigen::SparseMatrix<double, Eigen::RowMajor>& J_all,
                          const MatX& rhs) {
   const FreeJacobian J = free_jacobian(problem, J_all);
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
-  lu.compute(J.matrix);
-  require(lu.info() == Eigen::Success,
-          "derivatives: the assembled Jacobian is singular at this configuration");
-  const MatX dfree = lu.solve(-rhs);
+  SparseLu lu;
+  require(lu.compute(J.matrix), "derivatives: the assembled Jacobian is singular at this configuration");
+  const MatX dfree = lu.solve(MatX(-rhs));
   MatX out = MatX::Zero(problem.num_variables(), rhs.cols());
   for (size_t k = 0; k < J.columns.size(); ++k) out.row(J.columns[k]) = dfree.row(k);
   return out;

@@ -4,13 +4,12 @@
 #include <limits>
 #include <string>
 
-#include <Eigen/SparseLU>
-
 #include "ik_objectives.hpp"
 #include "pcr/core/error.hpp"
 #include "pcr/solve/free_jacobian.hpp"
 #include "pcr/solve/ipopt_solver.hpp"
 #include "pcr/solve/newton_solver.hpp"
+#include "pcr/solve/sparse_lu.hpp"
 
 namespace pcr::kinematics {
 
@@ -28,7 +27,7 @@ struct ReducedIk::Evaluator {
   std::vector<int> input_offsets;
   VecX input_scales, reference;
   std::vector<StressPoint> stress_at;
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;  // of the free FK Jacobian (implicit function theorem)
+  SparseLu lu;  // of the free FK Jacobian (implicit function theorem)
   bool pattern_analysed = false;
   // Cache.
   VecX x_warm, x_start, u_cached, x;
@@ -131,11 +130,10 @@ struct ReducedIk::Evaluator {
     MatX rhs(J.rows(), num_inputs());
     for (int i = 0; i < num_inputs(); ++i) rhs.col(i) = -J.col(input_offsets[i]);
     if (!pattern_analysed) {
-      lu.analyzePattern(Jf.matrix);
+      lu.analyze_pattern(Jf.matrix);
       pattern_analysed = true;
     }
-    lu.factorize(Jf.matrix);
-    if (lu.info() != Eigen::Success) return false;
+    if (!lu.factorize(Jf.matrix)) return false;
     const MatX dfree = lu.solve(rhs);
     if (!dfree.allFinite()) return false;
     S.setZero(fk.num_variables(), num_inputs());

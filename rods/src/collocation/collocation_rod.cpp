@@ -1,6 +1,5 @@
 #include "pcr/rods/collocation_rod.hpp"
 
-#include <Eigen/SparseLU>
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -11,6 +10,7 @@
 #include "pcr/rods/collocation/end_equations.hpp"
 #include "pcr/rods/collocation/equations.hpp"
 #include "pcr/rods/collocation/point_block.hpp"
+#include "pcr/solve/sparse_lu.hpp"
 #include "pcr/splines/basis.hpp"
 
 namespace pcr {
@@ -141,8 +141,9 @@ VecX CollocationRod::stress_free_configuration() const {
     values.block<1, 4>(i, kQ) = q.transpose();
   }
   // Control points interpolating these values at the Greville abscissae.
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(collocation_matrix(*knots_, tau, 0));
-  require(lu.info() == Eigen::Success, "rod '", model_.name, "': Greville interpolation matrix is singular");
+  SparseLu lu;
+  require(lu.compute(collocation_matrix(*knots_, tau, 0)), "rod '", model_.name,
+          "': Greville interpolation matrix is singular");
   const MatX points = lu.solve(values);
   VecX x(n * cp);
   for (int i = 0; i < n; ++i) x.segment(i * cp, cp) = points.row(i).transpose();

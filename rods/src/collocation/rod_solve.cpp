@@ -3,11 +3,11 @@
 #include <chrono>
 #include <sstream>
 
-#include <Eigen/SparseLU>
 #include "pcr/core/error.hpp"
 #include "pcr/solve/free_jacobian.hpp"
 #include "pcr/solve/ipopt_solver.hpp"
 #include "pcr/solve/newton_solver.hpp"
+#include "pcr/solve/sparse_lu.hpp"
 
 #include "pcr/splines/basis.hpp"
 #include "pcr/splines/spline_curve.hpp"
@@ -154,8 +154,9 @@ VecX refine_solution(const RodSolution& solution, const RodDiscretization& finer
   const int n = target.num_control_points();
   MatX values(n, cp);
   for (int j = 0; j < n; ++j) values.row(j) = curve.evaluate(tau[j]).transpose();
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(collocation_matrix(target.knots(), tau, 0));
-  require(lu.info() == Eigen::Success, "refine_solution: Greville interpolation matrix is singular");
+  SparseLu lu;
+  require(lu.compute(collocation_matrix(target.knots(), tau, 0)),
+          "refine_solution: Greville interpolation matrix is singular");
   const MatX refined = lu.solve(values);  // n x cp
   VecX out(n * cp);
   for (int j = 0; j < n; ++j) out.segment(j * cp, cp) = refined.row(j).transpose();
