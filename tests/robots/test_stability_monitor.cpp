@@ -2,8 +2,8 @@
 // fed through the base past its Euler buckling length.
 //
 // Model: one steel rod with a 2 mm x 1 mm rectangular section, clamped upright at the base, fed through
-// it (input: its length L), its free upper end under a dead load F downwards. Clamped-free Euler column:
-// it buckles in its weak plane at F = pi^2 E I_min / (4 L^2), i.e. at the length
+// it (input: its length L), its upper end clamped to a free platform under a dead load F downwards.
+// Clamped-free Euler column: it buckles in its weak plane at F = pi^2 E I_min / (4 L^2), i.e. at the length
 //   L_cr = (pi / 2) sqrt(E I_min / F);
 // the strong plane follows at 2 L_cr (I_max = 4 I_min), the weak plane's second mode at 3 L_cr. Axial
 // and shear strains shift these by F / (E A) ~ 1e-5 relative, the 8-element discretisation by less than
@@ -25,16 +25,24 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kE = 200e9, kWidth = 2e-3, kHeight = 1e-3, kLoad = 1.0;  // Pa, m, m, N
 const double kEulerLength = kPi / 2 * std::sqrt(kE * kWidth * std::pow(kHeight, 3) / 12 / kLoad);
 
-// lateral: dead force along x and y at the tip (an imperfection), besides -kLoad along z.
+// A massless platform on the column's upper end carries the load: F downwards plus `lateral` along x and
+// y (an imperfection).
 std::shared_ptr<const RobotModel> fed_column(double lateral) {
   const std::string force =
       std::to_string(lateral) + " " + std::to_string(lateral) + " " + std::to_string(-kLoad);
   const std::string xml = R"(<robot name="fed_column">
   <link name="base"/>
+  <link name="platform"/>
+  <joint name="platform_pose" type="floating">
+    <parent link="base"/>
+    <child link="platform"/>
+    <origin xyz="0 0 0.1" rpy="0 0 0"/>
+  </joint>
+  <pcr_load link="platform" xyz="0 0 0" force=")" +
+                          force + R"(" torque="0 0 0"/>
   <pcr_rod name="column">
     <start link="base" xyz="0 0 0" rpy="0 0 0" coupling="clamped"/>
-    <end coupling="free" force=")" +
-                          force + R"(" moment="0 0 0"/>
+    <end link="platform" xyz="0 0 0" rpy="0 0 0" coupling="clamped"/>
     <material youngs_modulus="200e9" shear_modulus="80e9" density="8000"/>
     <section type="rectangle" width="0.002" height="0.001"/>
     <length value="0.1" actuated="true" lower="0.05" upper="1.0"/>
@@ -116,6 +124,34 @@ BOOST_AUTO_TEST_CASE(sign_tells_the_nearly_straight_branch) {
     straight_after_cr += unstable_expected;
   }
   BOOST_TEST_MESSAGE("nearly straight solves past L_cr: " << straight_after_cr);
+}
+
+// IK of the platform height along the same lengths: the straight column reaches every height, and the
+// sign of the FK system at the IK solution changes where the column passes L_cr.
+BOOST_AUTO_TEST_CASE(inverse_kinematics_flags_the_buckling_length) {
+  LinkTarget height;
+  height.link = "platform";
+  height.mode = LinkTarget::Mode::Position;
+  height.components = {{false, false, true, false, false, false}};
+  InverseKinematics ik(fed_column(0.0), {height}, monitored());
+  BOOST_REQUIRE(ik.square());
+  int changes = 0;
+  double previous = 0.0;
+  for (double ratio = 0.55; ratio < 1.5; ratio += 0.1) {
+    const double z = ratio * kEulerLength;
+    Pose target;
+    target.position = Vec3(0, 0, z);
+    const RobotSolution s = ik.solve({target});
+    BOOST_REQUIRE_MESSAGE(s.summary.converged(), "z / L_cr = " << ratio << ": " << s.summary.brief_report());
+    // Straight: the length is the height plus the axial shortening F L / (E A) = 2.5e-6 L.
+    BOOST_TEST(std::abs(s.inputs[0] - z) < 1e-5 * z, "z / L_cr = " << ratio << ": length " << s.inputs[0]);
+    BOOST_TEST(s.jacobian_sign != 0);
+    const bool crossed = previous > 0.0 && previous < kEulerLength && z > kEulerLength;
+    BOOST_TEST(s.jacobian_sign_changed == crossed, "z / L_cr = " << ratio);
+    changes += s.jacobian_sign_changed;
+    previous = z;
+  }
+  BOOST_TEST(changes == 1);
 }
 
 // Not asked: nothing computed, nothing claimed.

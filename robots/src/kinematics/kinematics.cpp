@@ -21,6 +21,15 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// Stability monitoring (KinematicsOptions::check_stability): the sign of det J of the FK system `fk` at
+// the converged solution x, and whether it changed since the last checked solve (last_sign, updated).
+void monitor_stability(const Problem& fk, const VecX& x, int& last_sign, RobotSolution& out) {
+  out.jacobian_sign = jacobian_determinant_sign(fk, x);
+  if (out.jacobian_sign == 0) return;
+  out.jacobian_sign_changed = last_sign != 0 && out.jacobian_sign != last_sign;
+  last_sign = out.jacobian_sign;
+}
+
 double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
@@ -212,13 +221,8 @@ RobotSolution ForwardKinematics::solve(const VecX& inputs) {
   RobotSolution out = read_solution(assembly_, summary.converged() ? x_ : (x.allFinite() ? x : x_),
                                     options_.centerline_points);
   out.summary = summary;
-  if (options_.check_stability && summary.converged()) {
-    out.jacobian_sign = jacobian_determinant_sign(assembly_.problem(), x_);
-    if (out.jacobian_sign != 0) {
-      out.jacobian_sign_changed = last_jacobian_sign_ != 0 && out.jacobian_sign != last_jacobian_sign_;
-      last_jacobian_sign_ = out.jacobian_sign;
-    }
-  }
+  if (options_.check_stability && summary.converged())
+    monitor_stability(assembly_.problem(), x_, last_jacobian_sign_, out);
   return out;
 }
 
@@ -267,6 +271,7 @@ MatX ForwardKinematics::compliance(int platform) const {
 struct InverseKinematics::Solvers {
   Problem square;     // targets as equations, inputs free without bounds (Newton)
   Problem optimised;  // + bounds and the input-distance objective (Ipopt)
+  Problem fk;         // check_stability: the FK system at the solution (target rows off, inputs fixed)
   std::unique_ptr<NewtonSolver> newton;
   std::unique_ptr<IpoptSolver> ipopt;
   VariableId reference = -1;
@@ -316,6 +321,15 @@ InverseKinematics::InverseKinematics(std::shared_ptr<const RobotModel> model,
     if (!problem.variable_fixed(v)) free_unknowns += problem.variable(v).size;
   square_ = free_unknowns == problem.num_rows();
   solvers_->square = problem;
+  if (options.check_stability) {
+    solvers_->fk = problem;
+    for (int b = 0; b < problem.num_residual_blocks(); ++b)
+      if (problem.residual(b).kind() == "target.pose") solvers_->fk.set_residual_active(b, false);
+    for (int i = 0; i < n_in; ++i) {
+      const VariableId v = assembly_.input_variable(i);
+      solvers_->fk.fix_variable(v, problem.variable(v).initial);
+    }
+  }
   // Optimisation problem: bounds and objective.
   Problem& opt = solvers_->optimised;
   opt = problem;
@@ -372,6 +386,8 @@ RobotSolution InverseKinematics::solve(const std::vector<Pose>& target_poses, co
     if (summary.converged() && x.allFinite()) x_ = x;
     RobotSolution out = read_solution(assembly_, x.allFinite() ? x : x_, options_.centerline_points);
     out.summary = summary;
+    if (options_.check_stability && summary.converged() && x.allFinite())
+      monitor_stability(solvers_->fk, x_, last_jacobian_sign_, out);
     return out;
   }
   bool done = false;
@@ -410,6 +426,8 @@ RobotSolution InverseKinematics::solve(const std::vector<Pose>& target_poses, co
   RobotSolution out = read_solution(assembly_, summary.converged() ? x_ : (x.allFinite() ? x : x_),
                                     options_.centerline_points);
   out.summary = summary;
+  if (options_.check_stability && summary.converged() && x.allFinite())  // J at x_ with its own inputs
+    monitor_stability(solvers_->fk, x_, last_jacobian_sign_, out);
   return out;
 }
 

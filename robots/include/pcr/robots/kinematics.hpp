@@ -57,8 +57,9 @@ struct KinematicsOptions {
   int centerline_points = 21;  ///< points per rod in the results
   /// Newton reuses its last factorisation across warm-started solves (see NewtonOptions).
   bool reuse_factorization = true;
-  /// FK only: stability monitoring along the solves (RobotSolution::jacobian_sign); costs one Jacobian
-  /// evaluation and one sparse LU factorisation per converged solve (R5a: about 5 ms).
+  /// Stability monitoring along the solves (RobotSolution::jacobian_sign), FK and IK (the FK system at
+  /// the IK solution's inputs); costs one Jacobian evaluation and one sparse LU factorisation per
+  /// converged solve (R5a: about 5 ms).
   bool check_stability = false;
   IkOptions ik;  ///< inverse kinematics only
 };
@@ -80,8 +81,9 @@ struct RobotSolution {
   VecX inputs;                  ///< in the model's input order
   std::vector<Pose> platforms;  ///< in the model's platform order
   std::vector<RodResult> rods;
-  /// FK with KinematicsOptions::check_stability (DESIGN.md §4): sign of det J, J = dR/dx of the FK system
-  /// over its free unknowns at the solution: +1 or -1; 0 when not checked, not converged or singular.
+  /// With KinematicsOptions::check_stability (DESIGN.md §4): sign of det J, J = dR/dx of the FK system
+  /// (inputs fixed at the solution's) over its free unknowns at the solution: +1 or -1; 0 when not
+  /// checked, not converged or singular.
   int jacobian_sign = 0;
   /// jacobian_sign differs from that of the previous converged, checked solve of this solver: det J
   /// vanishes where equilibria pass a fold or a bifurcation (buckling), so an odd number of them lies
@@ -158,6 +160,7 @@ class InverseKinematics {
   std::vector<LinkTarget> targets_;
   VecX x_;
   bool square_ = false;
+  int last_jacobian_sign_ = 0;  // of the last checked converged solve (check_stability)
   struct Solvers;
   std::shared_ptr<Solvers> solvers_;
 };
