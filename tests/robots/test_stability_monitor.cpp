@@ -11,8 +11,10 @@
 #define BOOST_TEST_MODULE stability_monitor
 #include <boost/test/unit_test.hpp>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "pcr/robots/kinematics.hpp"
 #include "pcr/robots/urdf_loader.hpp"
@@ -61,6 +63,27 @@ double tip_offset(const RobotSolution& s) {
   return s.rods[0].centerline.back().head<2>().norm();
 }
 
+// The paths: L / L_cr (or z / L_cr) = 0.55, 0.65, ..., 1.45.
+std::vector<double> path_ratios() {
+  std::vector<double> ratios;
+  for (int k = 0; k < 10; ++k) ratios.push_back(0.55 + 0.1 * k);
+  return ratios;
+}
+
+// Solves along the path (solve(ratio) converged, with the caller's checks) and asserts that the sign of
+// det J changes between 0.95 and 1.05 (across L_cr) and at no other step.
+void expect_one_change_across_euler_length(const std::function<RobotSolution(double)>& solve) {
+  int changes = 0;
+  for (double ratio : path_ratios()) {
+    const RobotSolution s = solve(ratio);
+    BOOST_TEST(s.jacobian_sign != 0);
+    const bool crossed = ratio > 1.0 && ratio - 0.1 < 1.0;
+    BOOST_TEST(s.jacobian_sign_changed == crossed, "ratio " << ratio);
+    changes += s.jacobian_sign_changed;
+  }
+  BOOST_TEST(changes == 1);
+}
+
 }  // namespace
 
 // Without imperfection the straight column is an equilibrium at every length, and the warm-started FK
@@ -68,21 +91,13 @@ double tip_offset(const RobotSolution& s) {
 // that bracket L_cr and at no other step.
 BOOST_AUTO_TEST_CASE(straight_column_flags_the_buckling_length) {
   ForwardKinematics fk(fed_column(0.0), monitored());
-  int changes = 0;
-  double previous = 0.0;
-  for (double ratio = 0.55; ratio < 1.5; ratio += 0.1) {
-    const double length = ratio * kEulerLength;
-    const RobotSolution s = fk.solve(VecX::Constant(1, length));
+  expect_one_change_across_euler_length([&](double ratio) {
+    const RobotSolution s = fk.solve(VecX::Constant(1, ratio * kEulerLength));
     BOOST_REQUIRE_MESSAGE(s.summary.converged(), "L / L_cr = " << ratio << ": " << s.summary.brief_report());
-    BOOST_TEST(s.jacobian_sign != 0);
     // Still straight (1e-9 m: round-off of the solve, far below any buckled shape's millimetres).
     BOOST_TEST(tip_offset(s) < 1e-9, "L / L_cr = " << ratio << ": tip offset " << tip_offset(s));
-    const bool crossed = previous > 0.0 && previous < kEulerLength && length > kEulerLength;
-    BOOST_TEST(s.jacobian_sign_changed == crossed, "L / L_cr = " << ratio);
-    changes += s.jacobian_sign_changed;
-    previous = length;
-  }
-  BOOST_TEST(changes == 1);
+    return s;
+  });
 }
 
 // With a lateral load (an imperfection) there is no bifurcation: the column bends more and more along the
@@ -91,7 +106,7 @@ BOOST_AUTO_TEST_CASE(straight_column_flags_the_buckling_length) {
 BOOST_AUTO_TEST_CASE(imperfect_column_keeps_the_sign) {
   ForwardKinematics fk(fed_column(5e-2 * kLoad), monitored());
   int sign = 0;
-  for (double ratio = 0.55; ratio < 1.5; ratio += 0.1) {
+  for (double ratio : path_ratios()) {
     const RobotSolution s = fk.solve(VecX::Constant(1, ratio * kEulerLength));
     BOOST_REQUIRE_MESSAGE(s.summary.converged(), "L / L_cr = " << ratio << ": " << s.summary.brief_report());
     BOOST_TEST(!s.jacobian_sign_changed, "L / L_cr = " << ratio);
@@ -112,7 +127,7 @@ BOOST_AUTO_TEST_CASE(imperfect_column_keeps_the_sign) {
 BOOST_AUTO_TEST_CASE(sign_tells_the_nearly_straight_branch) {
   ForwardKinematics fk(fed_column(1e-3 * kLoad), monitored());
   int first_sign = 0, straight_after_cr = 0;
-  for (double ratio = 0.55; ratio < 1.5; ratio += 0.1) {
+  for (double ratio : path_ratios()) {
     const double length = ratio * kEulerLength;
     const RobotSolution s = fk.solve(VecX::Constant(1, length));
     BOOST_REQUIRE_MESSAGE(s.summary.converged(), "L / L_cr = " << ratio << ": " << s.summary.brief_report());
@@ -135,23 +150,16 @@ BOOST_AUTO_TEST_CASE(inverse_kinematics_flags_the_buckling_length) {
   height.components = {{false, false, true, false, false, false}};
   InverseKinematics ik(fed_column(0.0), {height}, monitored());
   BOOST_REQUIRE(ik.square());
-  int changes = 0;
-  double previous = 0.0;
-  for (double ratio = 0.55; ratio < 1.5; ratio += 0.1) {
-    const double z = ratio * kEulerLength;
+  expect_one_change_across_euler_length([&](double ratio) {
     Pose target;
-    target.position = Vec3(0, 0, z);
+    target.position = Vec3(0, 0, ratio * kEulerLength);
     const RobotSolution s = ik.solve({target});
     BOOST_REQUIRE_MESSAGE(s.summary.converged(), "z / L_cr = " << ratio << ": " << s.summary.brief_report());
     // Straight: the length is the height plus the axial shortening F L / (E A) = 2.5e-6 L.
+    const double z = target.position.z();
     BOOST_TEST(std::abs(s.inputs[0] - z) < 1e-5 * z, "z / L_cr = " << ratio << ": length " << s.inputs[0]);
-    BOOST_TEST(s.jacobian_sign != 0);
-    const bool crossed = previous > 0.0 && previous < kEulerLength && z > kEulerLength;
-    BOOST_TEST(s.jacobian_sign_changed == crossed, "z / L_cr = " << ratio);
-    changes += s.jacobian_sign_changed;
-    previous = z;
-  }
-  BOOST_TEST(changes == 1);
+    return s;
+  });
 }
 
 // Not asked: nothing computed, nothing claimed.
