@@ -550,6 +550,9 @@ BOOST_AUTO_TEST_CASE(dense_output_matches_stored_steps_and_a_direct_integration)
   BOOST_TEST(max_abs(samples[1].p - sol.at(0.1).p) == 0.0);
   BOOST_CHECK_THROW(sol.at(1.5), InputError);
   BOOST_CHECK_THROW(sol.at(-0.1), InputError);
+  // Round-off beyond the ends (s = L i / N computed by a caller) gives the end states.
+  BOOST_TEST(max_abs(sol.at(1.0 + 1e-15).p - sol.states.back().p) == 0.0);
+  BOOST_TEST(max_abs(sol.at(-1e-15).p - sol.states.front().p) == 0.0);
 }
 
 // ---- warm start
