@@ -349,7 +349,7 @@ BOOST_AUTO_TEST_CASE(stress_limit_is_active_and_satisfied) {
   InverseKinematics free_ik(model, {position_target(kTarget)}, reduced);
   const RobotSolution s_free = free_ik.solve(target, &reference);
   BOOST_REQUIRE(s_free.summary.converged());
-  const int points = 17;  // the default for 8 elements: 2 elements + 1
+  const int points = 2 * AssemblyOptions().discretization.elements + 1;  // the default: 2 elements + 1
   const double sigma_free = max_stress(free_ik.assembly(), free_ik.state(), points, 0.001);
   BOOST_TEST_MESSAGE("max stress at the distance optimum: " << sigma_free << " Pa");
   KinematicsOptions o;
