@@ -321,15 +321,7 @@ InverseKinematics::InverseKinematics(std::shared_ptr<const RobotModel> model,
     if (!problem.variable_fixed(v)) free_unknowns += problem.variable(v).size;
   square_ = free_unknowns == problem.num_rows();
   solvers_->square = problem;
-  if (options.check_stability) {
-    solvers_->fk = problem;
-    for (int b = 0; b < problem.num_residual_blocks(); ++b)
-      if (problem.residual(b).kind() == "target.pose") solvers_->fk.set_residual_active(b, false);
-    for (int i = 0; i < n_in; ++i) {
-      const VariableId v = assembly_.input_variable(i);
-      solvers_->fk.fix_variable(v, problem.variable(v).initial);
-    }
-  }
+  if (options.check_stability) solvers_->fk = kinematics::forward_problem_of(problem, assembly_);
   // Optimisation problem: bounds and objective.
   Problem& opt = solvers_->optimised;
   opt = problem;

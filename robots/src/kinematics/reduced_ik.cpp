@@ -13,6 +13,17 @@
 
 namespace pcr::kinematics {
 
+Problem forward_problem_of(const Problem& ik_problem, const RobotAssembly& assembly) {
+  Problem fk = ik_problem;
+  for (int b = 0; b < ik_problem.num_residual_blocks(); ++b)
+    if (ik_problem.residual(b).kind() == "target.pose") fk.set_residual_active(b, false);
+  for (size_t i = 0; i < assembly.model().inputs().size(); ++i) {
+    const VariableId v = assembly.input_variable(static_cast<int>(i));
+    fk.fix_variable(v, ik_problem.variable(v).initial);
+  }
+  return fk;
+}
+
 bool uses_reduced_space(const IkOptions& o) {
   return o.reduced_space || o.objective != IkObjective::InputDistance || o.max_rod_stress.has_value();
 }
@@ -38,20 +49,18 @@ struct ReducedIk::Evaluator {
   int fk_solves = 0, newton_iterations = 0;
 
   Evaluator(const RobotAssembly& a, const Problem& ik_problem, const KinematicsOptions& o)
-      : assembly(a), options(o), fk(ik_problem), targets(ik_problem) {
+      : assembly(a), options(o), fk(forward_problem_of(ik_problem, a)), targets(ik_problem) {
     const RobotModel& m = a.model();
     const int n_in = static_cast<int>(m.inputs().size());
     input_scales.resize(n_in);
     for (int i = 0; i < n_in; ++i) {
       const VariableId v = a.input_variable(i);
       input_offsets.push_back(ik_problem.variable(v).offset);
-      fk.fix_variable(v, ik_problem.variable(v).initial);
       input_scales[i] = m.inputs()[i].kind == ActuationInput::Kind::RodLength ? a.length_scale() : 1.0;
     }
     int target_rows = 0;
     for (int b = 0; b < ik_problem.num_residual_blocks(); ++b) {
       const bool is_target = ik_problem.residual(b).kind() == "target.pose";
-      fk.set_residual_active(b, !is_target);
       targets.set_residual_active(b, is_target);
       if (is_target) target_rows += ik_problem.residual(b).num_rows();
     }

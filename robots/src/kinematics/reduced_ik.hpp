@@ -16,6 +16,10 @@
 
 namespace pcr::kinematics {
 
+/// The FK system of an IK problem: the target rows (kind "target.pose") inactive and the inputs fixed
+/// (at their initial values; evaluations take them from x). Square, in the IK problem's variable layout.
+Problem forward_problem_of(const Problem& ik_problem, const RobotAssembly& assembly);
+
 class ReducedIk {
  public:
   /// ik_problem: the assembly's problem with the IK target blocks (kind "target.pose") and the fixed
