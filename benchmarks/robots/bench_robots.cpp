@@ -4,7 +4,9 @@
 //    (0, 0.02, 0.48) m in 100 steps of (0, 0.001, 0.001) m and back), solves per second, and the cost
 //    of the operations a warm solve is made of (printed).
 // Error: max over the inputs (IK) or platform position (FK) against a reference computed in the same
-// run with 32 elements of degree 5 (converged to < 1e-9 m, see README). Scenes:
+// run with 32 elements of degree 5 (converged to < 1e-9 m, see README). The mixed form at the default
+// midpoints (method collocation-mixed-newton) and, as the baseline of that choice, at the Greville
+// points of Weeger et al. (collocation-mixed-greville-newton; MixedPoints). Scenes:
 // benchmarks/common/robot_scenes.hpp. CSV columns as the other
 // benchmarks: scene,method,settings,error,time_median_s,time_min_s,time_max_s,iterations,time_mean_s.
 // usage: bench_robots [out.csv]
@@ -27,9 +29,19 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 
-KinematicsOptions options(int degree, int elements, double tolerance = 1e-10) {
+struct Mesh {
+  int elements;
+  MixedPoints points;
+};
+
+const char* method_of(MixedPoints points) {
+  return points == MixedPoints::Midpoints ? "collocation-mixed-newton" : "collocation-mixed-greville-newton";
+}
+
+KinematicsOptions options(int degree, int elements, double tolerance = 1e-10,
+                          MixedPoints points = MixedPoints::Midpoints) {
   KinematicsOptions o;
-  o.assembly.discretization = {RodFormulation::Mixed, degree, elements};
+  o.assembly.discretization = {RodFormulation::Mixed, degree, elements, points};
   o.tolerance = tolerance;
   return o;
 }
@@ -71,7 +83,11 @@ int main(int argc, char** argv) {
   }
   const auto r5a = load_r5a();
   const auto r5b = load_r5b();
-  const int elements[] = {2, 4, 8, 16};
+  const Mesh meshes[] = {{2, MixedPoints::Midpoints},
+                         {4, MixedPoints::Midpoints},
+                         {8, MixedPoints::Midpoints},
+                         {16, MixedPoints::Midpoints},
+                         {8, MixedPoints::Greville}};
 
   const Pose target = r5a_target();
   InverseKinematics ik_ref(r5a, {platform_target()}, options(5, 32, 1e-11));
@@ -82,11 +98,14 @@ int main(int argc, char** argv) {
     std::cerr << "bench_robots: reference did not converge\n";
     return 1;
   }
-  for (int E : elements) {
+  for (const Mesh& mesh : meshes) {
+    const int E = mesh.elements;
+    const char* points = to_string(mesh.points);
     // The cold solves' first part: building the solver (assembly of the rods' collocation blocks and the
     // couplings). Printed only, there is no error to put beside it.
-    const Timing assembly = time_repeated([&] { ForwardKinematics fk(r5a, options(5, E)); }, {5, 50, 0.2});
-    std::printf("R5a assembly p=5 E=%2d  median %.2f ms\n", E, assembly.median * 1e3);
+    const KinematicsOptions o = options(5, E, 1e-10, mesh.points);
+    const Timing assembly = time_repeated([&] { ForwardKinematics fk(r5a, o); }, {5, 50, 0.2});
+    std::printf("R5a assembly p=5 E=%2d %-9s  median %.2f ms\n", E, points, assembly.median * 1e3);
     for (const std::string problem : {"FK", "IK"}) {
       double error = 0;
       int iterations = 0;
@@ -95,11 +114,11 @@ int main(int argc, char** argv) {
           [&] {
             RobotSolution s;
             if (problem == "FK") {
-              ForwardKinematics fk(r5a, options(5, E));
+              ForwardKinematics fk(r5a, o);
               s = fk.solve(r5a->default_input_values());
               error = (s.platforms[0].position - fk_reference.platforms[0].position).norm();
             } else {
-              InverseKinematics ik(r5a, {platform_target()}, options(5, E));
+              InverseKinematics ik(r5a, {platform_target()}, o);
               s = ik.solve({target});
               error = (s.inputs - ik_reference.inputs).lpNorm<Eigen::Infinity>();
             }
@@ -107,10 +126,10 @@ int main(int argc, char** argv) {
             if (!s.summary.converged()) error = NAN;
           },
           {5, 5, 0.0});
-      csv.row("R5a_" + problem + "_cold", "collocation-mixed-newton", "p=5;E=" + std::to_string(E), error, t,
+      csv.row("R5a_" + problem + "_cold", method_of(mesh.points), "p=5;E=" + std::to_string(E), error, t,
               iterations);
-      std::printf("R5a %s cold  p=5 E=%2d  error %.2e m  median %.2f ms\n", problem.c_str(), E, error,
-                  t.median * 1e3);
+      std::printf("R5a %s cold  p=5 E=%2d %-9s  error %.2e m  median %.2f ms\n", problem.c_str(), E, points,
+                  error, t.median * 1e3);
     }
   }
 
@@ -135,12 +154,17 @@ int main(int argc, char** argv) {
       reference.push_back(s.inputs);
     }
   }
-  // Not E = 4: at p = 5, E = 4 warm Newton solves fail along the path (a discrete artefact of that mesh:
-  // FK at E = 4 fails too from the 8-element IK inputs at 8 mm along the path) and each failure goes to
-  // Ipopt (minutes); E = 2, 3, 6, 8 follow the path. See README, Robots. E = 7 and 9 beside 8: with an
-  // odd number of control points p + E the internal forces are poorly determined (README, Robots).
-  for (int E : {2, 7, 8, 9, 16}) {
-    InverseKinematics ik(r5b, {platform_target()}, options(5, E));
+  // Greville points: not E = 4 (warm Newton solves fail along the path and each failure goes to Ipopt,
+  // minutes); E = 7 and 9 beside 8: with an odd number of control points p + E their internal forces
+  // are poorly determined (README, "Mixed collocation points").
+  const Mesh path_meshes[] = {{2, MixedPoints::Midpoints}, {4, MixedPoints::Midpoints},
+                              {7, MixedPoints::Midpoints}, {8, MixedPoints::Midpoints},
+                              {9, MixedPoints::Midpoints}, {16, MixedPoints::Midpoints},
+                              {7, MixedPoints::Greville},  {8, MixedPoints::Greville},
+                              {9, MixedPoints::Greville}};
+  for (const Mesh& mesh : path_meshes) {
+    const int E = mesh.elements;
+    InverseKinematics ik(r5b, {platform_target()}, options(5, E, 1e-10, mesh.points));
     ik.solve({path[0]});  // start of the path (cold), not timed
     std::vector<double> times;
     double error = 0;
@@ -157,12 +181,12 @@ int main(int argc, char** argv) {
     }
     const Timing t = summarise(times);
     if (failures > 0) error = NAN;
-    csv.row("R5b_teleop_IK_warm", "collocation-mixed-newton", "p=5;E=" + std::to_string(E), error, t,
+    csv.row("R5b_teleop_IK_warm", method_of(mesh.points), "p=5;E=" + std::to_string(E), error, t,
             double(iterations) / times.size());
     std::printf(
-        "R5b warm IK p=5 E=%2d  max input error %.2e m  median %.3f ms/solve, mean %.3f ms/solve (%.0f "
+        "R5b warm IK p=5 E=%2d %-9s  max input error %.2e m  median %.3f ms/solve, mean %.3f ms/solve (%.0f "
         "solves/s), %.2f it/solve%s\n",
-        E, error, t.median * 1e3, t.mean * 1e3, 1.0 / t.mean, double(iterations) / times.size(),
+        E, to_string(mesh.points), error, t.median * 1e3, t.mean * 1e3, 1.0 / t.mean, double(iterations) / times.size(),
         failures ? "  FAILURES" : "");
   }
   std::cout << "wrote " << csv.path() << "\n";

@@ -78,6 +78,10 @@ SolveArguments parse_solve_arguments(const std::string& command, int argc, const
         if (value != "auto" && value != "mixed" && value != "primal")
           throw UsageError("--formulation " + value + ": expected auto, mixed or primal");
         a.formulation = value;
+      } else if (arg == "--mixed-points") {
+        if (value != "midpoints" && value != "greville")
+          throw UsageError("--mixed-points " + value + ": expected midpoints or greville");
+        a.mixed_points = value;
       } else if (arg == "--objective" && command == "ik") {
         if (value != "distance" && value != "effort" && value != "energy")
           throw UsageError("--objective " + value + ": expected distance, effort or energy");
@@ -132,6 +136,8 @@ void print_solve_usage(std::ostream& out, const std::string& command) {
   out << "options:\n"
       << "  --degree P --elements E --formulation auto|mixed|primal   discretisation of rods without model\n"
       << "                     hints (auto, the default: primal only for thick rods, d/L >= 1/4)\n"
+      << "  --mixed-points midpoints|greville   where the mixed form collocates its field equations\n"
+      << "                     (default midpoints; greville: the published scheme, README)\n"
       << "  --tolerance T      max-abs of the dimensionless residuals (default 1e-10); a looser T saves\n"
       << "                     iterations, e.g. for many solves along a path: on the teleoperation\n"
       << "                     robot (R5b) the solver added about 1e-2 T m to the inputs (README)\n"

@@ -54,6 +54,7 @@ pcr::KinematicsOptions kinematics_options(const SolveArguments& args) {
   if (args.formulation == "primal") d.formulation = pcr::RodFormulation::Primal;
   if (args.formulation == "mixed") d.formulation = pcr::RodFormulation::Mixed;
   if (args.formulation == "primal" || args.formulation == "mixed") options.assembly.formulation_by_slenderness = false;
+  if (args.mixed_points == "greville") d.mixed_points = pcr::MixedPoints::Greville;
   if (args.objective == "effort") options.ik.objective = pcr::IkObjective::ActuationEffort;
   if (args.objective == "energy") options.ik.objective = pcr::IkObjective::ElasticEnergy;
   if (args.max_stress > 0.0) options.ik.max_rod_stress = args.max_stress;

@@ -150,6 +150,12 @@ BOOST_AUTO_TEST_CASE(bad_arguments_are_usage_errors) {
   BOOST_CHECK_EQUAL(run_pcr("fk " + model("cantilever.urdf") + " --solver bfgs").exit_code, 2);
   BOOST_CHECK_EQUAL(run_pcr("fk " + model("cantilever.urdf") + " --tolerance abc").exit_code, 2);
   BOOST_CHECK_EQUAL(run_pcr("fk " + model("cantilever.urdf") + " --frobnicate 1").exit_code, 2);
+  const Run points = run_pcr("fk " + model("cantilever.urdf") + " --mixed-points gauss");
+  BOOST_CHECK_EQUAL(points.exit_code, 2);
+  BOOST_CHECK_MESSAGE(contains(points.err, "--mixed-points gauss"), points.err);
+  // Both point sets are accepted (the published scheme is kept for comparison).
+  BOOST_CHECK_EQUAL(run_pcr("fk " + model("cantilever.urdf") + " --mixed-points greville").exit_code, 0);
+  BOOST_CHECK_EQUAL(run_pcr("fk " + model("cantilever.urdf") + " --mixed-points midpoints").exit_code, 0);
   const Run ik = run_pcr("ik " + model("planar_three_rod.urdf") + " --target platform=0,0");
   BOOST_CHECK_EQUAL(ik.exit_code, 2);
   BOOST_CHECK_MESSAGE(contains(ik.err, "--target platform=0,0"), ik.err);

@@ -338,8 +338,11 @@ BOOST_AUTO_TEST_CASE(effort_and_energy_optima_beat_nearby_feasible_points) {
 }
 
 BOOST_AUTO_TEST_CASE(stress_limit_is_active_and_satisfied) {
-  // The distance optimum (reduced space; the full-space IK finds another local optimum, 1.09e9 Pa)
-  // has a max stress of 9.5e8 Pa at the stress points; 90 % of it is reachable (measured: the
+  // The limit is 70 % of the max stress at the distance optimum (reduced space). The distance
+  // objective has several local optima near the target, with max stresses (measured at the default
+  // mesh) of 9.7e8 Pa (the one reached here, input distance 62.42 mm), 9.55e8 Pa (62.48 mm, reached
+  // at 32 elements) and 1.25e9 Pa (62.01 mm, reached without IkOptions::max_input_step); 70 % is below
+  // all of them, so the limit must bind whichever one Ipopt approaches, and it is reachable (the
   // effort optimum has 4.6e8 Pa).
   const auto model = load("stewart_gough");
   const VecX reference = model->default_input_values();
@@ -353,7 +356,7 @@ BOOST_AUTO_TEST_CASE(stress_limit_is_active_and_satisfied) {
   const double sigma_free = max_stress(free_ik.assembly(), free_ik.state(), points, 0.001);
   BOOST_TEST_MESSAGE("max stress at the distance optimum: " << sigma_free << " Pa");
   KinematicsOptions o;
-  o.ik.max_rod_stress = 0.9 * sigma_free;
+  o.ik.max_rod_stress = 0.7 * sigma_free;
   InverseKinematics ik(model, {position_target(kTarget)}, o);
   const RobotSolution s = ik.solve(target, &reference);
   BOOST_REQUIRE_MESSAGE(s.summary.converged(), s.summary.brief_report());
@@ -395,6 +398,9 @@ BOOST_AUTO_TEST_CASE(bad_ik_options_are_rejected_with_names) {
   o.ik.max_rod_stress = -5.0;
   BOOST_CHECK_THROW(make(o), InputError);
   o.ik.max_rod_stress = 1e8;
+  o.ik.max_input_step = 0.0;
+  BOOST_CHECK_THROW(make(o), InputError);
+  o.ik.max_input_step = 0.05;
   o.ik.stress_points_per_rod = 1;
   BOOST_CHECK_THROW(make(o), InputError);
   try {

@@ -39,13 +39,18 @@ RodModel loaded_rod(RodEndKind base, RodEndKind tip) {
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(every_block_jacobian_matches_finite_differences) {
-  // All pairings with one clamped end, both formulations, free length (so dr/dL is checked too),
-  // at a randomly perturbed, non-unit-quaternion state.
+  // All pairings with one clamped end, both formulations (the mixed one with both point sets: its
+  // blocks differ), free length (so dr/dL is checked too), at a randomly perturbed, non-unit-quaternion
+  // state.
   const RodEndKind kinds[] = {RodEndKind::Clamped, RodEndKind::Collar, RodEndKind::Spherical,
                               RodEndKind::Free};
   std::mt19937 rng(7);
   std::normal_distribution<double> noise(0.0, 0.05);
-  for (RodFormulation f : {RodFormulation::Primal, RodFormulation::Mixed}) {
+  const RodDiscretization discretizations[] = {{RodFormulation::Primal, 3, 3},
+                                               {RodFormulation::Mixed, 3, 3, MixedPoints::Midpoints},
+                                               {RodFormulation::Mixed, 3, 3, MixedPoints::Greville}};
+  for (const RodDiscretization& d : discretizations) {
+    const RodFormulation f = d.formulation;
     for (RodEndKind other : kinds) {
       for (bool clamped_base : {true, false}) {
         RodModel m =
@@ -54,7 +59,7 @@ BOOST_AUTO_TEST_CASE(every_block_jacobian_matches_finite_differences) {
           eps0[0] += 1e-3 * s;
           kappa0 += Vec3(0.2 * s, -0.1 * s * s, 0.0);
         };
-        CollocationRod rod(m, {f, 3, 3});
+        CollocationRod rod(m, d);
         Problem problem;
         rod.add_to_problem(problem, {}, 1.0, /*free_length=*/true);
         VecX x = problem.initial_values();
@@ -62,7 +67,7 @@ BOOST_AUTO_TEST_CASE(every_block_jacobian_matches_finite_differences) {
         // Default checker tolerances 1e-6 abs + 1e-6 rel: central differences with relative step
         // 1e-6 have truncation ~1e-12 and round-off ~1e-10 on these O(1)..O(1e3) residuals.
         const JacobianCheckResult r = check_problem_jacobian(problem, x);
-        BOOST_TEST(r.passed, to_string(f) << " base " << to_string(m.base.kind) << " tip "
+        BOOST_TEST(r.passed, to_string(f) << " (" << to_string(d.mixed_points) << ") base " << to_string(m.base.kind) << " tip "
                                           << to_string(m.tip.kind) << ": " << r.to_string());
         BOOST_TEST(r.entries_checked > 0);
       }
@@ -71,8 +76,11 @@ BOOST_AUTO_TEST_CASE(every_block_jacobian_matches_finite_differences) {
 }
 
 BOOST_AUTO_TEST_CASE(square_system_in_both_formulations) {
-  for (RodFormulation f : {RodFormulation::Primal, RodFormulation::Mixed}) {
-    CollocationRod rod(loaded_rod(RodEndKind::Clamped, RodEndKind::Free), {f, 4, 5});
+  const RodDiscretization discretizations[] = {{RodFormulation::Primal, 4, 5},
+                                               {RodFormulation::Mixed, 4, 5, MixedPoints::Midpoints},
+                                               {RodFormulation::Mixed, 4, 5, MixedPoints::Greville}};
+  for (const RodDiscretization& d : discretizations) {
+    CollocationRod rod(loaded_rod(RodEndKind::Clamped, RodEndKind::Free), d);
     Problem problem;
     rod.add_to_problem(problem);
     const int unknowns = rod.num_control_points() * rod.control_point_size();
@@ -115,31 +123,43 @@ BOOST_AUTO_TEST_CASE(bad_discretisation_and_model_are_rejected_with_the_value) {
 
 BOOST_AUTO_TEST_CASE(gravity_loaded_cantilever_converges_to_global_equilibrium) {
   // Global balance n(0) = n(L) + integral_0^L f ds = F_tip + f L (from n' + f = 0) holds for the exact
-  // solution; collocation enforces n' + f = 0 only at the interior points, so the base force carries
-  // the discretisation error and must converge to the balance under refinement.
+  // solution. The primal form and the mixed form at Greville points enforce n' + f = 0 only at the
+  // n - 2 interior points, so the base force carries the discretisation error and must converge to
+  // the balance under refinement. The mixed form at midpoints collocates n' + f = 0 at n - 1 points:
+  // n' is a spline of degree p - 1 with n - 1 coefficients, so the constant -f is reproduced exactly
+  // and the balance holds to round-off (1e-12 relative: |n| ~ 1 N from residuals solved to 1e-10).
   RodModel m = test::cantilever(0.5, Vec3(1e5, 1e5, 2e5), Vec3(0.5, 0.5, 0.4));
   m.mass_per_length = 0.05;
   m.loads.gravity = Vec3(0, 0, -9.81);
   m.base.orientation = quat_from_rotation_vector(Vec3(M_PI / 2, 0, 0));  // horizontal rod along -y
   m.tip.force = Vec3(0.1, 0.0, -0.2);
   const Vec3 total = m.distributed_force() * m.length + m.tip.force;
-  for (RodFormulation f : {RodFormulation::Primal, RodFormulation::Mixed}) {
+  const RodDiscretization discretizations[] = {{RodFormulation::Primal, 4, 8},
+                                               {RodFormulation::Mixed, 4, 8, MixedPoints::Greville},
+                                               {RodFormulation::Mixed, 4, 8, MixedPoints::Midpoints}};
+  for (RodDiscretization d : discretizations) {
+    const std::string label = std::string(to_string(d.formulation)) + " (" + to_string(d.mixed_points) + ")";
+    const bool exact = d.formulation == RodFormulation::Mixed && d.mixed_points == MixedPoints::Midpoints;
     double previous = INFINITY;
     for (int elements : {8, 16, 32}) {
       RodSolveOptions o;
-      o.discretization = {f, 4, elements};
+      d.elements = elements;
+      o.discretization = d;
       const RodSolution sol = solve_rod(m, o);
       BOOST_REQUIRE_MESSAGE(sol.summary.converged(), sol.summary.brief_report());
       const double error = (sol.base().force - total).norm() / total.norm();
       // Degree 4: at least a factor 4 per halving (order >= 2 of 4 expected; measured >= 4).
-      BOOST_TEST(error < previous / 4,
-                 to_string(f) << " " << elements << " elements: relative balance error " << error);
+      if (exact)
+        BOOST_TEST(error < 1e-12, label << " " << elements << " elements: relative balance error " << error);
+      else
+        BOOST_TEST(error < previous / 4, label << " " << elements << " elements: relative balance error " << error);
       previous = error;
       // The tip load itself is an end condition and holds to the solver tolerance.
       BOOST_TEST((sol.tip().force - m.tip.force).norm() < 1e-8 * total.norm());
     }
-    // Measured at 32 elements: 2.5e-6 (mixed), 2e-4 (primal, which also locks at this slenderness).
-    BOOST_TEST(previous < (f == RodFormulation::Mixed ? 1e-5 : 1e-3));
+    // Measured at 32 elements: 2.5e-6 (mixed, Greville), 2e-4 (primal, which also locks at this
+    // slenderness).
+    BOOST_TEST(previous < (d.formulation == RodFormulation::Mixed ? 1e-5 : 1e-3));
   }
 }
 

@@ -103,6 +103,13 @@ struct ReducedIk::Evaluator {
       // predictor took effort from 94 to 33. One solver serves the three limits (solve(x, limit)), so
       // its factorisation is reused across them: 424 and 27 iterations since.
       std::vector<VecX> starts;
+      // A long step is refused as a failed evaluation (Ipopt then shortens it): it can land the FK
+      // on another equilibrium branch, near whose folds the following solves fail (IkOptions).
+      if (S_tangent.size() > 0 &&
+          (u - u_tangent).cwiseQuotient(input_scales).norm() > options.ik.max_input_step) {
+        ok = false;
+        return false;
+      }
       if (S_tangent.size() > 0) starts.push_back(x_tangent + S_tangent * (u - u_tangent));
       const bool predicted = !starts.empty();
       starts.push_back(x_warm);
@@ -281,6 +288,8 @@ ReducedIk::ReducedIk(const RobotAssembly& assembly, const Problem& ik_problem,
           "IK options: distance_weight = ", o.distance_weight, " (must be finite and >= 0)");
   require(!o.max_rod_stress || (std::isfinite(*o.max_rod_stress) && *o.max_rod_stress > 0.0),
           "IK options: max_rod_stress = ", o.max_rod_stress.value_or(0.0), " Pa (must be finite and > 0)");
+  require(o.max_input_step > 0.0, "IK options: max_input_step = ", o.max_input_step,
+          " (must be > 0; infinity for no limit)");
   require(o.stress_points_per_rod == 0 || o.stress_points_per_rod >= 2,
           "IK options: stress_points_per_rod = ", o.stress_points_per_rod, " (0 for the default or >= 2)");
   require(o.optimality_tolerance > 0.0 && o.target_tolerance > 0.0,

@@ -59,6 +59,10 @@ const char* to_string(RodFormulation formulation) {
   return formulation == RodFormulation::Primal ? "primal" : "mixed";
 }
 
+const char* to_string(MixedPoints points) {
+  return points == MixedPoints::Midpoints ? "midpoints" : "greville";
+}
+
 CollocationRod::CollocationRod(RodModel model, RodDiscretization discretization)
     : model_(std::move(model)), discretization_(discretization) {
   model_.validate();
@@ -227,12 +231,35 @@ RodVariables CollocationRod::add_to_problem(Problem& problem, const RodEndOption
   std::optional<KernelPattern<19, 7>> primal_interior_pattern;
   std::optional<KernelPattern<24, 6>> mixed_constitutive_pattern;
   const std::vector<double> tau = knots_->greville();
+  const bool midpoints = mixed && discretization_.mixed_points == MixedPoints::Midpoints;
+  if (midpoints) {
+    // 12 field rows at each of the n - 1 midpoints of consecutive Greville abscissae, |q|^2 = 1 at the
+    // n - 2 interior ones: 12 (n - 1) + (n - 2) = 13 n - 14 rows, the same count as the Greville scheme.
+    std::optional<KernelPattern<24, 12>> field_pattern;
+    for (int j = 0; j + 1 < n; ++j) {
+      const double u = 0.5 * (tau[j] + tau[j + 1]);
+      const PointConstants c = constants_at(u);
+      const PointBasis b = basis_at(u, 1, false);
+      auto kernel = [c](const auto& z, auto* r) { mixed_field(z, c, r); };
+      if (!field_pattern) field_pattern = detect_kernel_pattern<24, 12>(kernel);
+      problem.add_residual_block(make_point_block<24, 12>("rod.mixed_field", name + "@u=" + std::to_string(u),
+                                                          variables_of(b, true), cp, b, kMixedPoint, 23, kernel,
+                                                          *field_pattern));
+    }
+    for (int j = 1; j + 1 < n; ++j) {
+      const PointBasis b = basis_at(tau[j], 0, false);
+      problem.add_residual_block(make_point_block<4, 1>(
+          "rod.unit_quaternion", name + "@u=" + std::to_string(tau[j]), variables_of(b, false), cp, b,
+          {{0, kQ, 4, 0}}, -1, [](const auto& z, auto* r) { r[0] = z.squaredNorm() - 1.0; }));
+    }
+  }
   for (int j = 0; j < n; ++j) {
     const double u = tau[j];
     const PointConstants c = constants_at(u);
     const std::string where = name + "@u=" + std::to_string(u);
     const bool is_end = j == 0 || j == n - 1;
     if (!is_end) {
+      if (midpoints) continue;
       if (mixed) {
         const PointBasis b = basis_at(u, 1, false);
         auto kernel = [c](const auto& z, auto* r) { mixed_interior(z, c, r); };
@@ -251,7 +278,7 @@ RodVariables CollocationRod::add_to_problem(Problem& problem, const RodEndOption
       continue;
     }
     const bool at_base = j == 0;
-    if (mixed) {
+    if (mixed && !midpoints) {
       const PointBasis b = basis_at(u, 1, false);
       auto kernel = [c](const auto& z, auto* r) { mixed_constitutive(z, c, r); };
       if (!mixed_constitutive_pattern) mixed_constitutive_pattern = detect_kernel_pattern<24, 6>(kernel);

@@ -20,10 +20,9 @@ namespace pcr {
 struct AssemblyOptions {
   /// Discretisation of rods that carry no hints in the model (the formulation only when
   /// formulation_by_slenderness is off). Odd degree: the mixed form converges with order p + 1
-  /// for odd p (p for even p; README "Rods"), and with odd p the collocated n' + f = 0 reproduces the
-  /// global force balance of each rod exactly (even p only up to the discretisation error).
-  /// 8 elements: R5a IK inputs within 2.9e-6 m of the 32-element solution (4 elements: 1.4e-4 m,
-  /// 16: 6.8e-8 m; measured with `pcr ik models/stewart_gough.urdf --elements E ...`, README).
+  /// for odd p (p for even p; README "Rods"). Mixed at the midpoints (MixedPoints): each rod's force
+  /// balance holds exactly under gravity at any degree. 8 elements: R5a IK inputs within 1.8e-8 m of
+  /// the 32-element solution (4 elements: 5.7e-7 m, 16: 2.3e-10 m; bench_robots, README "Robots").
   RodDiscretization discretization{RodFormulation::Mixed, 5, 8};
   /// Use the model's per-rod discretisation hints where given (they win over everything else).
   bool use_model_hints = true;
@@ -43,9 +42,12 @@ double gyration_ratio(const RodElement& rod);
 /// 5, 8 elements) is still within 1e-5 L of the converged tip of a cantilever under P L^2 / EI = 1;
 /// measured with `build/release/tests/test_ik_objectives --run_test=primal_locking_study`: primal
 /// tip error / L = 3.9e-6 at d/L = 0.4, 1.0e-5 at 0.25, 1.6e-5 at 0.2, 2.6e-4 at 0.05, 6.0e-3 at
-/// 0.01, no convergence below 0.007 (locking); mixed 3e-7 .. 1.2e-5 throughout, in 4 Newton
-/// iterations against 7 .. 50 for primal. So the primal form is never more accurate here: it is
-/// chosen only where its error is as small as the mixed default's and it has fewer unknowns.
+/// 0.01, no convergence below 0.007 (locking); mixed 2.9e-9 .. 3.0e-9 throughout (at the midpoints;
+/// 3e-7 .. 1.2e-5 at the Greville points, when this threshold was set), in 4 Newton iterations against
+/// 7 .. 50 for primal. So the primal form is never more accurate here: it is chosen only where its
+/// error is within 1e-5 L and it has fewer unknowns (7 instead of 13 per control point); with the
+/// midpoints the mixed form is 1000x more accurate there, so whether primal should be chosen at all
+/// is open.
 RodFormulation formulation_by_slenderness(const RodElement& rod, double primal_min_gyration_ratio);
 
 class RobotAssembly {

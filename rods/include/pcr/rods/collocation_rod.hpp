@@ -4,8 +4,9 @@
 // p(u), q(u) (and in the mixed form n(u), m(u)) are B-splines of degree p >= 2 on an open knot vector
 // over u in [0, 1], s = L u. Each control point is one variable block: [P (3), Q (4)] in the primal
 // form, [P (3), Q (4), N (3), M (3)] in the mixed form; the rod length L is one more block (fixed for
-// a rod of given length, free when it is an actuation input). Equations at the Greville abscissae:
-// interior points carry the field equations, u = 0 and u = 1 the end conditions. All residuals are
+// a rod of given length, free when it is an actuation input). Equations at the Greville abscissae
+// tau_1 = 0 < ... < tau_n = 1: u = 0 and u = 1 carry the end conditions (7 each); in the primal form
+// the n - 2 interior points carry the field equations. Mixed form: see MixedPoints. All residuals are
 // dimensionless: forces by F0 = max(K_BT) / L0^2, moments by M0 = max(K_BT) / L0, lengths by L0
 // (the model's length), constitutive equations as strains; the primal force balance (which carries
 // K_SE times the round-off of p'') by max(K_SE) / L0.
@@ -22,10 +23,23 @@ namespace pcr {
 enum class RodFormulation { Primal, Mixed };
 const char* to_string(RodFormulation formulation);
 
+/// Where the mixed form collocates its 12 first-order field equations (n' + f, m' + p' x n + l and the
+/// two constitutive laws); the unit-norm rows |q|^2 - 1 stay at the n - 2 interior Greville points.
+///  - Midpoints (default): at the n - 1 midpoints (tau_i + tau_{i+1}) / 2, so each first-order field
+///    equation has n - 1 rows and the 6 + 6 end conditions complete it, as for a shooting method.
+///  - Greville (Weeger, Yeung & Dunn 2017; DESIGN.md §2): balance laws at the n - 2 interior points,
+///    constitutive laws at all n. The forces n(u) then have a second mode besides the constant one
+///    that the balance rows do not see; only the compliant constitutive rows fix it, weakly when
+///    n = p + E is odd. Measured (README "Mixed collocation points"): errors 100-1000x larger at
+///    p = 5, E = 8. Kept to reproduce the published scheme and as the baseline of that comparison.
+enum class MixedPoints { Midpoints, Greville };
+const char* to_string(MixedPoints points);
+
 struct RodDiscretization {
   RodFormulation formulation = RodFormulation::Mixed;
   int degree = 4;    ///< polynomial degree p >= 2
   int elements = 4;  ///< number of equal knot spans >= 1
+  MixedPoints mixed_points = MixedPoints::Midpoints;  ///< mixed form only
 };
 
 /// State of a rod at arc length s (world frame unless named _body).

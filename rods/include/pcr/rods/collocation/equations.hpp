@@ -105,30 +105,6 @@ void primal_interior(const Eigen::Matrix<T, 19, 1>& z, const PointConstants& c, 
   r[6] = S - 1.0;
 }
 
-/// Mixed form, interior point: n_d' + f (3), m_d' + p_d' x n_d + l (3), |q|^2 - 1 (1), then the two
-/// constitutive equations (see mixed_constitutive).
-/// z = [q (4), q_u (4), p_u (3), n (3), n_u (3), m (3), m_u (3), L (1)].
-template <typename T>
-void mixed_constitutive(const Eigen::Matrix<T, 24, 1>& z, const PointConstants& c, T* r);
-
-template <typename T>
-void mixed_interior(const Eigen::Matrix<T, 24, 1>& z, const PointConstants& c, T* r) {
-  const T L = z[23];
-  const V3<T> p_s = z.template segment<3>(8) / L;
-  const V3<T> n = z.template segment<3>(11);
-  const V3<T> n_s = z.template segment<3>(14) / L;
-  const V3<T> m_s = z.template segment<3>(20) / L;
-  const V3<T> e_n = n_s + c.f;
-  const V3<T> e_m = m_s + p_s.cross(n) + c.l;
-  const double fr = c.length_scale / c.force_scale, mr = c.length_scale / c.moment_scale;
-  for (int i = 0; i < 3; ++i) {
-    r[i] = e_n[i] * fr;
-    r[3 + i] = e_m[i] * mr;
-  }
-  r[6] = z.template segment<4>(0).squaredNorm() - 1.0;
-  mixed_constitutive(z, c, r + 7);
-}
-
 /// Mixed form constitutive equations (6) in compliance form, equivalent to n_d = R K_SE (eps - eps0)
 /// and m_d = R K_BT (kappa - kappa0) but scaled as strains so that stiff axial/shear directions do not
 /// swamp the residual:  K_SE^-1 R^T n_d - (eps - eps0) = 0,  L0 (K_BT^-1 R^T m_d - (kappa - kappa0)) = 0.
@@ -147,6 +123,34 @@ void mixed_constitutive(const Eigen::Matrix<T, 24, 1>& z, const PointConstants& 
     r[i] = sigma[i] / c.k_se[i] - (eps[i] - (i == 2 ? 1.0 : 0.0) - c.eps0[i]);
     r[3 + i] = (chi[i] / c.k_bt[i] - (kappa[i] - c.kappa0[i])) * c.length_scale;
   }
+}
+
+/// Mixed form field equations at a point: n_d' + f (3), m_d' + p_d' x n_d + l (3), then the two
+/// constitutive equations (6).
+/// z = [q (4), q_u (4), p_u (3), n (3), n_u (3), m (3), m_u (3), L (1)].
+template <typename T>
+void mixed_field(const Eigen::Matrix<T, 24, 1>& z, const PointConstants& c, T* r) {
+  const T L = z[23];
+  const V3<T> p_s = z.template segment<3>(8) / L;
+  const V3<T> n = z.template segment<3>(11);
+  const V3<T> n_s = z.template segment<3>(14) / L;
+  const V3<T> m_s = z.template segment<3>(20) / L;
+  const V3<T> e_n = n_s + c.f;
+  const V3<T> e_m = m_s + p_s.cross(n) + c.l;
+  const double fr = c.length_scale / c.force_scale, mr = c.length_scale / c.moment_scale;
+  for (int i = 0; i < 3; ++i) {
+    r[i] = e_n[i] * fr;
+    r[3 + i] = e_m[i] * mr;
+  }
+  mixed_constitutive(z, c, r + 6);
+}
+
+/// Mixed form, interior Greville point of the Greville scheme (MixedPoints::Greville): the 12 field
+/// equations, then |q|^2 - 1.
+template <typename T>
+void mixed_interior(const Eigen::Matrix<T, 24, 1>& z, const PointConstants& c, T* r) {
+  mixed_field(z, c, r);
+  r[12] = z.template segment<4>(0).squaredNorm() - 1.0;
 }
 
 /// Primal form: internal force and moment at a point from the constitutive law.
