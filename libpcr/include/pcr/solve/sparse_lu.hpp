@@ -1,5 +1,5 @@
 #pragma once
-// Sparse LU of a square matrix (Eigen's SparseLU, COLAMD ordering), the one linear solver of the Newton
+// Sparse LU of a square matrix (Eigen's SparseLU, natural column order), the one linear solver of the Newton
 // iterations, the implicit-function-theorem derivatives and the spline interpolations. Behind this
 // class so that Eigen's SparseLU templates are compiled once (sparse_lu.cpp) instead of in every file
 // that solves a system: about 20 s of compile time per such file in the sanitizer build, 11 s in Release.

@@ -22,7 +22,7 @@ struct AssemblyOptions {
   /// formulation_by_slenderness is off). Odd degree: the mixed form converges with order p + 1
   /// for odd p (p for even p; README "Rods"). Mixed at the midpoints (MixedPoints): each rod's force
   /// balance holds exactly under gravity at any degree. 8 elements: R5a IK inputs within 1.8e-8 m of
-  /// the 32-element solution (4 elements: 5.7e-7 m, 16: 2.3e-10 m; bench_robots, README "Robots").
+  /// the 32-element solution (4 elements: 5.7e-7 m, 16: 2.2e-10 m; bench_robots, README "Robots").
   RodDiscretization discretization{RodFormulation::Mixed, 5, 8};
   /// Use the model's per-rod discretisation hints where given (they win over everything else).
   bool use_model_hints = true;
