@@ -111,4 +111,10 @@ void RodModel::validate() const {
           ") leave the rod free to move or twist; clamp at least one end");
 }
 
+double checked_arc_length(double s, double length, const std::string& who) {
+  require(std::isfinite(s) && s >= -1e-12 * length && s <= length * (1.0 + 1e-12), who, ": arc length s = ", s,
+          " outside [0, ", length, "]");
+  return std::clamp(s, 0.0, length);
+}
+
 }  // namespace pcr

@@ -254,12 +254,12 @@ RodVariables CollocationRod::add_to_problem(Problem& problem, const RodEndOption
     }
   }
   for (int j = 0; j < n; ++j) {
+    const bool is_end = j == 0 || j == n - 1;
+    if (midpoints && !is_end) continue;  // the interior rows are above
     const double u = tau[j];
     const PointConstants c = constants_at(u);
     const std::string where = name + "@u=" + std::to_string(u);
-    const bool is_end = j == 0 || j == n - 1;
     if (!is_end) {
-      if (midpoints) continue;
       if (mixed) {
         const PointBasis b = basis_at(u, 1, false);
         auto kernel = [c](const auto& z, auto* r) { mixed_interior(z, c, r); };
@@ -321,9 +321,7 @@ double CollocationRod::length(const VecX& x, const RodVariables& vars) const {
 
 RodState CollocationRod::state_at(const VecX& x, const RodVariables& vars, double s) const {
   const double L = length(x, vars);
-  require(std::isfinite(s) && s >= -1e-12 * L && s <= L * (1.0 + 1e-12), "rod '", model_.name,
-          "': arc length s = ", s, " outside [0, ", L, "]");
-  const double u = std::clamp(s / L, 0.0, 1.0);
+  const double u = checked_arc_length(s, L, model_.name) / L;
   const BasisDerivatives d = basis_derivatives(*knots_, u, 1);
   const int cp = control_point_size();
   VecX value = VecX::Zero(cp), du = VecX::Zero(cp);

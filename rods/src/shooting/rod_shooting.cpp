@@ -30,12 +30,7 @@ ShootingState ShootingSolution::at(double s_query) const {
   require(ode_ && !s.empty(),
           "ShootingSolution::at: no stored trajectory (store_trajectory was off or the solve ",
           "did not produce one)");
-  // Round-off of a caller's s = L i / N beyond the ends (1e-12 L) is accepted and clamped, as in
-  // CollocationRod::state_at.
-  const double L = ode_->length();
-  require(std::isfinite(s_query) && s_query >= -1e-12 * L && s_query <= L * (1.0 + 1e-12),
-          "ShootingSolution::at: s = ", s_query, " outside [0, ", L, "]");
-  s_query = std::clamp(s_query, 0.0, L);
+  s_query = checked_arc_length(s_query, ode_->length(), "ShootingSolution::at");
   // Last stored step at or before s_query, then one step of the solve's method.
   const auto it = std::upper_bound(s.begin(), s.end(), s_query);
   const size_t i = it == s.begin() ? 0 : static_cast<size_t>(it - s.begin()) - 1;

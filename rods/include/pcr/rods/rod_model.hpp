@@ -93,4 +93,10 @@ struct RodModel {
   void validate() const;
 };
 
+/// Arc length s checked against [0, length] and clamped into it. Up to 1e-12 length beyond either
+/// end is accepted as round-off (a caller's s = L i / N); farther, or not finite, throws InputError
+/// naming `who` (the rod's name, or the caller). Shared by the collocation and shooting solutions'
+/// post-processing.
+double checked_arc_length(double s, double length, const std::string& who);
+
 }  // namespace pcr
