@@ -5,8 +5,9 @@
 //    of the operations a warm solve is made of (printed).
 // Error: max over the inputs (IK) or platform position (FK) against a reference computed in the same
 // run with 32 elements of degree 5 (converged to < 1e-9 m, see README). The mixed form at the default
-// midpoints (method collocation-mixed-newton) and, as the baseline of that choice, at the Greville
-// points of Weeger et al. (collocation-mixed-greville-newton; MixedPoints). Scenes:
+// degree and midpoints (method collocation-mixed-newton) over the element counts and, as baselines of
+// those choices, degree 5 and the Greville points of Weeger et al. (collocation-mixed-greville-newton;
+// MixedPoints). Scenes:
 // benchmarks/common/robot_scenes.hpp. CSV columns as the other
 // benchmarks: scene,method,settings,error,time_median_s,time_min_s,time_max_s,iterations,time_mean_s.
 // usage: bench_robots [out.csv]
@@ -30,9 +31,14 @@ using Clock = std::chrono::steady_clock;
 namespace {
 
 struct Mesh {
+  int degree;
   int elements;
   MixedPoints points;
 };
+
+std::string settings_of(const Mesh& mesh) {
+  return "p=" + std::to_string(mesh.degree) + ";E=" + std::to_string(mesh.elements);
+}
 
 const char* method_of(MixedPoints points) {
   return points == MixedPoints::Midpoints ? "collocation-mixed-newton" : "collocation-mixed-greville-newton";
@@ -83,11 +89,11 @@ int main(int argc, char** argv) {
   }
   const auto r5a = load_r5a();
   const auto r5b = load_r5b();
-  const Mesh meshes[] = {{2, MixedPoints::Midpoints},
-                         {4, MixedPoints::Midpoints},
-                         {8, MixedPoints::Midpoints},
-                         {16, MixedPoints::Midpoints},
-                         {8, MixedPoints::Greville}};
+  // The default degree (AssemblyOptions) over the element counts, and at 8 elements the baselines of
+  // the default's choice: degree 5 (the default before), degree 5 at the Greville points (before that).
+  const int p = AssemblyOptions().discretization.degree;
+  const MixedPoints mid = MixedPoints::Midpoints;
+  const Mesh meshes[] = {{p, 2, mid}, {p, 4, mid}, {p, 8, mid}, {p, 16, mid}, {5, 8, mid}, {5, 8, MixedPoints::Greville}};
 
   const Pose target = r5a_target();
   InverseKinematics ik_ref(r5a, {platform_target()}, options(5, 32, 1e-11));
@@ -99,13 +105,12 @@ int main(int argc, char** argv) {
     return 1;
   }
   for (const Mesh& mesh : meshes) {
-    const int E = mesh.elements;
     const char* points = to_string(mesh.points);
     // The cold solves' first part: building the solver (assembly of the rods' collocation blocks and the
     // couplings). Printed only, there is no error to put beside it.
-    const KinematicsOptions o = options(5, E, 1e-10, mesh.points);
+    const KinematicsOptions o = options(mesh.degree, mesh.elements, 1e-10, mesh.points);
     const Timing assembly = time_repeated([&] { ForwardKinematics fk(r5a, o); }, {5, 50, 0.2});
-    std::printf("R5a assembly p=5 E=%2d %-9s  median %.2f ms\n", E, points, assembly.median * 1e3);
+    std::printf("R5a assembly %-8s %-9s  median %.2f ms\n", settings_of(mesh).c_str(), points, assembly.median * 1e3);
     for (const std::string problem : {"FK", "IK"}) {
       double error = 0;
       int iterations = 0;
@@ -126,19 +131,19 @@ int main(int argc, char** argv) {
             if (!s.summary.converged()) error = NAN;
           },
           {5, 5, 0.0});
-      csv.row("R5a_" + problem + "_cold", method_of(mesh.points), "p=5;E=" + std::to_string(E), error, t,
-              iterations);
-      std::printf("R5a %s cold  p=5 E=%2d %-9s  error %.2e m  median %.2f ms\n", problem.c_str(), E, points,
-                  error, t.median * 1e3);
+      csv.row("R5a_" + problem + "_cold", method_of(mesh.points), settings_of(mesh), error, t, iterations);
+      std::printf("R5a %s cold  %-8s %-9s  error %.2e m  median %.2f ms\n", problem.c_str(),
+                  settings_of(mesh).c_str(), points, error, t.median * 1e3);
     }
   }
 
   // R5b teleoperation: reference inputs along the path at 32 elements, then timed warm solves.
   const std::vector<Pose> path = r5b_path();
-  for (int E : {8, 16}) {  // size of the square IK system (structural zeros of the blocks left out)
-    InverseKinematics ik(r5b, {platform_target()}, options(5, E));
+  for (const Mesh& mesh : {Mesh{p, 8, mid}, Mesh{5, 8, mid}, Mesh{p, 16, mid}}) {
+    // size of the square IK system (structural zeros of the blocks left out)
+    InverseKinematics ik(r5b, {platform_target()}, options(mesh.degree, mesh.elements));
     const Problem& problem = ik.assembly().problem();
-    std::printf("R5b IK p=5 E=%2d: %d rows, %d Jacobian nonzeros\n", E, problem.num_rows(),
+    std::printf("R5b IK %s: %d rows, %d Jacobian nonzeros\n", settings_of(mesh).c_str(), problem.num_rows(),
                 problem.jacobian_nonzeros());
     if (ik.solve({path[0]}).summary.converged()) print_operation_costs(ik);
   }
@@ -154,17 +159,12 @@ int main(int argc, char** argv) {
       reference.push_back(s.inputs);
     }
   }
-  // Greville points: not E = 4 (warm Newton solves fail along the path and each failure goes to Ipopt,
-  // minutes); E = 7 and 9 beside 8: with an odd number of control points p + E their internal forces
-  // are poorly determined (README, "Mixed collocation points").
-  const Mesh path_meshes[] = {{2, MixedPoints::Midpoints}, {4, MixedPoints::Midpoints},
-                              {7, MixedPoints::Midpoints}, {8, MixedPoints::Midpoints},
-                              {9, MixedPoints::Midpoints}, {16, MixedPoints::Midpoints},
-                              {7, MixedPoints::Greville},  {8, MixedPoints::Greville},
-                              {9, MixedPoints::Greville}};
+  // Greville points only at 8 elements (at 4, warm Newton solves fail along the path and each failure
+  // goes to Ipopt, minutes; README, "Mixed collocation points").
+  const Mesh path_meshes[] = {{p, 2, mid}, {p, 4, mid},  {p, 8, mid}, {p, 16, mid},
+                              {5, 8, mid}, {5, 16, mid}, {5, 8, MixedPoints::Greville}};
   for (const Mesh& mesh : path_meshes) {
-    const int E = mesh.elements;
-    InverseKinematics ik(r5b, {platform_target()}, options(5, E, 1e-10, mesh.points));
+    InverseKinematics ik(r5b, {platform_target()}, options(mesh.degree, mesh.elements, 1e-10, mesh.points));
     ik.solve({path[0]});  // start of the path (cold), not timed
     std::vector<double> times;
     double error = 0;
@@ -181,12 +181,12 @@ int main(int argc, char** argv) {
     }
     const Timing t = summarise(times);
     if (failures > 0) error = NAN;
-    csv.row("R5b_teleop_IK_warm", method_of(mesh.points), "p=5;E=" + std::to_string(E), error, t,
+    csv.row("R5b_teleop_IK_warm", method_of(mesh.points), settings_of(mesh), error, t,
             double(iterations) / times.size());
     std::printf(
-        "R5b warm IK p=5 E=%2d %-9s  max input error %.2e m  median %.3f ms/solve, mean %.3f ms/solve (%.0f "
+        "R5b warm IK %-8s %-9s  max input error %.2e m  median %.3f ms/solve, mean %.3f ms/solve (%.0f "
         "solves/s), %.2f it/solve%s\n",
-        E, to_string(mesh.points), error, t.median * 1e3, t.mean * 1e3, 1.0 / t.mean, double(iterations) / times.size(),
+        settings_of(mesh).c_str(), to_string(mesh.points), error, t.median * 1e3, t.mean * 1e3, 1.0 / t.mean, double(iterations) / times.size(),
         failures ? "  FAILURES" : "");
   }
   std::cout << "wrote " << csv.path() << "\n";

@@ -4,8 +4,11 @@
 // rods lean alternately left and right and hold the platform in every direction; at the default
 // lengths the rods are straight and stress-free (the initial guess). Times, per model: cold = a fresh
 // ForwardKinematics (assembly built outside the timing) solving the inputs shortened by 1 %, warm =
-// solves alternating between two input sets 1 mm apart, warm-started; medians over the repeats of
-// the process CPU time.
+// solves alternating between two input sets 1 mm apart, warm-started (8 per repeat); medians over the
+// repeats of the process CPU time. A warm solve either runs on the factorisation kept from the last
+// solve (quasi-Newton steps) or takes a fresh Jacobian and factorisation (SolveSummary::
+// jacobian_evaluations > 0), which costs about a cold solve's share; the two kinds are reported apart
+// as well, since their mix decides the median.
 // usage: bench_scaling [repeats=7]
 #include <algorithm>
 #include <cmath>
@@ -64,6 +67,7 @@ std::string ring_pcr_urdf(int rods) {
 }
 
 double median(std::vector<double> v) {
+  if (v.empty()) return NAN;
   std::sort(v.begin(), v.end());
   return v[v.size() / 2];
 }
@@ -74,9 +78,9 @@ int main(int argc, char** argv) {
   const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 7;
   std::printf(
       "| rods | unknowns | cold FK [CPU ms] | cold iterations | warm FK [CPU ms] | warm iterations | warm ms "
-      "per rod "
+      "per rod | warm with fresh Jacobian | warm, kept factorisation [CPU ms] | warm, fresh Jacobian [CPU ms] "
       "|\n");
-  std::printf("|---|---|---|---|---|---|---|\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
   for (int rods : {3, 6, 12, 24, 48}) {
     const auto model = std::make_shared<const pcr::RobotModel>(
         pcr::parse_robot_model(ring_pcr_urdf(rods), "ring" + std::to_string(rods)));
@@ -84,7 +88,7 @@ int main(int argc, char** argv) {
     const pcr::VecX u_cold = 0.99 * u0;
     pcr::VecX u_warm[2] = {u_cold, u_cold};
     for (int i = 0; i < u0.size(); ++i) u_warm[1][i] += (i % 2 == 0 ? 1e-3 : -1e-3);
-    std::vector<double> cold, warm;
+    std::vector<double> cold, warm, warm_kept, warm_fresh;
     int cold_iterations = 0, warm_iterations = 0, unknowns = 0;
     for (int r = 0; r < repeats; ++r) {
       pcr::ForwardKinematics fk(model);
@@ -98,10 +102,11 @@ int main(int argc, char** argv) {
                     s.summary.message.c_str());
         return 1;
       }
-      for (int k = 0; k < 4; ++k) {
+      for (int k = 0; k < 8; ++k) {
         t = cpu_ms();
         const pcr::RobotSolution w = fk.solve(u_warm[(k + 1) % 2]);
         warm.push_back(cpu_ms() - t);
+        (w.summary.jacobian_evaluations > 0 ? warm_fresh : warm_kept).push_back(warm.back());
         warm_iterations = w.summary.iterations;
         if (!w.summary.converged()) {
           std::printf("ring %d: warm FK failed: %s\n", rods, w.summary.brief_report().c_str());
@@ -110,8 +115,9 @@ int main(int argc, char** argv) {
       }
     }
     const double warm_ms = median(warm);
-    std::printf("| %d | %d | %.2f | %d | %.2f | %d | %.3f |\n", rods, unknowns, median(cold), cold_iterations,
-                warm_ms, warm_iterations, warm_ms / rods);
+    std::printf("| %d | %d | %.2f | %d | %.2f | %d | %.3f | %zu/%zu | %.2f | %.2f |\n", rods, unknowns, median(cold),
+                cold_iterations, warm_ms, warm_iterations, warm_ms / rods, warm_fresh.size(), warm.size(),
+                median(warm_kept), median(warm_fresh));
     std::fflush(stdout);
   }
   return 0;

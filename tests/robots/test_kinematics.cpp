@@ -259,6 +259,21 @@ BOOST_AUTO_TEST_CASE(newton_and_ipopt_forward_kinematics_agree) {
   BOOST_TEST(rotation_angle_between(a.platforms[0].rotation(), b.platforms[0].rotation()) < 1e-9);
 }
 
+BOOST_AUTO_TEST_CASE(summary_counts_the_fresh_jacobians_of_every_attempt) {
+  const auto model = load("stewart_gough");
+  ForwardKinematics fk(model, tight());
+  const VecX u = moved_inputs(*model, 0.03);
+  const RobotSolution cold = fk.solve(u);
+  BOOST_REQUIRE_MESSAGE(cold.summary.converged(), cold.summary.brief_report());
+  // From the straight rods: at least one fresh Jacobian, and at most one per (quasi-)Newton iteration.
+  BOOST_TEST(cold.summary.jacobian_evaluations >= 1);
+  BOOST_TEST(cold.summary.jacobian_evaluations <= cold.summary.iterations);
+  // Again at the same inputs: the start is the solution, nothing is evaluated.
+  const RobotSolution again = fk.solve(u);
+  BOOST_TEST(again.summary.iterations == 0);
+  BOOST_TEST(again.summary.jacobian_evaluations == 0);
+}
+
 BOOST_AUTO_TEST_CASE(unreachable_target_is_reported_not_hidden) {
   const auto model = load("stewart_gough");
   LinkTarget t;

@@ -153,6 +153,7 @@ BOOST_AUTO_TEST_CASE(jacobian_budget_is_reported_and_per_solve) {
   BOOST_TEST((s.status == SolveStatus::MaxIterations), s.brief_report());
   BOOST_TEST(s.iterations == 2);
   BOOST_TEST(s.message.find("2 Jacobian evaluations") != std::string::npos, s.message);
+  BOOST_TEST(s.jacobian_evaluations == 2);
   BOOST_TEST(std::isfinite(s.residual_max_abs));
   // The budget holds for that solve only: the next one uses the options again and converges.
   const SolveSummary rest = newton.solve(x);
@@ -214,7 +215,9 @@ BOOST_AUTO_TEST_CASE(factorisation_reuse_along_a_path_matches_fresh_newton) {
     // system (|3 - 4 x_i| >= 3 for its root x_i in [-0.6, -0.3], off-diagonals 1 and 2), so the two
     // roots agree to a few times 1e-10.
     BOOST_TEST((xq - xf).lpNorm<Eigen::Infinity>() <= 1e-8);
-    jacobian_evaluations += std::stoi(sq.message);  // "N Jacobian evaluations"
+    BOOST_TEST(sq.jacobian_evaluations == std::stoi(sq.message));  // "N Jacobian evaluations"
+    BOOST_TEST(sf.jacobian_evaluations == sf.iterations);             // plain Newton: one per step
+    jacobian_evaluations += sq.jacobian_evaluations;
     ++steps;
   }
   BOOST_TEST(jacobian_evaluations < steps / 2);

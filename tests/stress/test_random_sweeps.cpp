@@ -195,11 +195,11 @@ bool solve_and_check(const std::string& name, ForwardKinematics& fk, const VecX&
                                         << force_tol << ") at " << u.transpose());
   BOOST_TEST(c.moment <= moment_tol, name << ": platform moment balance off by " << c.moment << " N m (tol "
                                           << moment_tol << ") at " << u.transpose());
-  // Garbage detector: 10 % excess. Under-resolved rods of the default discretisation (mixed, p = 4,
-  // 4 elements) in the CI sweep measure up to 4.7 % (e.g. 3.1 % for stewart_gough at 0.468 0.333
-  // 0.244 0.482 0.258 0.742, which falls to 5e-4 with 8 elements and 2e-5 with 16: discretisation
-  // error, the platform moving by 2.5 cm). The long planar sweep (-- --solves=150) finds converged
-  // warm solves 10-22 % too long: spurious solutions of the coarse system (README, Stress tests).
+  // Garbage detector: 10 % excess. With the default discretisation (degree 6, 8 elements) no solve of
+  // the CI sweep exceeds 1 %; a coarse one (degree 4, 4 elements, an early default) measured up to
+  // 4.7 % (e.g. 3.1 % for stewart_gough at 0.468 0.333 0.244 0.482 0.258 0.742, falling to 5e-4 with 8
+  // elements and 2e-5 with 16: discretisation error, the platform moving by 2.5 cm), and its long
+  // planar sweep found converged warm solves 10-22 % too long: spurious solutions of a coarse system.
   if (c.stretch > 1e-2) ++stats.under_resolved;
   BOOST_TEST(c.stretch <= 0.1,
              name << ": rod centerline longer than admissible by " << c.stretch << " at " << u.transpose());

@@ -179,6 +179,7 @@ class ProblemNlp : public Ipopt::TNLP {
     load(n, x, new_x);
     if (!J_valid_) {
       problem_.evaluate_residuals_and_jacobian(x_, c_, J_);
+      ++jacobian_evaluations;
       c_valid_ = J_valid_ = true;
     }
     std::copy(J_.valuePtr(), J_.valuePtr() + nele_jac, values);
@@ -223,7 +224,9 @@ class ProblemNlp : public Ipopt::TNLP {
   void begin_solve() {
     loaded_ = false;
     has_final = false;
+    jacobian_evaluations = 0;
   }
+  int jacobian_evaluations = 0;  ///< of the current solve
 
  private:
   // Copies Ipopt's point into x_ (Problem takes a VecX) and invalidates the caches at a new point.
@@ -368,6 +371,7 @@ SolveSummary IpoptSolver::solve(VecX& x) {
   if (nlp.has_final && nlp.x_final.size() == x.size()) x = nlp.x_final;
   Ipopt::SmartPtr<Ipopt::SolveStatistics> stats = w.app->Statistics();
   summary.iterations = Ipopt::IsValid(stats) ? stats->IterationCount() : 0;
+  summary.jacobian_evaluations = nlp.jacobian_evaluations;
 
   // Our own, unscaled verdict.
   problem.evaluate_residuals(x, w.c);

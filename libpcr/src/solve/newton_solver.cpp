@@ -159,9 +159,11 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
 
   SolveSummary summary;
   summary.solver = "newton";
+  int jacobian_evaluations = 0;
   auto finish = [&](SolveStatus status, std::string message) {
     summary.status = status;
     summary.message = std::move(message);
+    summary.jacobian_evaluations = jacobian_evaluations;
     summary.residual_max_abs = problem.constraint_violation(w.c);
     summary.residual_by_kind = problem.violation_by_kind(w.c);
     // Never report a non-finite point as converged.
@@ -190,7 +192,6 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
   // superlinear, against linear for the plain simplified Newton step.
   bool refresh = !(o.reuse_factorization && w.have_factorization);
   bool have_correction = false;  // w.steps[w.num_steps - 1] is the next step from x
-  int jacobian_evaluations = 0;
   auto take_step_from = [&](const VecX& x0, const VecX& step) {
     for (int j = 0; j < x0.size(); ++j) {
       const int col = w.reduced_column[j];

@@ -32,6 +32,8 @@ void write_summary(JsonWriter& json, const SolveSummary& s) {
   json.value(to_string(s.status));
   json.key("iterations");
   json.value(s.iterations);
+  json.key("jacobian_evaluations");
+  json.value(s.jacobian_evaluations);
   json.key("residual_max_abs");
   json.value(s.residual_max_abs);
   json.key("residual_by_kind");

@@ -16,6 +16,7 @@ ContinuationResult continue_along_line(const SolveAtInputs& solve_at, const VecX
     if (t_prev >= 0.0) trial += ((target - t) / (t - t_prev)) * (xc - x_prev);  // secant in t
     r.last = solve_at(u0 + target * (u1 - u0), trial, step_jacobians);
     r.iterations += r.last.iterations;
+    r.jacobian_evaluations += r.last.jacobian_evaluations;
     ++r.steps;
     if (r.last.converged()) {
       x_prev.swap(xc);
@@ -54,6 +55,7 @@ ContinuationResult continue_one_input_at_a_time(const SolveAtInputs& solve_at, c
       VecX direct = xc;
       total.last = solve_at(next, direct, direct_jacobians);
       total.iterations += total.last.iterations;
+      total.jacobian_evaluations += total.last.jacobian_evaluations;
       ++total.steps;
       if (total.last.converged()) {
         xc.swap(direct);
@@ -63,6 +65,7 @@ ContinuationResult continue_one_input_at_a_time(const SolveAtInputs& solve_at, c
       const ContinuationResult leg = continue_along_line(solve_at, u, next, step_jacobians, xc);
       total.steps += leg.steps;
       total.iterations += leg.iterations;
+      total.jacobian_evaluations += leg.jacobian_evaluations;
       total.last = leg.last;
       ok = leg.converged;
       if (ok)

@@ -27,6 +27,7 @@ struct ContinuationResult {
   SolveSummary last;       ///< summary of the last step's solve
   int steps = 0;           ///< solves attempted (all legs)
   int iterations = 0;      ///< Newton iterations of all steps
+  int jacobian_evaluations = 0;  ///< fresh Jacobians of all steps
   std::string stopped_at;  ///< where it stopped, for the failure message (empty when converged)
 };
 

@@ -147,12 +147,13 @@ RobotSolution ForwardKinematics::solve(const VecX& inputs) {
   VecX x = solvers_->predictor.predict(x_, inputs);
   assembly_.set_inputs(x, inputs);
   SolveSummary summary = solve_once(x, kDirectJacobianEvaluations);
-  int iterations = summary.iterations;
+  int iterations = summary.iterations, jacobians = summary.jacobian_evaluations;
   if (!summary.converged() && has_solution_) {  // the extrapolated start failed: retry from the last solution
     x = x_;
     assembly_.set_inputs(x, inputs);
     summary = solve_once(x, kDirectJacobianEvaluations);
     iterations += summary.iterations;
+    jacobians += summary.jacobian_evaluations;
   }
   if (!summary.converged()) {
     // Continuation in the inputs (input_continuation.hpp): first from the last converged state (if any),
@@ -168,6 +169,7 @@ RobotSolution ForwardKinematics::solve(const VecX& inputs) {
     };
     auto finish = [&](const kinematics::ContinuationResult& r, const VecX& xr, const std::string& how) {
       iterations += r.iterations;
+      jacobians += r.jacobian_evaluations;
       if (!r.converged) {
         summary.message += "; " + how + " stopped at " + r.stopped_at;
         return false;
@@ -190,6 +192,7 @@ RobotSolution ForwardKinematics::solve(const VecX& inputs) {
       VecX x_default = assembly_.initial_guess();
       const SolveSummary s0 = solve_once(x_default);
       iterations += s0.iterations;
+      jacobians += s0.jacobian_evaluations;
       if (s0.converged()) {
         VecX xs = x_default;
         done = finish(kinematics::continue_along_line(solve_at, u_default, inputs,
@@ -209,6 +212,7 @@ RobotSolution ForwardKinematics::solve(const VecX& inputs) {
     assembly_.fix_inputs(inputs);
   }
   summary.iterations = iterations;
+  summary.jacobian_evaluations = jacobians;
   summary.wall_time_seconds = seconds_since(start);
   if (summary.converged() && finite_solution(x)) {
     x_ = x;
@@ -383,17 +387,19 @@ RobotSolution InverseKinematics::solve(const std::vector<Pose>& target_poses, co
     return out;
   }
   bool done = false;
-  int iterations = 0;
+  int iterations = 0, jacobians = 0;
   if (square_) {
     if (!solvers_->newton)
       solvers_->newton = std::make_unique<NewtonSolver>(solvers_->square, newton_options(options_));
     x = solvers_->predictor.predict(x_, all_targets);
     summary = solvers_->newton->solve(x);
     iterations += summary.iterations;
+    jacobians += summary.jacobian_evaluations;
     if (!summary.converged()) {  // the extrapolated start failed: retry from the last solution
       x = x_;
       summary = solvers_->newton->solve(x);
       iterations += summary.iterations;
+      jacobians += summary.jacobian_evaluations;
     }
     done = summary.converged() && within_bounds(assembly_.inputs(x));
   }
@@ -407,9 +413,11 @@ RobotSolution InverseKinematics::solve(const std::vector<Pose>& target_poses, co
       solvers_->ipopt = std::make_unique<IpoptSolver>(solvers_->optimised, ipopt_options(options_));
     summary = solvers_->ipopt->solve(xo);
     iterations += summary.iterations;
+    jacobians += summary.jacobian_evaluations;
     x = xo.head(x_.size());
   }
   summary.iterations = iterations;
+  summary.jacobian_evaluations = jacobians;
   summary.wall_time_seconds = seconds_since(start);
   if (summary.converged() && x.allFinite()) {
     x_ = x;

@@ -46,7 +46,7 @@ struct ReducedIk::Evaluator {
   MatX S;                     // dx/du, num_variables x num_inputs
   VecX x_tangent, u_tangent;  // the last point with a sensitivity, for the predictor
   MatX S_tangent;
-  int fk_solves = 0, newton_iterations = 0;
+  int fk_solves = 0, newton_iterations = 0, fk_jacobians = 0;
 
   Evaluator(const RobotAssembly& a, const Problem& ik_problem, const KinematicsOptions& o)
       : assembly(a), options(o), fk(forward_problem_of(ik_problem, a)), targets(ik_problem) {
@@ -123,6 +123,7 @@ struct ReducedIk::Evaluator {
         const SolveSummary s = newton->solve(x, std::min(options.max_iterations, limit));
         ++fk_solves;
         newton_iterations += s.iterations;
+        fk_jacobians += s.jacobian_evaluations;
         if (s.converged() && x.allFinite()) {
           ok = true;
           break;
@@ -347,6 +348,7 @@ void ReducedIk::prepare(const VecX& x, const VecX& reference) {
   e.converged_once = false;
   e.fk_solves = 0;
   e.newton_iterations = 0;
+  e.fk_jacobians = 0;
 }
 
 const Problem& ReducedIk::problem() const {
@@ -370,6 +372,7 @@ SolveSummary ReducedIk::solve(VecX& x, const VecX& reference) {
   }
   summary = solver_->ipopt->solve(u);
   summary.solver = "ipopt (reduced)";
+  summary.jacobian_evaluations += e.fk_jacobians;  // Ipopt's (of the reduced problem) and the FK solves'
   const bool final_ok = u.allFinite() && e.at(u, false);
   if (final_ok) {
     x = e.x;

@@ -15,6 +15,9 @@ struct SolveSummary {
   SolveStatus status = SolveStatus::Failed;
   std::string solver;  ///< "ipopt" or "newton" (or another method's name)
   int iterations = 0;
+  /// Jacobian evaluations of the system (Newton: fresh Jacobians, each followed by a numeric LU
+  /// factorisation; Ipopt: constraint Jacobians), summed over every attempt of a kinematics solve.
+  int jacobian_evaluations = 0;
   double residual_max_abs = 0.0;  ///< unscaled max |c_i(x) - bound| over all active rows
   std::vector<std::pair<std::string, double>> residual_by_kind;  ///< max-abs per residual block kind
   double objective = 0.0;

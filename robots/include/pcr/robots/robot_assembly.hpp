@@ -19,11 +19,12 @@ namespace pcr {
 
 struct AssemblyOptions {
   /// Discretisation of rods that carry no hints in the model (the formulation only when
-  /// formulation_by_slenderness is off). Odd degree: the mixed form converges with order p + 1
-  /// for odd p (p for even p; README "Rods"). Mixed at the midpoints (MixedPoints): each rod's force
-  /// balance holds exactly under gravity at any degree. 8 elements: R5a IK inputs within 1.8e-8 m of
-  /// the 32-element solution (4 elements: 5.7e-7 m, 16: 2.2e-10 m; bench_robots, README "Robots").
-  RodDiscretization discretization{RodFormulation::Mixed, 5, 8};
+  /// formulation_by_slenderness is off): mixed at the midpoints (MixedPoints; each rod's force balance
+  /// holds exactly under gravity at any degree), degree 6, 8 elements. Against degree 5 at 8 elements
+  /// (the default before) in the same bench_robots run (README "Robots"): R5b warm IK inputs 1.9e-7
+  /// against 1.0e-6 m at about the same time per solve (1.06 against 0.99 ms mean), R5a FK platform
+  /// 1.8e-10 against 4.2e-10 m, R5a IK inputs 1.7e-8 against 1.8e-8 m (against 32 elements of degree 5).
+  RodDiscretization discretization{RodFormulation::Mixed, 6, 8};
   /// Use the model's per-rod discretisation hints where given (they win over everything else).
   bool use_model_hints = true;
   /// Formulation of rods without a model hint chosen by slenderness (formulation_by_slenderness()):
@@ -38,16 +39,15 @@ struct AssemblyOptions {
 double gyration_ratio(const RodElement& rod);
 
 /// Primal when gyration_ratio(rod) >= primal_min_gyration_ratio, else mixed. The default threshold
-/// 1/16 (solid circle: d / L >= 1/4) is where the primal form at the default discretisation (degree
-/// 5, 8 elements) is still within 1e-5 L of the converged tip of a cantilever under P L^2 / EI = 1;
-/// measured with `build/release/tests/test_ik_objectives --run_test=primal_locking_study`: primal
-/// tip error / L = 3.9e-6 at d/L = 0.4, 1.0e-5 at 0.25, 1.6e-5 at 0.2, 2.6e-4 at 0.05, 6.0e-3 at
-/// 0.01, no convergence below 0.007 (locking); mixed 2.9e-9 .. 3.0e-9 throughout (at the midpoints;
-/// 3e-7 .. 1.2e-5 at the Greville points, when this threshold was set), in 4 Newton iterations against
-/// 7 .. 50 for primal. So the primal form is never more accurate here: it is chosen only where its
-/// error is within 1e-5 L and it has fewer unknowns (7 instead of 13 per control point); with the
-/// midpoints the mixed form is 1000x more accurate there, so whether primal should be chosen at all
-/// is open.
+/// 1/16 (solid circle: d / L >= 1/4) was set where the primal form at the then default discretisation
+/// (degree 5, 8 elements) was within 1e-5 L of the converged tip of a cantilever under P L^2 / EI = 1.
+/// Measured at the default discretisation with `build/release/tests/test_ik_objectives
+/// --run_test=primal_locking_study`, primal tip error / L (degree 6, 8 elements; degree 5 in brackets):
+/// 7.3e-8 (3.9e-6) at d/L = 0.4, 1.8e-7 (1.0e-5) at 0.25, 2.7e-7 (1.6e-5) at 0.2, 5.3e-6 (2.6e-4) at
+/// 0.05, 2.1e-4 (6.0e-3) at 0.01, no convergence at 0.005 (locking), in 7 .. 48 Newton iterations;
+/// mixed 1.2e-9 throughout, in 4. So the primal form is never more accurate: it is chosen only where
+/// its error is well within 1e-5 L and it has fewer unknowns (7 instead of 13 per control point).
+/// Whether primal should be chosen at all, now that the mixed form is 100x more accurate there, is open.
 RodFormulation formulation_by_slenderness(const RodElement& rod, double primal_min_gyration_ratio);
 
 class RobotAssembly {
