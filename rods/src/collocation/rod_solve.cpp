@@ -1,9 +1,11 @@
 #include "pcr/rods/rod_solve.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <sstream>
 
 #include "pcr/core/error.hpp"
+#include "pcr/math/quaternion.hpp"
 #include "pcr/solve/free_jacobian.hpp"
 #include "pcr/solve/ipopt_solver.hpp"
 #include "pcr/solve/newton_solver.hpp"
@@ -14,6 +16,101 @@
 
 namespace pcr {
 namespace {
+
+// End point of a rod of length L with constant body curvature theta / L leaving the origin along e3
+// with R = I: integral_0^L exp(s hat(theta) / L) e3 ds (Rodrigues; a = theta / |theta|, w = |theta| / L):
+// e3 sin(wL) / w + (a x e3) (1 - cos(wL)) / w + a (a . e3) (L - sin(wL) / w).
+Vec3 arc_end(const Vec3& theta, double L) {
+  const double angle = theta.norm();
+  if (angle < 1e-8) return L * Vec3::UnitZ();
+  const Vec3 a = theta / angle, e3 = Vec3::UnitZ();
+  const double w = angle / L;
+  return e3 * (std::sin(angle) / w) + a.cross(e3) * ((1.0 - std::cos(angle)) / w) +
+         a * a.dot(e3) * (L - std::sin(angle) / w);
+}
+
+// Prescribed end frames along the continuation: at lambda = 0 where the initial guess has its ends (so
+// that it solves the unloaded problem exactly), at lambda = 1 the model's. Orientation: q(lambda) =
+// q0 (x) [cos(lambda phi), sin(lambda phi) a] with q0^-1 (x) q1 = [cos phi, sin phi a], phi in [0, pi]
+// (slerp; the end turns about one axis to the model's quaternion with its sign, as the clamped end
+// condition q = q1 asks). Position: the tip moves as the end of an arc bent by the rotation vector
+// 2 lambda phi a (in the guess's tip frame), plus lambda times what that arc misses at lambda = 1; so a
+// tip frame that a circular arc reaches is approached through the arcs, equilibria of pure bending,
+// instead of along a straight line that compresses the rod through its buckling load. The base moves
+// along a straight line (it is the guess's fixed end unless only the tip is clamped).
+class MovingEnds {
+ public:
+  MovingEnds(const CollocationRod& rod, const VecX& x0, const RodVariables& vars) : model_(rod.model()) {
+    length_ = rod.length(x0, vars);
+    const RodState ends[2] = {rod.state_at(x0, vars, 0.0), rod.state_at(x0, vars, length_)};
+    const RodEnd* model_ends[2] = {&model_.base, &model_.tip};
+    for (int k = 0; k < 2; ++k) {
+      start_[k].position = ends[k].position;
+      start_[k].orientation = ends[k].quaternion.normalized();
+      if (model_ends[k]->kind == RodEndKind::Free) continue;
+      const double moved = (model_ends[k]->position - start_[k].position).norm() / length_ +
+                           (model_ends[k]->orientation.normalized() - start_[k].orientation).norm();
+      moves_ = moves_ || moved > 1e-12;
+    }
+  }
+  /// Whether the initial guess misses a prescribed end frame (else the model's own ends are used).
+  bool moves() const { return moves_; }
+  /// The model with its prescribed end frames at lambda.
+  RodModel at(double lambda) const {
+    RodModel m = model_;
+    if (m.base.kind != RodEndKind::Free) {
+      m.base.position = start_[0].position + lambda * (m.base.position - start_[0].position);
+      m.base.orientation = turned(start_[0].orientation, m.base.orientation.normalized(), lambda);
+    }
+    if (m.tip.kind != RodEndKind::Free) {
+      const Quat& q0 = start_[1].orientation;
+      const Vec3 theta = rotation_vector(q0, m.tip.orientation.normalized());
+      const Mat3 R0 = rotation_matrix(q0);
+      const Vec3 straight = R0 * arc_end(Vec3::Zero(), length_);
+      auto arc = [&](double t) { return Vec3(R0 * arc_end(t * theta, length_) - straight); };
+      m.tip.position = start_[1].position + arc(lambda) + lambda * (m.tip.position - start_[1].position - arc(1.0));
+      m.tip.orientation = turned(q0, m.tip.orientation.normalized(), lambda);
+    }
+    return m;
+  }
+
+ private:
+  // 2 phi a with q0^-1 (x) q1 = [cos phi, sin phi a], phi in [0, pi] (body frame of q0).
+  static Vec3 rotation_vector(const Quat& q0, const Quat& q1) {
+    const Quat d = quat_multiply(quat_conjugate(q0), q1);
+    const Vec3 v = d.tail<3>();
+    const Vec3 axis = v.norm() > 1e-12 ? Vec3(v.normalized()) : Vec3::UnitX();  // d = -1: any axis
+    return 2.0 * std::atan2(v.norm(), d[0]) * axis;
+  }
+  static Quat turned(const Quat& q0, const Quat& q1, double lambda) {
+    const Vec3 theta = rotation_vector(q0, q1);
+    const double half = 0.5 * lambda * theta.norm();
+    Quat step;
+    step << std::cos(half), (theta.norm() > 0.0 ? Vec3(std::sin(half) * theta.normalized()) : Vec3::Zero());
+    return quat_multiply(q0, step);
+  }
+  RodModel model_;
+  RodEnd start_[2];
+  double length_ = 1.0;
+  bool moves_ = false;
+};
+
+// Empty when the axial stretch v3 = 1 + eps3 is positive along the rod (Antman's admissibility
+// condition: no cross-section passes through its neighbours), else where it is not. A margin of 1e-6
+// keeps a rod compressed to a point (v3 = 0 up to round-off) out: an exact equilibrium of the
+// extensible model, which Newton can find from the straight rod when the two clamped ends coincide.
+std::string collapse_of(const CollocationRod& rod, const VecX& x, const RodVariables& vars) {
+  for (const RodState& st : rod.sample(x, vars, 4 * rod.num_control_points() + 1)) {
+    const double v3 = 1.0 + st.shear_extension_body[2];
+    if (!(v3 > 1e-6)) {
+      std::ostringstream msg;
+      msg << "axial stretch v3 = 1 + eps3 = " << v3 << " at s = " << st.s
+          << " m (the rod is compressed to a point or inverted there; admissible: v3 > 0)";
+      return msg.str();
+    }
+  }
+  return {};
+}
 
 SolveSummary solve_at(const CollocationRod& rod, const RodSolveOptions& options, double load_factor, VecX& x,
                       RodVariables& vars) {
@@ -86,12 +183,20 @@ RodSolution solve_rod(const RodModel& model, const RodSolveOptions& options, con
   }
   sol.summary = solve_at(rod, options, 1.0, sol.x, sol.variables);
   int iterations = sol.summary.iterations;
-  // Continuation helps a Newton iteration that is lost far from the solution, not one that stalls at
-  // round-off just above the tolerance: then the direct result is reported as it is.
-  const bool stalled_near_solution = sol.summary.residual_max_abs < 1e-6;
+  const std::string direct_collapse = sol.summary.converged() ? collapse_of(rod, sol.x, sol.variables) : "";
+  if (!direct_collapse.empty()) {
+    sol.summary.status = SolveStatus::Failed;
+    sol.summary.message = "converged to an inadmissible state: " + direct_collapse;
+  }
+  // Continuation helps a Newton iteration that is lost far from the solution (or that reached an
+  // inadmissible state), not one that stalls at round-off just above the tolerance: then the direct
+  // result is reported as it is.
+  const bool stalled_near_solution = direct_collapse.empty() && sol.summary.residual_max_abs < 1e-6;
   if (!sol.summary.converged() && options.load_stepping && !stalled_near_solution) {
-    // Continuation: lambda from 0 (the initial guess is exact for zero load when it starts at the
-    // clamped end) to 1; step grows by 1.5 after a success and halves after a failure.
+    // Continuation: lambda from 0 (the initial guess is exact for zero load and the ends where the guess
+    // has them) to 1: loads and intrinsic strains scaled by lambda, prescribed end frames moved from the
+    // guess's to the model's (MovingEnds); step grows by 1.5 after a success and halves after a failure.
+    const MovingEnds ends(rod, x0, sol.variables);
     double lambda = 0.0, step = 0.25, previous_step = 0.0;
     VecX x = x0, x_previous = x0;
     SolveSummary last;
@@ -102,7 +207,10 @@ RodSolution solve_rod(const RodModel& model, const RodSolveOptions& options, con
       VecX trial = x;
       if (previous_step > 0.0)
         trial += (x - x_previous) * ((target - lambda) / previous_step);  // secant predictor
-      last = solve_at(rod, options, target, trial, sol.variables);
+      if (ends.moves() && target < 1.0)
+        last = solve_at(CollocationRod(ends.at(target), rod.discretization()), options, target, trial, sol.variables);
+      else
+        last = solve_at(rod, options, target, trial, sol.variables);
       iterations += last.iterations;
       ++steps;
       if (last.converged()) {
@@ -127,6 +235,11 @@ RodSolution solve_rod(const RodModel& model, const RodSolveOptions& options, con
       sol.summary.status = last.status == SolveStatus::Converged ? SolveStatus::MaxIterations : last.status;
     }
     sol.summary.message = msg.str() + (sol.summary.message.empty() ? "" : "; " + sol.summary.message);
+    const std::string collapse = sol.summary.converged() ? collapse_of(rod, sol.x, sol.variables) : "";
+    if (!collapse.empty()) {
+      sol.summary.status = SolveStatus::Failed;
+      sol.summary.message += "; converged to an inadmissible state: " + collapse;
+    }
   }
   sol.summary.iterations = iterations;
   if (options.check_stability && sol.summary.converged())

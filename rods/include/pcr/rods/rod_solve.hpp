@@ -1,8 +1,11 @@
 #pragma once
 // Solving one rod with its own end conditions: build the collocation problem, solve it with Newton
 // (default for this square system) or Ipopt from the stress-free shape, and fall back to load stepping —
-// continuation in a load factor lambda from 0 to 1 scaling all loads and intrinsic strains, warm-started with
-// a secant predictor — when the direct solve fails.
+// continuation in a load factor lambda from 0 to 1 scaling all loads and intrinsic strains and moving
+// prescribed end frames from where the initial guess has them to the model's, warm-started with a secant
+// predictor — when the direct solve fails. A converged state whose axial stretch v3 = 1 + eps3 is not
+// positive somewhere (a rod compressed to a point or inverted) is not admissible: it counts as a failure
+// of the direct solve and, at the end, as a failed solve.
 #include <memory>
 #include <vector>
 
