@@ -76,8 +76,12 @@ MatX platform_rows(const RobotAssembly& a, const VecX& x, int platform, const Ma
   return rows;
 }
 
-bool finite_solution(const VecX& x) {
-  return x.allFinite();
+// A solver that reports convergence at a non-finite point has failed.
+void mark_non_finite(const VecX& x, SolveSummary& summary) {
+  if (summary.converged() && !x.allFinite()) {
+    summary.status = SolveStatus::Failed;
+    summary.message = "non-finite solution";
+  }
 }
 
 }  // namespace
@@ -108,11 +112,34 @@ RobotSolution read_solution(const RobotAssembly& a, const VecX& x, int centerlin
     r.tip_force = t.force;
     r.tip_moment = t.moment;
     r.axial_force = b.force.dot(b.rotation.col(2));
-    for (const RodState& st : rod.sample(x, v, std::max(2, centerline_points)))
+    r.min_axial_stretch = std::min(b.shear_extension_body[2], t.shear_extension_body[2]) + 1.0;
+    for (const RodState& st : rod.sample(x, v, std::max(2, centerline_points))) {
       r.centerline.push_back(st.position);
+      r.min_axial_stretch = std::min(r.min_axial_stretch, 1.0 + st.shear_extension_body[2]);
+    }
     s.rods.push_back(r);
   }
   return s;
+}
+
+// Marks a converged solution failed when a rod is compressed to a point or inverted (v3 <= 1e-6:
+// Antman's admissibility v3 > 0 with a margin for round-off; rod_solve.cpp does the same for single
+// rods). Such states are exact equilibria of the extensible model, e.g. a rod whose clamped ends
+// coincide, compressed to zero length. Returns whether the solution stays converged.
+bool reject_inadmissible(RobotSolution& s) {
+  if (!s.summary.converged()) return false;
+  for (const RodResult& r : s.rods) {
+    if (!(r.min_axial_stretch > 1e-6)) {
+      std::ostringstream msg;
+      msg << "inadmissible state: rod '" << r.name << "' has axial stretch v3 = 1 + eps3 = "
+          << r.min_axial_stretch << " (compressed to a point or inverted; admissible: v3 > 0)"
+          << (s.summary.message.empty() ? "" : "; " + s.summary.message);
+      s.summary.status = SolveStatus::Failed;
+      s.summary.message = msg.str();
+      return false;
+    }
+  }
+  return true;
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -214,19 +241,15 @@ RobotSolution ForwardKinematics::solve(const VecX& inputs) {
   summary.iterations = iterations;
   summary.jacobian_evaluations = jacobians;
   summary.wall_time_seconds = seconds_since(start);
-  if (summary.converged() && finite_solution(x)) {
+  mark_non_finite(x, summary);
+  RobotSolution out = read_solution(assembly_, x.allFinite() ? x : x_, options_.centerline_points);
+  out.summary = summary;
+  if (reject_inadmissible(out)) {
     x_ = x;
     has_solution_ = true;
     solvers_->predictor.accept(x_, inputs);
-  } else if (summary.converged()) {
-    summary.status = SolveStatus::Failed;
-    summary.message = "non-finite solution";
+    if (options_.check_stability) monitor_stability(assembly_.problem(), x_, last_jacobian_sign_, out);
   }
-  RobotSolution out = read_solution(assembly_, summary.converged() ? x_ : (x.allFinite() ? x : x_),
-                                    options_.centerline_points);
-  out.summary = summary;
-  if (options_.check_stability && summary.converged())
-    monitor_stability(assembly_.problem(), x_, last_jacobian_sign_, out);
   return out;
 }
 
@@ -379,11 +402,13 @@ RobotSolution InverseKinematics::solve(const std::vector<Pose>& target_poses, co
   if (solvers_->reduced) {
     summary = solvers_->reduced->solve(x, ref);
     summary.wall_time_seconds = seconds_since(start);
-    if (summary.converged() && x.allFinite()) x_ = x;
+    mark_non_finite(x, summary);
     RobotSolution out = read_solution(assembly_, x.allFinite() ? x : x_, options_.centerline_points);
     out.summary = summary;
-    if (options_.check_stability && summary.converged() && x.allFinite())
-      monitor_stability(solvers_->fk, x_, last_jacobian_sign_, out);
+    if (reject_inadmissible(out)) {
+      x_ = x;
+      if (options_.check_stability) monitor_stability(solvers_->fk, x_, last_jacobian_sign_, out);
+    }
     return out;
   }
   bool done = false;
@@ -419,15 +444,15 @@ RobotSolution InverseKinematics::solve(const std::vector<Pose>& target_poses, co
   summary.iterations = iterations;
   summary.jacobian_evaluations = jacobians;
   summary.wall_time_seconds = seconds_since(start);
-  if (summary.converged() && x.allFinite()) {
+  mark_non_finite(x, summary);
+  RobotSolution out = read_solution(assembly_, x.allFinite() ? x : x_, options_.centerline_points);
+  out.summary = summary;
+  if (reject_inadmissible(out)) {
     x_ = x;
     solvers_->predictor.accept(x_, all_targets);
+    if (options_.check_stability)  // J at x_ with its own inputs
+      monitor_stability(solvers_->fk, x_, last_jacobian_sign_, out);
   }
-  RobotSolution out = read_solution(assembly_, summary.converged() ? x_ : (x.allFinite() ? x : x_),
-                                    options_.centerline_points);
-  out.summary = summary;
-  if (options_.check_stability && summary.converged() && x.allFinite())  // J at x_ with its own inputs
-    monitor_stability(solvers_->fk, x_, last_jacobian_sign_, out);
   return out;
 }
 

@@ -80,6 +80,10 @@ struct RodResult {
   /// Axial force at the feed point n(0) . d3(0) (positive in tension): minus the actuator's push.
   double axial_force = 0.0;
   std::vector<Vec3> centerline;
+  /// Smallest axial stretch v3 = 1 + eps3 (d3 . p' over the unstretched rate, 1 = unstretched) at the
+  /// ends and the centerline points. A solve whose rods reach v3 <= 1e-6 (a rod compressed to a point
+  /// or inverted, inadmissible however small its residual) is reported as failed.
+  double min_axial_stretch = 1.0;
 };
 
 struct RobotSolution {
