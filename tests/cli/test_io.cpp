@@ -39,6 +39,7 @@ pcr::RobotSolution planar_solution(const pcr::RobotModel& model) {
     rod.name = model.rods()[r].name;
     rod.length = 0.3 + 0.01 * r;
     rod.axial_force = -0.1 * (r + 1);
+    rod.min_axial_stretch = 1.0 - 1e-6 * (r + 1);
     rod.base_force = pcr::Vec3(0.5, -0.25, r);
     rod.base_moment = pcr::Vec3(1e-3, 2e-3, 3e-3);
     rod.tip_force = pcr::Vec3(-0.5, 0.25, -r);
@@ -151,6 +152,7 @@ BOOST_AUTO_TEST_CASE(solution_json_is_parsed_back_with_every_field) {
   const test_json::Value& left = j["rods"]["left"];
   BOOST_CHECK_EQUAL(left["length"].number, 0.3);
   BOOST_CHECK_EQUAL(left["axial_force"].number, -0.1);
+  BOOST_CHECK_EQUAL(left["min_axial_stretch"].number, 1.0 - 1e-6);
   BOOST_CHECK_EQUAL(left["base_wrench"]["force"][1].number, -0.25);
   BOOST_CHECK_EQUAL(left["tip_wrench"]["moment"][2].number, 1.0 / 3.0);
   BOOST_CHECK_EQUAL(left["centerline"].items.size(), 5u);

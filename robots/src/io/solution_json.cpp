@@ -110,6 +110,8 @@ int write_solution_json(std::ostream& out, const RobotModel& model, const RobotS
     json.value(rod.length);
     json.key("axial_force");
     json.value(rod.axial_force);
+    json.key("min_axial_stretch");
+    json.value(rod.min_axial_stretch);
     write_wrench(json, "base_wrench", rod.base_force, rod.base_moment);
     write_wrench(json, "tip_wrench", rod.tip_force, rod.tip_moment);
     json.key("centerline");
