@@ -168,13 +168,14 @@ int main(int argc, char** argv) {
     ik.solve({path[0]});  // start of the path (cold), not timed
     std::vector<double> times;
     double error = 0;
-    int iterations = 0, failures = 0;
+    int iterations = 0, failures = 0, jacobians = 0;
     for (int pass = 0; pass < 3; ++pass) {
       for (size_t k = 1; k < path.size(); ++k) {
         const auto t0 = Clock::now();
         const RobotSolution s = ik.solve({path[k]});
         times.push_back(seconds_since(t0));
         iterations += s.summary.iterations;
+        jacobians += s.summary.jacobian_evaluations;
         if (!s.summary.converged()) ++failures;
         error = std::max(error, (s.inputs - reference[k]).lpNorm<Eigen::Infinity>());
       }
@@ -185,9 +186,9 @@ int main(int argc, char** argv) {
             double(iterations) / times.size());
     std::printf(
         "R5b warm IK %-8s %-9s  max input error %.2e m  median %.3f ms/solve, mean %.3f ms/solve (%.0f "
-        "solves/s), %.2f it/solve%s\n",
-        settings_of(mesh).c_str(), to_string(mesh.points), error, t.median * 1e3, t.mean * 1e3, 1.0 / t.mean, double(iterations) / times.size(),
-        failures ? "  FAILURES" : "");
+        "solves/s), %.2f it/solve, %d fresh Jacobians in %zu solves%s\n",
+        settings_of(mesh).c_str(), to_string(mesh.points), error, t.median * 1e3, t.mean * 1e3, 1.0 / t.mean,
+        double(iterations) / times.size(), jacobians, times.size(), failures ? "  FAILURES" : "");
   }
   std::cout << "wrote " << csv.path() << "\n";
   return 0;

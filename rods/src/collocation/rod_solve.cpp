@@ -47,34 +47,45 @@ class MovingEnds {
     for (int k = 0; k < 2; ++k) {
       start_[k].position = ends[k].position;
       start_[k].orientation = ends[k].quaternion.normalized();
+      target_[k] = start_[k];
       if (model_ends[k]->kind == RodEndKind::Free) continue;
-      const double moved = (model_ends[k]->position - start_[k].position).norm() / length_ +
-                           (model_ends[k]->orientation.normalized() - start_[k].orientation).norm();
+      target_[k].position = model_ends[k]->position;
+      target_[k].orientation = path_orientation(*model_ends[k], start_[k].orientation);
+      const double moved = (target_[k].position - start_[k].position).norm() / length_ +
+                           (target_[k].orientation - start_[k].orientation).norm();
       moves_ = moves_ || moved > 1e-12;
     }
   }
   /// Whether the initial guess misses a prescribed end frame (else the model's own ends are used).
   bool moves() const { return moves_; }
-  /// The model with its prescribed end frames at lambda.
+  /// The model with its prescribed end frames at lambda (lambda < 1; at 1 the model itself).
   RodModel at(double lambda) const {
     RodModel m = model_;
     if (m.base.kind != RodEndKind::Free) {
-      m.base.position = start_[0].position + lambda * (m.base.position - start_[0].position);
-      m.base.orientation = turned(start_[0].orientation, m.base.orientation.normalized(), lambda);
+      m.base.position = start_[0].position + lambda * (target_[0].position - start_[0].position);
+      m.base.orientation = turned(start_[0].orientation, target_[0].orientation, lambda);
     }
     if (m.tip.kind != RodEndKind::Free) {
       const Quat& q0 = start_[1].orientation;
-      const Vec3 theta = rotation_vector(q0, m.tip.orientation.normalized());
+      const Vec3 theta = rotation_vector(q0, target_[1].orientation);
       const Mat3 R0 = rotation_matrix(q0);
       const Vec3 straight = R0 * arc_end(Vec3::Zero(), length_);
       auto arc = [&](double t) { return Vec3(R0 * arc_end(t * theta, length_) - straight); };
-      m.tip.position = start_[1].position + arc(lambda) + lambda * (m.tip.position - start_[1].position - arc(1.0));
-      m.tip.orientation = turned(q0, m.tip.orientation.normalized(), lambda);
+      m.tip.position =
+          start_[1].position + arc(lambda) + lambda * (target_[1].position - start_[1].position - arc(1.0));
+      m.tip.orientation = turned(q0, target_[1].orientation, lambda);
     }
     return m;
   }
 
  private:
+  // The end orientation the path turns to: the model's (a collar prescribes only its axis R e3, but
+  // its frame's rotation from the guess's tells which way the rod turns, e.g. by 0.9 turns rather than
+  // by -0.1: the smallest rotation onto the axis took the collar of test_collocation_rod's 0.9-turn arc
+  // to an inverted rod); for a spherical joint (no orientation prescribed) the start's.
+  static Quat path_orientation(const RodEnd& end, const Quat& start) {
+    return end.kind == RodEndKind::Spherical ? start : Quat(end.orientation.normalized());
+  }
   // 2 phi a with q0^-1 (x) q1 = [cos phi, sin phi a], phi in [0, pi] (body frame of q0).
   static Vec3 rotation_vector(const Quat& q0, const Quat& q1) {
     const Quat d = quat_multiply(quat_conjugate(q0), q1);
@@ -90,7 +101,7 @@ class MovingEnds {
     return quat_multiply(q0, step);
   }
   RodModel model_;
-  RodEnd start_[2];
+  RodEnd start_[2], target_[2];
   double length_ = 1.0;
   bool moves_ = false;
 };
