@@ -291,7 +291,6 @@ BOOST_AUTO_TEST_CASE(effort_and_energy_optima_beat_nearby_feasible_points) {
        {IkObjective::InputDistance, IkObjective::ActuationEffort, IkObjective::ElasticEnergy}) {
     KinematicsOptions o;
     o.ik.objective = objective;
-    o.ik.reduced_space = true;
     InverseKinematics ik(model, {position_target(kTarget)}, o);
     const RobotSolution s = ik.solve({Pose{kTarget, Quat(1, 0, 0, 0)}}, &reference);
     BOOST_REQUIRE_MESSAGE(s.summary.converged(), to_string(objective) << ": " << s.summary.brief_report());
@@ -337,6 +336,36 @@ BOOST_AUTO_TEST_CASE(effort_and_energy_optima_beat_nearby_feasible_points) {
   BOOST_TEST((optimum[IkObjective::ActuationEffort] - optimum[IkObjective::InputDistance]).norm() > 1e-4);
 }
 
+BOOST_AUTO_TEST_CASE(partial_targets_go_to_the_reduced_space_and_agree_with_the_full_space) {
+  // Position-only targets leave inputs free: the input distance is minimised in the reduced space by
+  // default. On the planar robot (3 inputs, x and z targeted) the full-space Ipopt (IkOptions::
+  // full_space) converges as well and must reach the same optimum: both satisfy the equations to the
+  // tolerance 1e-10 and Ipopt's optimality to 1e-8 (scaled), so the inputs agree to ~1e-8 L; bound 1e-6 m.
+  const auto planar = load("planar_three_rod");
+  LinkTarget t = position_target(Vec3(0.01, 0.0, 0.29));
+  t.components = {true, false, true, false, false, false};  // x, z
+  const std::vector<Pose> pose{Pose{t.pose.position, Quat(1, 0, 0, 0)}};
+  InverseKinematics reduced(planar, {t});
+  KinematicsOptions o;
+  o.ik.full_space = true;
+  InverseKinematics full(planar, {t}, o);
+  const VecX reference = planar->default_input_values();
+  const RobotSolution a = reduced.solve(pose, &reference), b = full.solve(pose, &reference);
+  BOOST_REQUIRE_MESSAGE(a.summary.converged(), a.summary.brief_report());
+  BOOST_REQUIRE_MESSAGE(b.summary.converged(), b.summary.brief_report());
+  BOOST_TEST(a.summary.solver == "ipopt (reduced)");
+  BOOST_TEST(b.summary.solver == "ipopt");
+  BOOST_TEST((a.inputs - b.inputs).lpNorm<Eigen::Infinity>() < 1e-6, a.inputs.transpose() << " | " << b.inputs.transpose());
+  // stewart_gough, position only (3 of 6 inputs free): the reduced space converges (the full space did
+  // not: IkOptions::full_space) and reaches the target to its tolerance 1e-9 L0 (L0 = 0.45 m) + FK noise.
+  const auto sg = load("stewart_gough");
+  InverseKinematics ik(sg, {position_target(kTarget)});
+  const VecX sg_reference = sg->default_input_values();
+  const RobotSolution s = ik.solve({Pose{kTarget, Quat(1, 0, 0, 0)}}, &sg_reference);
+  BOOST_REQUIRE_MESSAGE(s.summary.converged(), s.summary.brief_report());
+  BOOST_TEST((s.platforms[0].position - kTarget).norm() < 1e-8);
+}
+
 BOOST_AUTO_TEST_CASE(stress_limit_is_active_and_satisfied) {
   // The limit is 70 % of the max stress at the distance optimum (reduced space). The distance
   // objective has several local optima near the target, with max stresses (measured at the default
@@ -347,9 +376,7 @@ BOOST_AUTO_TEST_CASE(stress_limit_is_active_and_satisfied) {
   const auto model = load("stewart_gough");
   const VecX reference = model->default_input_values();
   const std::vector<Pose> target{Pose{kTarget, Quat(1, 0, 0, 0)}};
-  KinematicsOptions reduced;
-  reduced.ik.reduced_space = true;
-  InverseKinematics free_ik(model, {position_target(kTarget)}, reduced);
+  InverseKinematics free_ik(model, {position_target(kTarget)});
   const RobotSolution s_free = free_ik.solve(target, &reference);
   BOOST_REQUIRE(s_free.summary.converged());
   const int points = 2 * AssemblyOptions().discretization.elements + 1;  // the default: 2 elements + 1

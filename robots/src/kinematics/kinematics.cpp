@@ -347,6 +347,10 @@ InverseKinematics::InverseKinematics(std::shared_ptr<const RobotModel> model,
   for (int v = 0; v < problem.num_variable_blocks(); ++v)
     if (!problem.variable_fixed(v)) free_unknowns += problem.variable(v).size;
   square_ = free_unknowns == problem.num_rows();
+  // Reduced space (Ipopt over the inputs): other objectives and stress limits always; the input
+  // distance when the targets leave inputs free, unless asked for the full space (IkOptions).
+  reduced_ = kinematics::uses_reduced_space(options.ik) ||
+             (free_unknowns > problem.num_rows() && !options.ik.full_space);
   solvers_->square = problem;
   if (options.check_stability) solvers_->fk = kinematics::forward_problem_of(problem, assembly_);
   // Optimisation problem: bounds and objective.
@@ -365,7 +369,7 @@ InverseKinematics::InverseKinematics(std::shared_ptr<const RobotModel> model,
   opt.fix_variable(solvers_->reference, m.default_input_values());
   opt.add_objective_term(std::make_shared<kinematics::InputDistance>(inputs, solvers_->reference, scales));
   x_ = solvers_->square.initial_values();
-  if (kinematics::uses_reduced_space(options.ik))
+  if (reduced_)  // validates the IK options
     solvers_->reduced =
         std::make_unique<kinematics::ReducedIk>(assembly_, solvers_->square, target_variables_, options);
 }
@@ -399,21 +403,11 @@ RobotSolution InverseKinematics::solve(const std::vector<Pose>& target_poses, co
   };
   SolveSummary summary;
   VecX x = x_;
-  if (solvers_->reduced) {
-    summary = solvers_->reduced->solve(x, ref);
-    summary.wall_time_seconds = seconds_since(start);
-    mark_non_finite(x, summary);
-    RobotSolution out = read_solution(assembly_, x.allFinite() ? x : x_, options_.centerline_points);
-    out.summary = summary;
-    if (reject_inadmissible(out)) {
-      x_ = x;
-      if (options_.check_stability) monitor_stability(solvers_->fk, x_, last_jacobian_sign_, out);
-    }
-    return out;
-  }
   bool done = false;
   int iterations = 0, jacobians = 0;
-  if (square_) {
+  // Input distance without stress limits and a square system: Newton (fast, warm-started along paths).
+  const bool newton_first = !kinematics::uses_reduced_space(options_.ik);
+  if (newton_first && square_) {
     if (!solvers_->newton)
       solvers_->newton = std::make_unique<NewtonSolver>(solvers_->square, newton_options(options_));
     x = solvers_->predictor.predict(x_, all_targets);
@@ -429,17 +423,23 @@ RobotSolution InverseKinematics::solve(const std::vector<Pose>& target_poses, co
     done = summary.converged() && within_bounds(assembly_.inputs(x));
   }
   if (!done) {
-    VecX xo(solvers_->optimised.num_variables());
     // Start from Newton's solution when it converged outside the input bounds, else from the last one.
-    xo.head(x_.size()) = (square_ && summary.converged() && x.allFinite()) ? x : x_;
-    xo.tail(ref.size()) = ref;
-    solvers_->optimised.fix_variable(solvers_->reference, ref);
-    if (!solvers_->ipopt)
-      solvers_->ipopt = std::make_unique<IpoptSolver>(solvers_->optimised, ipopt_options(options_));
-    summary = solvers_->ipopt->solve(xo);
+    const VecX x_start = (newton_first && square_ && summary.converged() && x.allFinite()) ? x : x_;
+    if (reduced_) {
+      x = x_start;
+      summary = solvers_->reduced->solve(x, ref);
+    } else {
+      VecX xo(solvers_->optimised.num_variables());
+      xo.head(x_.size()) = x_start;
+      xo.tail(ref.size()) = ref;
+      solvers_->optimised.fix_variable(solvers_->reference, ref);
+      if (!solvers_->ipopt)
+        solvers_->ipopt = std::make_unique<IpoptSolver>(solvers_->optimised, ipopt_options(options_));
+      summary = solvers_->ipopt->solve(xo);
+      x = xo.head(x_.size());
+    }
     iterations += summary.iterations;
     jacobians += summary.jacobian_evaluations;
-    x = xo.head(x_.size());
   }
   summary.iterations = iterations;
   summary.jacobian_evaluations = jacobians;

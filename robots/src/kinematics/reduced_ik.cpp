@@ -25,7 +25,7 @@ Problem forward_problem_of(const Problem& ik_problem, const RobotAssembly& assem
 }
 
 bool uses_reduced_space(const IkOptions& o) {
-  return o.reduced_space || o.objective != IkObjective::InputDistance || o.max_rod_stress.has_value();
+  return o.objective != IkObjective::InputDistance || o.max_rod_stress.has_value();
 }
 
 /// x(u), its sensitivity S = dx/du and the reduced functions, cached for the last u.

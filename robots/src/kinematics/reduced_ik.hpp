@@ -48,7 +48,8 @@ class ReducedIk {
   std::unique_ptr<Solver> solver_;
 };
 
-/// Whether the options ask for the reduced-space path.
+/// Whether the options need the reduced-space path from the start (an objective other than the input
+/// distance, or stress limits); the input distance goes there when Newton cannot finish.
 bool uses_reduced_space(const IkOptions& options);
 
 }  // namespace pcr::kinematics

@@ -5,10 +5,10 @@
 //    retried by continuation in the inputs from the last converged state, then from the default inputs.
 //  - InverseKinematics: platform targets -> inputs. A full-pose target on every DOF gives a square
 //    system, solved by Newton when the result is inside the input bounds; otherwise (bounds active,
-//    partial targets) Ipopt minimises the distance to the reference inputs subject to all equations.
-//    Other objectives (actuation effort, elastic energy) and rod stress limits (IkOptions) are solved
-//    in the reduced space of the inputs (robots/src/kinematics/reduced_ik.hpp): Ipopt over u only,
-//    every evaluation a warm-started Newton FK solve x(u), gradients by the implicit function theorem.
+//    partial targets), and for the other objectives (actuation effort, elastic energy) and rod stress
+//    limits (IkOptions), Ipopt minimises the objective in the reduced space of the inputs
+//    (robots/src/kinematics/reduced_ik.hpp): Ipopt over u only, every evaluation a warm-started Newton
+//    FK solve x(u), gradients by the implicit function theorem.
 //  - Derivatives by the implicit function theorem on the assembled Jacobian.
 // Poses are world-frame; rotations of poses in derivatives are world-frame rotation vectors.
 #include <array>
@@ -41,8 +41,15 @@ struct IkOptions {
   /// outer radius of every rod (set by RodModel::set_material_and_section).
   std::optional<double> max_rod_stress;
   int stress_points_per_rod = 0;  ///< 0: 2 elements + 1 (element ends and midpoints)
-  /// Solve InputDistance without stress limit in the reduced space too (default: the full-space Ipopt).
-  bool reduced_space = false;
+  /// InputDistance without stress limits, targets that leave inputs free (fewer target rows than
+  /// inputs): Ipopt over all assembly variables with the equations as constraints instead of the
+  /// reduced space. Off by default: on stewart_gough with a position-only target the full-space Ipopt
+  /// (L-BFGS) crawled to 3,000 iterations and 142 s without meeting its tolerance, 21 mm from the
+  /// optimum that the reduced space reaches in 22 iterations and 0.4 s (2026-11-22, README "Using the
+  /// pcr tool"). The full space is always used where the reduced one cannot be: as many target rows as
+  /// inputs or more (e.g. a full-pose target on the planar robot, 3 of its rows redundant) when Newton
+  /// does not finish (bounds active, or not square).
+  bool full_space = false;
   /// Reduced space: Ipopt's "tol" and limit on the dimensionless target residual.
   double optimality_tolerance = 1e-8;
   double target_tolerance = 1e-9;
@@ -170,6 +177,7 @@ class InverseKinematics {
   std::vector<LinkTarget> targets_;
   VecX x_;
   bool square_ = false;
+  bool reduced_ = false;  // solved in the reduced space of the inputs when Newton cannot finish
   int last_jacobian_sign_ = 0;  // of the last checked converged solve (check_stability)
   struct Solvers;
   std::shared_ptr<Solvers> solvers_;
