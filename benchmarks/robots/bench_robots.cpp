@@ -93,7 +93,8 @@ int main(int argc, char** argv) {
   // the default's choice: degree 5 (the default before), degree 5 at the Greville points (before that).
   const int p = AssemblyOptions().discretization.degree;
   const MixedPoints mid = MixedPoints::Midpoints;
-  const Mesh meshes[] = {{p, 2, mid}, {p, 4, mid}, {p, 8, mid}, {p, 16, mid}, {5, 8, mid}, {5, 8, MixedPoints::Greville}};
+  const Mesh meshes[] = {{p, 2, mid},  {p, 4, mid}, {p, 8, mid},
+                         {p, 16, mid}, {5, 8, mid}, {5, 8, MixedPoints::Greville}};
 
   const Pose target = r5a_target();
   InverseKinematics ik_ref(r5a, {platform_target()}, options(5, 32, 1e-11));
@@ -110,7 +111,8 @@ int main(int argc, char** argv) {
     // couplings). Printed only, there is no error to put beside it.
     const KinematicsOptions o = options(mesh.degree, mesh.elements, 1e-10, mesh.points);
     const Timing assembly = time_repeated([&] { ForwardKinematics fk(r5a, o); }, {5, 50, 0.2});
-    std::printf("R5a assembly %-8s %-9s  median %.2f ms\n", settings_of(mesh).c_str(), points, assembly.median * 1e3);
+    std::printf("R5a assembly %-8s %-9s  median %.2f ms\n", settings_of(mesh).c_str(), points,
+                assembly.median * 1e3);
     for (const std::string problem : {"FK", "IK"}) {
       double error = 0;
       int iterations = 0;
@@ -161,8 +163,13 @@ int main(int argc, char** argv) {
   }
   // Greville points only at 8 elements (at 4, warm Newton solves fail along the path and each failure
   // goes to Ipopt, minutes; README, "Mixed collocation points").
-  const Mesh path_meshes[] = {{p, 2, mid}, {p, 4, mid},  {p, 8, mid}, {p, 16, mid},
-                              {5, 8, mid}, {5, 16, mid}, {5, 8, MixedPoints::Greville}};
+  const Mesh path_meshes[] = {{p, 2, mid},
+                              {p, 4, mid},
+                              {p, 8, mid},
+                              {p, 16, mid},
+                              {5, 8, mid},
+                              {5, 16, mid},
+                              {5, 8, MixedPoints::Greville}};
   for (const Mesh& mesh : path_meshes) {
     InverseKinematics ik(r5b, {platform_target()}, options(mesh.degree, mesh.elements, 1e-10, mesh.points));
     ik.solve({path[0]});  // start of the path (cold), not timed

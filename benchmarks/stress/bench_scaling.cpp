@@ -78,8 +78,8 @@ int main(int argc, char** argv) {
   const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 7;
   std::printf(
       "| rods | unknowns | cold FK [CPU ms] | cold iterations | warm FK [CPU ms] | warm iterations | warm ms "
-      "per rod | warm with fresh Jacobian | warm, kept factorisation [CPU ms] | warm, fresh Jacobian [CPU ms] "
-      "|\n");
+      "per rod | warm with fresh Jacobian | warm, kept factorisation [CPU ms] | warm, fresh Jacobian "
+      "[CPU ms] |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
   for (int rods : {3, 6, 12, 24, 48}) {
     const auto model = std::make_shared<const pcr::RobotModel>(
@@ -115,9 +115,9 @@ int main(int argc, char** argv) {
       }
     }
     const double warm_ms = median(warm);
-    std::printf("| %d | %d | %.2f | %d | %.2f | %d | %.3f | %zu/%zu | %.2f | %.2f |\n", rods, unknowns, median(cold),
-                cold_iterations, warm_ms, warm_iterations, warm_ms / rods, warm_fresh.size(), warm.size(),
-                median(warm_kept), median(warm_fresh));
+    std::printf("| %d | %d | %.2f | %d | %.2f | %d | %.3f | %zu/%zu | %.2f | %.2f |\n", rods, unknowns,
+                median(cold), cold_iterations, warm_ms, warm_iterations, warm_ms / rods, warm_fresh.size(),
+                warm.size(), median(warm_kept), median(warm_fresh));
     std::fflush(stdout);
   }
   return 0;

@@ -355,7 +355,8 @@ BOOST_AUTO_TEST_CASE(partial_targets_go_to_the_reduced_space_and_agree_with_the_
   BOOST_REQUIRE_MESSAGE(b.summary.converged(), b.summary.brief_report());
   BOOST_TEST(a.summary.solver == "ipopt (reduced)");
   BOOST_TEST(b.summary.solver == "ipopt");
-  BOOST_TEST((a.inputs - b.inputs).lpNorm<Eigen::Infinity>() < 1e-6, a.inputs.transpose() << " | " << b.inputs.transpose());
+  BOOST_TEST((a.inputs - b.inputs).lpNorm<Eigen::Infinity>() < 1e-6, a.inputs.transpose()
+                                                                         << " | " << b.inputs.transpose());
   // stewart_gough, position only (3 of 6 inputs free): the reduced space converges (the full space did
   // not: IkOptions::full_space) and reaches the target to its tolerance 1e-9 L0 (L0 = 0.45 m) + FK noise.
   const auto sg = load("stewart_gough");

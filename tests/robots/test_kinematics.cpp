@@ -296,7 +296,8 @@ BOOST_AUTO_TEST_CASE(a_rod_compressed_to_a_point_is_not_a_solution) {
   ForwardKinematics fk(model, o);
   const RobotSolution s = fk.solve(model->default_input_values());
   BOOST_TEST(!s.summary.converged(), s.summary.brief_report());
-  BOOST_TEST(s.summary.message.find("inadmissible state: rod 'loop'") != std::string::npos, s.summary.message);
+  BOOST_TEST(s.summary.message.find("inadmissible state: rod 'loop'") != std::string::npos,
+             s.summary.message);
   BOOST_TEST(s.rods.at(0).min_axial_stretch <= 1e-6);
   BOOST_CHECK_THROW(fk.input_jacobian(), InputError);  // no converged solution to differentiate
 }

@@ -302,7 +302,8 @@ BOOST_AUTO_TEST_CASE(clamped_ends_far_from_the_straight_rod_are_reached_by_conti
     RodSolveOptions o;
     o.discretization = {RodFormulation::Mixed, 6, 8};
     const RodSolution sol = solve_rod(m, o);
-    BOOST_TEST_REQUIRE(sol.summary.converged(), turns << " turns, " << to_string(tip) << ": " << sol.summary.message);
+    BOOST_TEST_REQUIRE(sol.summary.converged(),
+                       turns << " turns, " << to_string(tip) << ": " << sol.summary.message);
     // Measured 1.1e-9 .. 1.6e-6 L, growing with the curvature (degree 6, 8 elements); bound 1e-5 L.
     // The other equilibria that solves from the straight rod reached before missed by 0.2-0.35 L.
     const double error = arc_centerline_error(sol, kappa);
@@ -311,7 +312,8 @@ BOOST_AUTO_TEST_CASE(clamped_ends_far_from_the_straight_rod_are_reached_by_conti
     // (|m| - kappa) and 3.1e-5 kappa (|n|, in N with EI / L^2 = 1 N) at 1 turn, both 50-90x smaller with
     // 16 elements (discretisation error); bounds 2e-5 kappa and 1e-4 kappa.
     for (const RodState& st : sol.rod->sample(sol.x, sol.variables, 5)) {
-      BOOST_TEST(std::abs(st.moment.norm() - kappa.norm()) < 2e-5 * kappa.norm(), turns << " turns, s = " << st.s);
+      BOOST_TEST(std::abs(st.moment.norm() - kappa.norm()) < 2e-5 * kappa.norm(),
+                 turns << " turns, s = " << st.s);
       BOOST_TEST(st.force.norm() < 1e-4 * kappa.norm(), turns << " turns, s = " << st.s);
     }
   }

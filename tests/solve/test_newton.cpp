@@ -216,7 +216,7 @@ BOOST_AUTO_TEST_CASE(factorisation_reuse_along_a_path_matches_fresh_newton) {
     // roots agree to a few times 1e-10.
     BOOST_TEST((xq - xf).lpNorm<Eigen::Infinity>() <= 1e-8);
     BOOST_TEST(sq.jacobian_evaluations == std::stoi(sq.message));  // "N Jacobian evaluations"
-    BOOST_TEST(sf.jacobian_evaluations == sf.iterations);             // plain Newton: one per step
+    BOOST_TEST(sf.jacobian_evaluations == sf.iterations);          // plain Newton: one per step
     jacobian_evaluations += sq.jacobian_evaluations;
     ++steps;
   }

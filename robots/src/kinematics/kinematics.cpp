@@ -131,8 +131,9 @@ bool reject_inadmissible(RobotSolution& s) {
   for (const RodResult& r : s.rods) {
     if (!(r.min_axial_stretch > 1e-6)) {
       std::ostringstream msg;
-      msg << "inadmissible state: rod '" << r.name << "' has axial stretch v3 = 1 + eps3 = "
-          << r.min_axial_stretch << " (compressed to a point or inverted; admissible: v3 > 0)"
+      msg << "inadmissible state: rod '" << r.name
+          << "' has axial stretch v3 = 1 + eps3 = " << r.min_axial_stretch
+          << " (compressed to a point or inverted; admissible: v3 > 0)"
           << (s.summary.message.empty() ? "" : "; " + s.summary.message);
       s.summary.status = SolveStatus::Failed;
       s.summary.message = msg.str();

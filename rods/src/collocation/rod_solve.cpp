@@ -219,7 +219,8 @@ RodSolution solve_rod(const RodModel& model, const RodSolveOptions& options, con
       if (previous_step > 0.0)
         trial += (x - x_previous) * ((target - lambda) / previous_step);  // secant predictor
       if (ends.moves() && target < 1.0)
-        last = solve_at(CollocationRod(ends.at(target), rod.discretization()), options, target, trial, sol.variables);
+        last = solve_at(CollocationRod(ends.at(target), rod.discretization()), options, target, trial,
+                        sol.variables);
       else
         last = solve_at(rod, options, target, trial, sol.variables);
       iterations += last.iterations;

@@ -177,7 +177,7 @@ class InverseKinematics {
   std::vector<LinkTarget> targets_;
   VecX x_;
   bool square_ = false;
-  bool reduced_ = false;  // solved in the reduced space of the inputs when Newton cannot finish
+  bool reduced_ = false;        // solved in the reduced space of the inputs when Newton cannot finish
   int last_jacobian_sign_ = 0;  // of the last checked converged solve (check_stability)
   struct Solvers;
   std::shared_ptr<Solvers> solvers_;
