@@ -112,24 +112,23 @@ RobotSolution read_solution(const RobotAssembly& a, const VecX& x, int centerlin
     r.tip_force = t.force;
     r.tip_moment = t.moment;
     r.axial_force = b.force.dot(b.rotation.col(2));
-    r.min_axial_stretch = std::min(b.shear_extension_body[2], t.shear_extension_body[2]) + 1.0;
-    for (const RodState& st : rod.sample(x, v, std::max(2, centerline_points))) {
+    r.min_axial_stretch = std::numeric_limits<double>::infinity();
+    for (const RodState& st : rod.sample(x, v, std::max(2, centerline_points))) {  // s = 0 .. L
       r.centerline.push_back(st.position);
-      r.min_axial_stretch = std::min(r.min_axial_stretch, 1.0 + st.shear_extension_body[2]);
+      r.min_axial_stretch = std::min(r.min_axial_stretch, axial_stretch(st));
     }
     s.rods.push_back(r);
   }
   return s;
 }
 
-// Marks a converged solution failed when a rod is compressed to a point or inverted (v3 <= 1e-6:
-// Antman's admissibility v3 > 0 with a margin for round-off; rod_solve.cpp does the same for single
-// rods). Such states are exact equilibria of the extensible model, e.g. a rod whose clamped ends
-// coincide, compressed to zero length. Returns whether the solution stays converged.
+// Marks a converged solution failed when a rod is compressed to a point or inverted
+// (admissible_axial_stretch; rod_solve.cpp checks single rods the same way). Returns whether the
+// solution stays converged.
 bool reject_inadmissible(RobotSolution& s) {
   if (!s.summary.converged()) return false;
   for (const RodResult& r : s.rods) {
-    if (!(r.min_axial_stretch > 1e-6)) {
+    if (!admissible_axial_stretch(r.min_axial_stretch)) {
       std::ostringstream msg;
       msg << "inadmissible state: rod '" << r.name
           << "' has axial stretch v3 = 1 + eps3 = " << r.min_axial_stretch

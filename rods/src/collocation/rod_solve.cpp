@@ -94,11 +94,7 @@ class MovingEnds {
     return 2.0 * std::atan2(v.norm(), d[0]) * axis;
   }
   static Quat turned(const Quat& q0, const Quat& q1, double lambda) {
-    const Vec3 theta = rotation_vector(q0, q1);
-    const double half = 0.5 * lambda * theta.norm();
-    Quat step;
-    step << std::cos(half), (theta.norm() > 0.0 ? Vec3(std::sin(half) * theta.normalized()) : Vec3::Zero());
-    return quat_multiply(q0, step);
+    return quat_multiply(q0, quat_from_rotation_vector(lambda * rotation_vector(q0, q1)));
   }
   RodModel model_;
   RodEnd start_[2], target_[2];
@@ -106,14 +102,13 @@ class MovingEnds {
   bool moves_ = false;
 };
 
-// Empty when the axial stretch v3 = 1 + eps3 is positive along the rod (Antman's admissibility
-// condition: no cross-section passes through its neighbours), else where it is not. A margin of 1e-6
-// keeps a rod compressed to a point (v3 = 0 up to round-off) out: an exact equilibrium of the
-// extensible model, which Newton can find from the straight rod when the two clamped ends coincide.
+// Empty when the axial stretch is admissible (admissible_axial_stretch) at 4 n + 1 points along the rod,
+// else where it is not. Newton can reach such states from the straight rod, e.g. when the two clamped
+// ends coincide.
 std::string collapse_of(const CollocationRod& rod, const VecX& x, const RodVariables& vars) {
   for (const RodState& st : rod.sample(x, vars, 4 * rod.num_control_points() + 1)) {
-    const double v3 = 1.0 + st.shear_extension_body[2];
-    if (!(v3 > 1e-6)) {
+    const double v3 = axial_stretch(st);
+    if (!admissible_axial_stretch(v3)) {
       std::ostringstream msg;
       msg << "axial stretch v3 = 1 + eps3 = " << v3 << " at s = " << st.s
           << " m (the rod is compressed to a point or inverted there; admissible: v3 > 0)";

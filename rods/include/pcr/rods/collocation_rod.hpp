@@ -54,6 +54,17 @@ struct RodState {
   Vec3 curvature_body = Vec3::Zero();        ///< kappa
 };
 
+/// Axial stretch v3 = 1 + eps3 (1 = unstretched).
+inline double axial_stretch(const RodState& s) {
+  return 1.0 + s.shear_extension_body[2];
+}
+/// Antman's admissibility v3 > 0, with a margin of 1e-6 for round-off: at or below it the rod is
+/// compressed to a point or inverted, an exact equilibrium of the extensible model but no physical
+/// state (e.g. a rod whose clamped ends coincide, compressed to zero length).
+inline bool admissible_axial_stretch(double v3) {
+  return v3 > 1e-6;
+}
+
 /// Variable blocks of one rod in a Problem.
 struct RodVariables {
   std::vector<VariableId> control_points;
