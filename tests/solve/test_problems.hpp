@@ -226,4 +226,22 @@ class LinearBlock : public ResidualBlock {
   VecX b_;
 };
 
+/// sum_k a_k x_k - d over scalar variable blocks x_k.
+class SumBlock : public ResidualBlock {
+ public:
+  SumBlock(std::vector<VariableId> x, std::vector<double> a, double d)
+      : ResidualBlock("test.sum", "sum", 1, std::move(x)), a_(std::move(a)), d_(d) {}
+  void evaluate(const double* const* v, double* c, double* const* J) const override {
+    c[0] = -d_;
+    for (size_t k = 0; k < a_.size(); ++k) {
+      c[0] += a_[k] * v[k][0];
+      if (J && J[k]) J[k][0] = a_[k];
+    }
+  }
+
+ private:
+  std::vector<double> a_;
+  double d_;
+};
+
 }  // namespace pcr::test

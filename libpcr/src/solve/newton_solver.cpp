@@ -1,4 +1,4 @@
-// Damped Newton with sparse LU on the free columns (see newton_solver.hpp).
+// Damped Newton with an LU of the free columns (see newton_solver.hpp).
 #include "pcr/solve/newton_solver.hpp"
 
 #include <algorithm>
@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "pcr/core/error.hpp"
+#include "pcr/solve/bordered_block_lu.hpp"
 #include "pcr/solve/sparse_lu.hpp"
 
 namespace pcr {
@@ -34,8 +35,13 @@ struct NewtonSolver::Impl {
   SparseRowMajor J;                 // full Jacobian in the problem's pattern
   SparseColMajor J_free;            // free columns, column-major for the sparse LU
   std::vector<int> value_map;       // J value index -> J_free value index, -1 for fixed columns
+  std::vector<int> column_groups;   // VariableBlock::group of each free column
+  // The factorisation of J_free: the structured one when the problem has groups (NewtonLinearSolver),
+  // the sparse LU when asked for or when the structured one fails.
+  BorderedBlockLu blocks;
   SparseLu lu;
-  bool have_factorization = false;  // lu holds a factorisation of this structure (for reuse)
+  bool sparse_analyzed = false;
+  enum class Factored { None, Sparse, Blocks } factored = Factored::None;  // what holds J0 (for reuse)
   VecX c, r, r_trial, x_trial, dx_free, dx, linear_check;
   // Quasi-Newton steps on the last factorisation J0 (free columns): steps[0 .. num_steps), see solve().
   std::vector<VecX> steps;
@@ -45,6 +51,15 @@ struct NewtonSolver::Impl {
   Impl(const Problem& p, NewtonOptions o) : problem(p), options(o) {}
   void prepare();
   void build_free_pattern();
+  /// Factorises J_free (the structured LU unless sparse_only or it fails); false when singular.
+  bool factorize(bool sparse_only);
+  /// x = J0^-1 b with the current factorisation.
+  void linear_solve(const VecX& b, VecX& x) const {
+    if (factored == Factored::Blocks)
+      blocks.solve(b, x);
+    else
+      lu.solve(b, x);
+  }
 };
 
 // Validates the problem for Newton and sizes the workspace (only when the structure changed).
@@ -53,6 +68,7 @@ void NewtonSolver::Impl::prepare() {
   require(!problem.has_objective(), "NewtonSolver: the problem has objective terms (use IpoptSolver)");
   const int n = problem.num_variables(), m = problem.num_rows();
   reduced_column.assign(n, -1);
+  column_groups.clear();
   int n_free = 0;
   for (VariableId v = 0; v < problem.num_variable_blocks(); ++v) {
     const VariableBlock& b = problem.variable(v);
@@ -63,6 +79,7 @@ void NewtonSolver::Impl::prepare() {
               "' entry ", j, " has bounds [", b.lower[j], ", ", b.upper[j],
               "] (Newton ignores bounds; use IpoptSolver)");
       reduced_column[b.offset + j] = n_free++;
+      column_groups.push_back(b.group);
     }
   }
   require(n_free == m, "NewtonSolver: the problem is not square: ", n_free, " free variables, ", m,
@@ -88,7 +105,7 @@ void NewtonSolver::Impl::prepare() {
   x_trial.resize(n);
   J = SparseRowMajor();
   value_map.clear();
-  have_factorization = false;
+  factored = Factored::None;
   version = problem.structure_version();
 }
 
@@ -114,7 +131,27 @@ void NewtonSolver::Impl::build_free_pattern() {
       value_map[p] = static_cast<int>(std::lower_bound(begin, end, i) - J_free.innerIndexPtr());
     }
   }
-  lu.analyze_pattern(J_free);
+  // The sparse LU's analysis waits until it is needed (factorize).
+  sparse_analyzed = false;
+  const bool grouped = std::any_of(column_groups.begin(), column_groups.end(), [](int g) { return g >= 0; });
+  const bool structured = options.linear_solver == NewtonLinearSolver::BorderedBlocks ||
+                          (options.linear_solver == NewtonLinearSolver::Auto && grouped);
+  if (!structured || !blocks.analyze_pattern(J_free, column_groups)) blocks = BorderedBlockLu();
+}
+
+bool NewtonSolver::Impl::factorize(bool sparse_only) {
+  factored = Factored::None;
+  if (!sparse_only && blocks.analyzed() && blocks.factorize(J_free)) {
+    factored = Factored::Blocks;
+    return true;
+  }
+  if (!sparse_analyzed) {
+    lu.analyze_pattern(J_free);
+    sparse_analyzed = true;
+  }
+  if (!lu.factorize(J_free)) return false;
+  factored = Factored::Sparse;
+  return true;
 }
 
 NewtonSolver::NewtonSolver(const Problem& problem, NewtonOptions options)
@@ -133,6 +170,14 @@ NewtonSolver::NewtonSolver(const Problem& problem, NewtonOptions options)
 NewtonSolver::~NewtonSolver() = default;
 const NewtonOptions& NewtonSolver::options() const {
   return impl_->options;
+}
+
+const char* NewtonSolver::factorization_kind() const {
+  switch (impl_->factored) {
+    case Impl::Factored::Blocks: return "bordered blocks";
+    case Impl::Factored::Sparse: return "sparse";
+    default: return "none";
+  }
 }
 
 SolveSummary NewtonSolver::solve(VecX& x) {
@@ -190,7 +235,7 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
   // The step is kept while theta <= chord_contraction (affine-invariant contraction; |alpha| <= theta
   // keeps 1 - alpha >= 1/2), else the iteration is redone from x_k with a fresh Jacobian. Convergence is
   // superlinear, against linear for the plain simplified Newton step.
-  bool refresh = !(o.reuse_factorization && w.have_factorization);
+  bool refresh = !(o.reuse_factorization && w.factored != Impl::Factored::None);
   bool have_correction = false;  // w.steps[w.num_steps - 1] is the next step from x
   auto take_step_from = [&](const VecX& x0, const VecX& step) {
     for (int j = 0; j < x0.size(); ++j) {
@@ -202,7 +247,7 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
   // step and returns true if it contracts, false if a fresh Jacobian is needed.
   auto broyden_next = [&](const VecX& r_new) {
     if (w.num_steps >= Impl::kMaxSteps) return false;
-    w.lu.solve(r_new, w.dx_free);
+    w.linear_solve(r_new, w.dx_free);
     w.dx_free = -w.dx_free;
     for (int j = 0; j + 1 < w.num_steps; ++j)
       w.dx_free += w.steps[j + 1] * (w.steps[j].dot(w.dx_free) / w.steps[j].squaredNorm());
@@ -229,7 +274,7 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
 
     if (!refresh) {
       if (!have_correction) {  // a new sequence on J0: the simplified Newton step
-        w.lu.solve(w.r, w.steps[0]);
+        w.linear_solve(w.r, w.steps[0]);
         w.steps[0] = -w.steps[0];
         w.num_steps = 1;
       }
@@ -277,16 +322,20 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
       if (w.value_map[p] >= 0) free_values[w.value_map[p]] = values[p];
     }
     if (!w.J_free.coeffs().allFinite()) return finish(SolveStatus::Diverged, "non-finite Jacobian entry");
-    w.have_factorization = false;
-    if (!w.lu.factorize(w.J_free)) {
+    if (!w.factorize(false)) {
       return finish(SolveStatus::Singular, "sparse LU failed: " + w.lu.error_message());
     }
-    w.have_factorization = true;
-    w.lu.solve(w.r, w.dx_free);
-    w.dx_free = -w.dx_free;
-    w.linear_check.noalias() = w.J_free * w.dx_free;
-    w.linear_check += w.r;
-    const double linear_residual = w.linear_check.norm() / r_norm;
+    double linear_residual = 0.0;
+    for (;;) {
+      w.linear_solve(w.r, w.dx_free);
+      w.dx_free = -w.dx_free;
+      w.linear_check.noalias() = w.J_free * w.dx_free;
+      w.linear_check += w.r;
+      linear_residual = w.linear_check.norm() / r_norm;
+      // The structured LU pivots only within each block: redo an inaccurate solve with the sparse LU.
+      if (linear_residual <= o.linear_residual_limit || w.factored != Impl::Factored::Blocks) break;
+      if (!w.factorize(true)) return finish(SolveStatus::Singular, "sparse LU failed: " + w.lu.error_message());
+    }
     const double step = w.dx_free.lpNorm<Eigen::Infinity>();
     if (!(linear_residual <= o.linear_residual_limit)) {
       return finish(
@@ -314,7 +363,7 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
       w.r_trial = w.c - w.target;
       if (w.r_trial.allFinite()) {
         if (w.r_trial.norm() <= (1.0 - o.armijo * alpha) * r_norm) break;
-        w.lu.solve(w.r_trial, w.linear_check);
+        w.linear_solve(w.r_trial, w.linear_check);
         if (w.linear_check.allFinite() && w.linear_check.norm() <= (1.0 - 0.5 * alpha) * dx_norm) break;
       }
       alpha *= o.backtrack;

@@ -39,6 +39,7 @@ NewtonOptions newton_options(const KinematicsOptions& o) {
   n.tolerance = o.tolerance;
   n.max_iterations = o.max_iterations;
   n.reuse_factorization = o.reuse_factorization;
+  n.linear_solver = o.linear_solver;
   return n;
 }
 

@@ -69,6 +69,7 @@ struct ReducedIk::Evaluator {
     n.tolerance = o.tolerance;
     n.max_iterations = o.max_iterations;
     n.reuse_factorization = o.reuse_factorization;
+    n.linear_solver = o.linear_solver;
     newton = std::make_unique<NewtonSolver>(fk, n);
     if (o.ik.max_rod_stress) {
       check_stress_data(a);

@@ -1,7 +1,7 @@
 #pragma once
 // Damped Newton for square, equality-only problems c(x) = c_l (= c_u), no objective, no bounds on the
 // free variables (DESIGN.md §5 "skip what a scene does not need"). Fixed variables are constants.
-//   J dx = -(c(x) - c_l)   (sparse LU: pattern analysed once, numeric factorisation per iteration)
+//   J dx = -(c(x) - c_l)   (LU: pattern analysed once, numeric factorisation per iteration)
 //   x <- x + alpha dx,  alpha = 1, 1/2, ... until |r(x + alpha dx)|_2 <= (1 - armijo alpha) |r(x)|_2.
 // Converged when max_i |c_i - c_l,i| <= tolerance (unscaled) and x is finite.
 #include <limits>
@@ -12,6 +12,15 @@
 #include "pcr/solve/solve_summary.hpp"
 
 namespace pcr {
+
+/// The LU factorisation of the Newton systems.
+enum class NewtonLinearSolver {
+  /// BorderedBlocks when the problem tags variable groups (VariableBlock::group, e.g. one per rod in a
+  /// robot assembly), else Sparse.
+  Auto,
+  Sparse,          ///< SparseLu (Eigen's supernodal SparseLU) on the whole free Jacobian
+  BorderedBlocks,  ///< BorderedBlockLu: a band LU per group and a Schur complement on the rest
+};
 
 struct NewtonOptions {
   double tolerance = 1e-10;  ///< max-abs residual for convergence
@@ -29,6 +38,9 @@ struct NewtonOptions {
   /// for warm-started sequences (FK/IK along a path), where the Jacobian barely changes.
   bool reuse_factorization = false;
   double chord_contraction = 0.5;
+  /// With BorderedBlocks (or Auto choosing it), a factorisation whose block or Schur complement is
+  /// singular, or whose Newton step fails the linear residual check, is redone with the sparse LU.
+  NewtonLinearSolver linear_solver = NewtonLinearSolver::Auto;
 };
 
 /// Holds the factorisation workspace; solve() allocates nothing after the first call unless the
@@ -48,6 +60,8 @@ class NewtonSolver {
   SolveSummary solve(VecX& x, int max_iterations,
                      int max_jacobian_evaluations = std::numeric_limits<int>::max());
   const NewtonOptions& options() const;
+  /// Which LU holds the last factorisation: "bordered blocks", "sparse" or "none".
+  const char* factorization_kind() const;
 
  private:
   struct Impl;

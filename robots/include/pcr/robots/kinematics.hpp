@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "pcr/robots/robot_assembly.hpp"
+#include "pcr/solve/newton_solver.hpp"
 #include "pcr/rods/rod_solve.hpp"
 #include "pcr/solve/solve_summary.hpp"
 
@@ -70,6 +71,10 @@ struct KinematicsOptions {
   int centerline_points = 21;  ///< points per rod in the results
   /// Newton reuses its last factorisation across warm-started solves (see NewtonOptions).
   bool reuse_factorization = true;
+  /// LU of the Newton systems: Auto factors each rod's band and condenses onto the platform poses and
+  /// inputs (BorderedBlockLu), falling back to the sparse LU where a rod's block is singular;
+  /// NewtonLinearSolver::Sparse always uses the sparse LU (the solver before 2026-11-23).
+  NewtonLinearSolver linear_solver = NewtonLinearSolver::Auto;
   /// Stability monitoring along the solves (RobotSolution::jacobian_sign), FK and IK (the FK system at
   /// the IK solution's inputs); costs one Jacobian evaluation and one sparse LU factorisation per
   /// converged solve (R5b with 8 elements per rod: about 1 + 3.5 ms, printed by bench_robots).

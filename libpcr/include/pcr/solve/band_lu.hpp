@@ -1,0 +1,49 @@
+#pragma once
+// LU factorisation with partial pivoting of a square band matrix (kl sub-, ku superdiagonals), the
+// per-rod kernel of BorderedBlockLu. The algorithm and storage are those of LAPACK's dgbtf2 / dgbtrs
+// (Golub & Van Loan, Matrix Computations, 4th ed., sec. 4.3.5): column-major band storage with
+// 2 kl + ku + 1 rows, A(i, j) at row kl + ku + i - j of column j; row interchanges within the kl rows
+// below the diagonal let U fill up to kl + ku superdiagonals (the top kl rows of the storage).
+// Cost: factorisation about 2 n kl (kl + ku) flops, solve about 2 n (2 kl + ku); entries that are zero
+// in a row of U are skipped in the update, and the solves run only over the rows each column of L and U
+// actually fills.
+#include <vector>
+
+#include "pcr/core/types.hpp"
+
+namespace pcr {
+
+class BandLu {
+ public:
+  /// Sizes the storage for an n x n matrix with kl sub- and ku superdiagonals and zeroes it.
+  void resize(int n, int kl, int ku);
+  /// Zeroes the matrix (before entries are written for a new factorisation).
+  void set_zero();
+  /// Entry A(i, j); |i - j| must lie within the band (not checked: callers map entries once).
+  double& at(int i, int j) { return ab_[index(i, j)]; }
+  /// Position of A(i, j) in data() (for precomputed scatter maps).
+  int index(int i, int j) const { return (kl_ + ku_ + i - j) + j * ld_; }
+  double* data() { return ab_.data(); }
+
+  /// In-place factorisation; false when a pivot column is exactly zero (singular matrix).
+  bool factorize();
+  /// Solves A x = b in place (b holds x on return), after a successful factorize().
+  void solve_in_place(double* b) const;
+  /// Sign of det A (+1 / -1) after a successful factorize().
+  int determinant_sign() const;
+
+  int size() const { return n_; }
+  int lower_bandwidth() const { return kl_; }
+  int upper_bandwidth() const { return ku_; }
+  /// Nonzero entries of the factors within their actual extents (L without the unit diagonal).
+  long factor_nonzeros() const;
+
+ private:
+  int n_ = 0, kl_ = 0, ku_ = 0, ld_ = 1;
+  std::vector<double> ab_;
+  std::vector<int> pivot_;
+  std::vector<int> l_rows_;   // below-diagonal rows of column j of L that can be nonzero
+  std::vector<int> u_first_;  // first row of column j of U that is nonzero
+};
+
+}  // namespace pcr

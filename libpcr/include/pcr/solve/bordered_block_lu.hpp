@@ -1,0 +1,80 @@
+#pragma once
+// Direct solver for square sparse systems with bordered block-diagonal structure: the unknowns fall
+// into groups (one rod's control points, say) whose rows touch no other group, plus a small border
+// (platform poses, inputs) whose rows and columns couple the groups:
+//
+//   [ A_1          B_1 ] [x_1]   [b_1]
+//   [      ...     ... ] [...] = [...]
+//   [          A_G B_G ] [x_G]   [b_G]
+//   [ C_1  ... C_G  D  ] [ y ]   [b_y]
+//
+// Static condensation (Schur complement): each A_g is factored by a band LU (BandLu; rows ordered by
+// their first column, so a rod's collocation rows form a band of about (p + 1) x 13 columns),
+// W_g = A_g^-1 B_g, S = D - sum_g C_g W_g (dense, border x border), then per solve
+//   z_g = A_g^-1 b_g,  S y = b_y - sum_g C_g z_g,  x_g = z_g - W_g y.
+// Against a general sparse LU this keeps every inner loop a contiguous column operation and costs
+// work linear in the number of groups.
+//
+// Groups come from the caller (Problem variable groups); a row belongs to group g when all its
+// nonzero columns are in g or the border, else to the border. A group with more columns than rows
+// (a rod whose length is an unknown) gives its densest surplus columns to the border, one with more
+// rows than columns its densest surplus rows. The solve fails (factorize() returns false) when a
+// block A_g or S is singular even if the whole matrix is not (e.g. a rod that buckles with both ends
+// held): callers fall back to a general sparse LU then.
+//
+// Not thread-safe: solve() uses scratch buffers of the object.
+#include <Eigen/SparseCore>
+#include <string>
+#include <vector>
+
+#include "pcr/core/types.hpp"
+#include "pcr/solve/band_lu.hpp"
+
+namespace pcr {
+
+class BorderedBlockLu {
+ public:
+  /// Analyses A's pattern with column_groups[c] = group of column c (>= 0) or -1 (border).
+  /// Returns false (and the solver is unusable) when the pattern has no such structure: no group,
+  /// or a border larger than max_border.
+  bool analyze_pattern(const Eigen::SparseMatrix<double>& A, const std::vector<int>& column_groups,
+                       int max_border = 200);
+  /// Numeric factorisation of a matrix with the analysed pattern (the same nonzero positions in the
+  /// same order); false when a block or the Schur complement is singular (error_message() says which).
+  bool factorize(const Eigen::SparseMatrix<double>& A);
+  /// x = A^-1 b after a successful factorize().
+  void solve(const VecX& b, VecX& x) const;
+  const std::string& error_message() const { return error_; }
+
+  bool analyzed() const { return analyzed_; }
+  int num_groups() const { return static_cast<int>(groups_.size()); }
+  int border_size() const { return static_cast<int>(border_columns_.size()); }
+  /// Nonzeros of the band factors (all groups) plus the dense border parts W_g, C_g and S.
+  long factor_nonzeros() const;
+
+ private:
+  struct Group {
+    std::vector<int> rows, columns;  // global indices, in local order
+    BandLu band;
+    MatX B, C, W;                     // n_g x nb, nb x n_g, n_g x nb
+    std::vector<int> coupled_border;  // border columns with a nonzero in B
+    mutable VecX z;
+  };
+  enum Target { kBand, kB, kC, kD };
+  struct Slot {
+    int target;
+    int group;
+    int index;  // position in the target's storage
+  };
+  std::vector<Group> groups_;
+  std::vector<int> border_rows_, border_columns_;
+  MatX D_, S_;
+  Eigen::PartialPivLU<MatX> schur_;
+  std::vector<Slot> slots_;  // per nonzero of A (CSC order)
+  long nonzeros_ = 0;
+  bool analyzed_ = false;
+  std::string error_;
+  mutable VecX border_rhs_, border_solution_;
+};
+
+}  // namespace pcr

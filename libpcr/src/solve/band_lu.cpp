@@ -1,0 +1,108 @@
+#include "pcr/solve/band_lu.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace pcr {
+
+void BandLu::resize(int n, int kl, int ku) {
+  n_ = n;
+  kl_ = kl;
+  ku_ = ku;
+  ld_ = 2 * kl + ku + 1;
+  ab_.assign(static_cast<size_t>(ld_) * n, 0.0);
+  pivot_.assign(n, 0);
+  l_rows_.assign(n, 0);
+  u_first_.assign(n, 0);
+}
+
+void BandLu::set_zero() {
+  std::fill(ab_.begin(), ab_.end(), 0.0);
+}
+
+// dgbtf2: column j picks the largest of its kl entries below the diagonal as pivot, swaps that row
+// into place over the columns the pivot row reaches, scales the multipliers and updates the trailing
+// columns j + 1 .. ju with a rank-one update (skipped where U(j, c) = 0: much of the band is
+// structurally zero for collocation matrices).
+bool BandLu::factorize() {
+  const int kv = kl_ + ku_;
+  double* a = ab_.data();
+  int ju = 0;  // last column touched by the pivot rows so far
+  for (int j = 0; j < n_; ++j) {
+    const int km = std::min(kl_, n_ - 1 - j);
+    double* col = a + j * ld_ + kv;  // col[k] = A(j + k, j)
+    int jp = 0;
+    double best = std::abs(col[0]);
+    for (int k = 1; k <= km; ++k) {
+      if (std::abs(col[k]) > best) {
+        best = std::abs(col[k]);
+        jp = k;
+      }
+    }
+    pivot_[j] = j + jp;
+    if (!(best > 0.0) || !std::isfinite(best)) return false;
+    ju = std::max(ju, std::min(j + ku_ + jp, n_ - 1));
+    if (jp != 0) {
+      for (int c = j; c <= ju; ++c) std::swap(a[c * ld_ + kv + j - c], a[c * ld_ + kv + j + jp - c]);
+    }
+    const double inverse = 1.0 / col[0];
+    for (int k = 1; k <= km; ++k) col[k] *= inverse;
+    for (int c = j + 1; c <= ju; ++c) {
+      double* target = a + c * ld_ + kv + j - c;  // target[0] = A(j, c), target[k] = A(j + k, c)
+      const double u = target[0];
+      if (u == 0.0) continue;
+      for (int k = 1; k <= km; ++k) target[k] -= u * col[k];
+    }
+  }
+  // Actual extents of the factors' columns, for the solves.
+  for (int j = 0; j < n_; ++j) {
+    const double* col = a + j * ld_ + kv;
+    int rows = std::min(kl_, n_ - 1 - j);
+    while (rows > 0 && col[rows] == 0.0) --rows;
+    l_rows_[j] = rows;
+    int first = std::max(0, j - kv);
+    while (first < j && a[j * ld_ + kv + first - j] == 0.0) ++first;
+    u_first_[j] = first;
+  }
+  return true;
+}
+
+void BandLu::solve_in_place(double* b) const {
+  const int kv = kl_ + ku_;
+  const double* a = ab_.data();
+  for (int j = 0; j < n_; ++j) {  // L y = P b
+    const int p = pivot_[j];
+    if (p != j) std::swap(b[j], b[p]);
+    const double bj = b[j];
+    if (bj == 0.0) continue;
+    const double* col = a + j * ld_ + kv;
+    const int rows = l_rows_[j];
+    for (int k = 1; k <= rows; ++k) b[j + k] -= bj * col[k];
+  }
+  for (int j = n_ - 1; j >= 0; --j) {          // U x = y
+    const double* col = a + j * ld_ + kv - j;  // col[i] = U(i, j)
+    b[j] /= col[j];
+    const double bj = b[j];
+    if (bj == 0.0) continue;
+    for (int i = u_first_[j]; i < j; ++i) b[i] -= bj * col[i];
+  }
+}
+
+int BandLu::determinant_sign() const {
+  const int kv = kl_ + ku_;
+  int sign = 1;
+  for (int j = 0; j < n_; ++j) {
+    if (pivot_[j] != j) sign = -sign;
+    if (ab_[j * ld_ + kv] < 0.0) sign = -sign;
+  }
+  return sign;
+}
+
+long BandLu::factor_nonzeros() const {
+  long count = 0;
+  for (int j = 0; j < n_; ++j) count += l_rows_[j] + (j - u_first_[j] + 1);
+  return count;
+}
+
+}  // namespace pcr
