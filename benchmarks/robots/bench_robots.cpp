@@ -21,6 +21,7 @@
 
 #include "common/bench_csv.hpp"
 #include "common/robot_scenes.hpp"
+#include "pcr/solve/bordered_block_lu.hpp"
 #include "pcr/solve/free_jacobian.hpp"
 #include "pcr/solve/sparse_lu.hpp"
 
@@ -34,28 +35,45 @@ struct Mesh {
   int degree;
   int elements;
   MixedPoints points;
+  bool sparse_lu = false;    // baseline: the general sparse LU instead of the default structured one
+  double tolerance = 1e-10;  // Newton tolerance (KinematicsOptions; 1e-10 the default)
 };
 
 std::string settings_of(const Mesh& mesh) {
-  return "p=" + std::to_string(mesh.degree) + ";E=" + std::to_string(mesh.elements);
+  std::string s = "p=" + std::to_string(mesh.degree) + ";E=" + std::to_string(mesh.elements);
+  if (mesh.tolerance != 1e-10) {
+    char t[32];
+    std::snprintf(t, sizeof t, ";tol=%g", mesh.tolerance);
+    s += t;
+  }
+  return s;
 }
 
-const char* method_of(MixedPoints points) {
-  return points == MixedPoints::Midpoints ? "collocation-mixed-newton" : "collocation-mixed-greville-newton";
+std::string method_of(const Mesh& mesh) {
+  const std::string base = mesh.points == MixedPoints::Midpoints ? "collocation-mixed-newton"
+                                                                 : "collocation-mixed-greville-newton";
+  return mesh.sparse_lu ? base + "-sparse-lu" : base;
+}
+
+const char* label_of(const Mesh& mesh) {
+  if (mesh.sparse_lu) return "sparse LU";
+  return to_string(mesh.points);
 }
 
 KinematicsOptions options(int degree, int elements, double tolerance = 1e-10,
-                          MixedPoints points = MixedPoints::Midpoints) {
+                          MixedPoints points = MixedPoints::Midpoints, bool sparse_lu = false) {
   KinematicsOptions o;
   o.assembly.discretization = {RodFormulation::Mixed, degree, elements, points};
   o.tolerance = tolerance;
+  if (sparse_lu) o.linear_solver = NewtonLinearSolver::Sparse;
   return o;
 }
 
 // What one Newton step of a warm R5b IK solve is made of, at the path's start solution: one residual
-// evaluation and one solve with the LU factors of the free Jacobian (the Newton solver's SparseLu), plus,
-// when a fresh Jacobian is taken, its evaluation (dual numbers) and a numeric factorisation on the kept
-// symbolic analysis. Printed only (no error to put beside it).
+// evaluation and one solve with the LU factors of the free Jacobian, plus, when a fresh Jacobian is
+// taken, its evaluation (dual numbers) and a numeric factorisation on the kept symbolic analysis; for
+// the default structured LU (BorderedBlockLu, one group per rod) and the sparse LU (SparseLu, the
+// baseline), on the same matrix. Printed only (no error to put beside it).
 void print_operation_costs(const InverseKinematics& ik) {
   const Problem& problem = ik.assembly().problem();
   const VecX& x = ik.state();
@@ -63,8 +81,22 @@ void print_operation_costs(const InverseKinematics& ik) {
   Eigen::SparseMatrix<double, Eigen::RowMajor> J;
   problem.evaluate_residuals_and_jacobian(x, c, J);
   const FreeJacobian free = free_jacobian(problem, J);
+  std::vector<int> groups;
+  for (int column : free.columns) {
+    int group = -1;
+    for (int v = 0; v < problem.num_variable_blocks(); ++v) {
+      const VariableBlock& b = problem.variable(v);
+      if (column >= b.offset && column < b.offset + b.size) group = b.group;
+    }
+    groups.push_back(group);
+  }
   SparseLu lu;
   lu.compute(free.matrix);
+  BorderedBlockLu blocks;
+  if (!blocks.analyze_pattern(free.matrix, groups) || !blocks.factorize(free.matrix)) {
+    std::printf("  structured LU failed: %s\n", blocks.error_message().c_str());
+    return;
+  }
   const VecX rhs = c;
   VecX dx;
   const Repeats many{20, 2000, 0.2}, few{5, 200, 0.2};
@@ -72,11 +104,16 @@ void print_operation_costs(const InverseKinematics& ik) {
   const Timing jacobian = time_repeated([&] { problem.evaluate_residuals_and_jacobian(x, c, J); }, few);
   const Timing factorize = time_repeated([&] { lu.factorize(free.matrix); }, few);
   const Timing solve = time_repeated([&] { lu.solve(rhs, dx); }, many);
+  const Timing block_factorize = time_repeated([&] { blocks.factorize(free.matrix); }, few);
+  const Timing block_solve = time_repeated([&] { blocks.solve(rhs, dx); }, many);
   std::printf(
-      "  per operation (median): residual %.1f us, LU solve %.1f us (factors %ld + %ld nonzeros), "
-      "Jacobian %.2f ms, numeric factorisation %.2f ms\n",
-      residual.median * 1e6, solve.median * 1e6, lu.nonzeros_l(), lu.nonzeros_u(), jacobian.median * 1e3,
-      factorize.median * 1e3);
+      "  per operation (median): residual %.1f us, Jacobian %.2f ms; structured LU (border %d): solve %.1f "
+      "us, "
+      "factorisation %.2f ms, %ld factor entries; sparse LU: solve %.1f us, factorisation %.2f ms, %ld + %ld "
+      "factor nonzeros\n",
+      residual.median * 1e6, jacobian.median * 1e3, blocks.border_size(), block_solve.median * 1e6,
+      block_factorize.median * 1e3, blocks.factor_nonzeros(), solve.median * 1e6, factorize.median * 1e3,
+      lu.nonzeros_l(), lu.nonzeros_u());
 }
 
 }  // namespace
@@ -93,8 +130,13 @@ int main(int argc, char** argv) {
   // the default's choice: degree 5 (the default before), degree 5 at the Greville points (before that).
   const int p = AssemblyOptions().discretization.degree;
   const MixedPoints mid = MixedPoints::Midpoints;
-  const Mesh meshes[] = {{p, 2, mid},  {p, 4, mid}, {p, 8, mid},
-                         {p, 16, mid}, {5, 8, mid}, {5, 8, MixedPoints::Greville}};
+  const Mesh meshes[] = {{p, 2, mid},
+                         {p, 4, mid},
+                         {p, 8, mid},
+                         {p, 8, mid, true},
+                         {p, 16, mid},
+                         {5, 8, mid},
+                         {5, 8, MixedPoints::Greville}};
 
   const Pose target = r5a_target();
   InverseKinematics ik_ref(r5a, {platform_target()}, options(5, 32, 1e-11));
@@ -106,10 +148,10 @@ int main(int argc, char** argv) {
     return 1;
   }
   for (const Mesh& mesh : meshes) {
-    const char* points = to_string(mesh.points);
+    const char* points = label_of(mesh);
     // The cold solves' first part: building the solver (assembly of the rods' collocation blocks and the
     // couplings). Printed only, there is no error to put beside it.
-    const KinematicsOptions o = options(mesh.degree, mesh.elements, 1e-10, mesh.points);
+    const KinematicsOptions o = options(mesh.degree, mesh.elements, 1e-10, mesh.points, mesh.sparse_lu);
     const Timing assembly = time_repeated([&] { ForwardKinematics fk(r5a, o); }, {5, 50, 0.2});
     std::printf("R5a assembly %-8s %-9s  median %.2f ms\n", settings_of(mesh).c_str(), points,
                 assembly.median * 1e3);
@@ -133,7 +175,7 @@ int main(int argc, char** argv) {
             if (!s.summary.converged()) error = NAN;
           },
           {5, 5, 0.0});
-      csv.row("R5a_" + problem + "_cold", method_of(mesh.points), settings_of(mesh), error, t, iterations);
+      csv.row("R5a_" + problem + "_cold", method_of(mesh), settings_of(mesh), error, t, iterations);
       std::printf("R5a %s cold  %-8s %-9s  error %.2e m  median %.2f ms\n", problem.c_str(),
                   settings_of(mesh).c_str(), points, error, t.median * 1e3);
     }
@@ -163,15 +205,24 @@ int main(int argc, char** argv) {
   }
   // Greville points only at 8 elements (at 4, warm Newton solves fail along the path and each failure
   // goes to Ipopt, minutes; README, "Mixed collocation points").
-  const Mesh path_meshes[] = {{p, 2, mid},
-                              {p, 4, mid},
-                              {p, 8, mid},
-                              {p, 16, mid},
-                              {5, 8, mid},
-                              {5, 16, mid},
-                              {5, 8, MixedPoints::Greville}};
+  const Mesh path_meshes[] = {
+      {p, 2, mid},
+      {p, 4, mid},
+      {p, 8, mid},
+      {p, 8, mid, true},  // sparse LU baseline
+      {p, 16, mid},
+      {5, 8, mid},
+      {5, 16, mid},
+      {5, 16, mid, true},  // sparse LU baseline
+      {5, 8, MixedPoints::Greville},
+      // a looser Newton tolerance (README "Using the pcr tool": T = 100 x the accuracy)
+      {p, 8, mid, false, 1e-6},
+      {p, 8, mid, true, 1e-6},
+      {5, 16, mid, false, 1e-6},
+      {5, 16, mid, true, 1e-6}};
   for (const Mesh& mesh : path_meshes) {
-    InverseKinematics ik(r5b, {platform_target()}, options(mesh.degree, mesh.elements, 1e-10, mesh.points));
+    InverseKinematics ik(r5b, {platform_target()},
+                         options(mesh.degree, mesh.elements, mesh.tolerance, mesh.points, mesh.sparse_lu));
     ik.solve({path[0]});  // start of the path (cold), not timed
     std::vector<double> times;
     double error = 0;
@@ -189,12 +240,12 @@ int main(int argc, char** argv) {
     }
     const Timing t = summarise(times);
     if (failures > 0) error = NAN;
-    csv.row("R5b_teleop_IK_warm", method_of(mesh.points), settings_of(mesh), error, t,
+    csv.row("R5b_teleop_IK_warm", method_of(mesh), settings_of(mesh), error, t,
             double(iterations) / times.size());
     std::printf(
-        "R5b warm IK %-8s %-9s  max input error %.2e m  median %.3f ms/solve, mean %.3f ms/solve (%.0f "
+        "R5b warm IK %-17s %-9s  max input error %.2e m  median %.3f ms/solve, mean %.3f ms/solve (%.0f "
         "solves/s), %.2f it/solve, %d fresh Jacobians in %zu solves%s\n",
-        settings_of(mesh).c_str(), to_string(mesh.points), error, t.median * 1e3, t.mean * 1e3, 1.0 / t.mean,
+        settings_of(mesh).c_str(), label_of(mesh), error, t.median * 1e3, t.mean * 1e3, 1.0 / t.mean,
         double(iterations) / times.size(), jacobians, times.size(), failures ? "  FAILURES" : "");
   }
   std::cout << "wrote " << csv.path() << "\n";

@@ -4,8 +4,8 @@
 #define BOOST_TEST_MODULE kinematics
 #include <boost/test/unit_test.hpp>
 
-#include <fstream>
 #include <Eigen/SVD>
+#include <fstream>
 #include <random>
 #include <sstream>
 
@@ -19,7 +19,9 @@ using namespace pcr;
 
 namespace {
 
-std::string model_path(const std::string& name) { return std::string(PCR_MODEL_DIR) + "/" + name + ".urdf"; }
+std::string model_path(const std::string& name) {
+  return std::string(PCR_MODEL_DIR) + "/" + name + ".urdf";
+}
 
 std::shared_ptr<const RobotModel> load(const std::string& name) {
   return std::make_shared<const RobotModel>(load_robot_model(model_path(name)));
@@ -84,8 +86,8 @@ BOOST_AUTO_TEST_CASE(every_coupling_balance_and_target_block_matches_finite_diff
   std::mt19937 rng(11);
   std::normal_distribution<double> noise(0.0, 1.0);
   std::vector<std::pair<std::string, std::shared_ptr<const RobotModel>>> models;
-  for (const char* name : {"stewart_gough", "stewart_gough_teleop", "planar_three_rod", "two_stage", "cantilever",
-                           "slider_actuated"})
+  for (const char* name : {"stewart_gough", "stewart_gough_teleop", "planar_three_rod", "two_stage",
+                           "cantilever", "slider_actuated"})
     models.emplace_back(name, load(name));
   models.emplace_back("planar_with_spherical_rod", planar_with_spherical_rod());
   for (const auto& [name, model] : models) {
@@ -135,7 +137,8 @@ BOOST_AUTO_TEST_CASE(fk_then_ik_round_trip_on_every_model) {
     const RobotSolution s = fk.solve(u);
     BOOST_REQUIRE_MESSAGE(s.summary.converged(), c.model << " FK: " << s.summary.brief_report());
     for (const RodResult& rod : s.rods)  // sanity: far from kN self-stress (loads here are < 10 N)
-      BOOST_TEST(std::abs(rod.axial_force) < 10.0, c.model << " " << rod.name << " axial force " << rod.axial_force);
+      BOOST_TEST(std::abs(rod.axial_force) < 10.0,
+                 c.model << " " << rod.name << " axial force " << rod.axial_force);
     double ratio = 0.0;
     {
       const MatX J = fk.input_jacobian();
@@ -163,17 +166,22 @@ BOOST_AUTO_TEST_CASE(fk_then_ik_round_trip_on_every_model) {
     }
     InverseKinematics ik(model, targets);
     const RobotSolution r = ik.solve(poses);
-    BOOST_REQUIRE_MESSAGE(r.summary.converged(), c.model << " IK: " << r.summary.brief_report() << " " << r.summary.message);
+    BOOST_REQUIRE_MESSAGE(r.summary.converged(),
+                          c.model << " IK: " << r.summary.brief_report() << " " << r.summary.message);
     const RobotSolution check = fk.solve(r.inputs);
-    BOOST_REQUIRE_MESSAGE(check.summary.converged(), c.model << " FK at the IK inputs: " << check.summary.brief_report() << " " << check.summary.message);
+    BOOST_REQUIRE_MESSAGE(
+        check.summary.converged(),
+        c.model << " FK at the IK inputs: " << check.summary.brief_report() << " " << check.summary.message);
     for (const std::string& link : c.links) {
       const int p = model->platform_index(link);
       const Vec3 dx = check.platforms[p].position - s.platforms[p].position;
       const Vec3 dr = so3_log(s.platforms[p].rotation().transpose() * check.platforms[p].rotation());
       for (int k = 0; k < 3; ++k) {
         // Targeted components reached to 1e-9 (m, rad): solver tolerance 1e-10 x length scale ~0.5 m.
-        if (c.components[k]) BOOST_TEST(std::abs(dx[k]) < 1e-9, c.model << " " << link << " position " << k << ": " << dx[k]);
-        if (c.components[3 + k]) BOOST_TEST(std::abs(dr[k]) < 1e-9, c.model << " " << link << " rotation " << k << ": " << dr[k]);
+        if (c.components[k])
+          BOOST_TEST(std::abs(dx[k]) < 1e-9, c.model << " " << link << " position " << k << ": " << dx[k]);
+        if (c.components[3 + k])
+          BOOST_TEST(std::abs(dr[k]) < 1e-9, c.model << " " << link << " rotation " << k << ": " << dr[k]);
       }
     }
     if (ratio > 1e-3)
@@ -205,8 +213,9 @@ BOOST_AUTO_TEST_CASE(input_jacobian_matches_finite_differences_of_fk) {
             so3_log(sp.platforms[p].rotation() * sm.platforms[p].rotation().transpose()) / (2 * h);
       }
     }
-    BOOST_TEST((J - fd).cwiseAbs().maxCoeff() < 1e-5 * J.cwiseAbs().maxCoeff(),
-               name << ":\nIFT\n" << J << "\nFD\n" << fd);
+    BOOST_TEST((J - fd).cwiseAbs().maxCoeff() < 1e-5 * J.cwiseAbs().maxCoeff(), name << ":\nIFT\n"
+                                                                                     << J << "\nFD\n"
+                                                                                     << fd);
   }
 }
 
@@ -227,8 +236,8 @@ BOOST_AUTO_TEST_CASE(compliance_matches_finite_differences_of_fk) {
       (k < 3 ? l.force : l.torque)[k % 3] = sign * (k < 3 ? hf : ht);
       loads.push_back(l);
       std::vector<Platform> platforms = base->platforms();
-      auto model = std::make_shared<const RobotModel>(base->name(), base->links(), base->joints(), platforms, base->rods(),
-                                                      loads, base->gravity());
+      auto model = std::make_shared<const RobotModel>(base->name(), base->links(), base->joints(), platforms,
+                                                      base->rods(), loads, base->gravity());
       ForwardKinematics f(model, tight());
       const RobotSolution s = f.solve(model->default_input_values());
       BOOST_REQUIRE(s.summary.converged());
@@ -263,8 +272,8 @@ BOOST_AUTO_TEST_CASE(newton_and_ipopt_forward_kinematics_agree) {
 // general sparse LU solve the same Newton systems: on every model FK at moved inputs and IK back to
 // the reached pose agree to the solver tolerance (1e-12 residuals, well-conditioned systems: 1e-9 m).
 BOOST_AUTO_TEST_CASE(structured_and_sparse_lu_give_the_same_kinematics) {
-  for (const std::string name :
-       {"stewart_gough", "stewart_gough_teleop", "planar_three_rod", "slider_actuated", "two_stage", "cantilever"}) {
+  for (const std::string name : {"stewart_gough", "stewart_gough_teleop", "planar_three_rod",
+                                 "slider_actuated", "two_stage", "cantilever"}) {
     const auto model = load(name);
     KinematicsOptions structured = tight(), sparse = tight();
     sparse.linear_solver = NewtonLinearSolver::Sparse;
@@ -377,6 +386,7 @@ BOOST_AUTO_TEST_CASE(bad_inputs_are_rejected_with_names) {
   }
   u[2] = std::nan("");
   BOOST_CHECK_THROW(fk.solve(u), InputError);
-  BOOST_CHECK_THROW(InverseKinematics(model, {LinkTarget{"no_such_link", LinkTarget::Mode::Pose, Pose{}, kFull}}),
-                    InputError);
+  BOOST_CHECK_THROW(
+      InverseKinematics(model, {LinkTarget{"no_such_link", LinkTarget::Mode::Pose, Pose{}, kFull}}),
+      InputError);
 }

@@ -188,8 +188,8 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
   const auto start_time = std::chrono::steady_clock::now();
   Impl& w = *impl_;
   require(max_iterations >= 0, "NewtonSolver::solve: max_iterations = ", max_iterations, " < 0");
-  require(max_jacobian_evaluations >= 0, "NewtonSolver::solve: max_jacobian_evaluations = ",
-          max_jacobian_evaluations, " < 0");
+  require(max_jacobian_evaluations >= 0,
+          "NewtonSolver::solve: max_jacobian_evaluations = ", max_jacobian_evaluations, " < 0");
   const NewtonOptions& o = w.options;
   w.prepare();
   const Problem& problem = w.problem;
@@ -334,7 +334,8 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
       linear_residual = w.linear_check.norm() / r_norm;
       // The structured LU pivots only within each block: redo an inaccurate solve with the sparse LU.
       if (linear_residual <= o.linear_residual_limit || w.factored != Impl::Factored::Blocks) break;
-      if (!w.factorize(true)) return finish(SolveStatus::Singular, "sparse LU failed: " + w.lu.error_message());
+      if (!w.factorize(true))
+        return finish(SolveStatus::Singular, "sparse LU failed: " + w.lu.error_message());
     }
     const double step = w.dx_free.lpNorm<Eigen::Infinity>();
     if (!(linear_residual <= o.linear_residual_limit)) {

@@ -96,7 +96,21 @@ const char* to_string(IkObjective objective) {
   return "unknown";
 }
 
+std::vector<std::vector<BasisDerivatives>> sample_bases(const RobotAssembly& a, int centerline_points) {
+  std::vector<std::vector<BasisDerivatives>> bases;
+  for (int i = 0; i < a.num_rods(); ++i)
+    bases.push_back(a.rod(i).sample_basis(std::max(2, centerline_points)));
+  return bases;
+}
+
 RobotSolution read_solution(const RobotAssembly& a, const VecX& x, int centerline_points) {
+  return read_solution(a, x, sample_bases(a, centerline_points));
+}
+
+RobotSolution read_solution(const RobotAssembly& a, const VecX& x,
+                            const std::vector<std::vector<BasisDerivatives>>& sample_bases) {
+  require(static_cast<int>(sample_bases.size()) == a.num_rods(), "read_solution: ", sample_bases.size(),
+          " sample bases for ", a.num_rods(), " rods");
   RobotSolution s;
   s.inputs = a.inputs(x);
   for (size_t p = 0; p < a.model().platforms().size(); ++p)
@@ -114,7 +128,7 @@ RobotSolution read_solution(const RobotAssembly& a, const VecX& x, int centerlin
     r.tip_moment = t.moment;
     r.axial_force = b.force.dot(b.rotation.col(2));
     r.min_axial_stretch = std::numeric_limits<double>::infinity();
-    for (const RodState& st : rod.sample(x, v, std::max(2, centerline_points))) {  // s = 0 .. L
+    for (const RodState& st : rod.sample(x, v, sample_bases[i])) {  // s = 0 .. L
       r.centerline.push_back(st.position);
       r.min_axial_stretch = std::min(r.min_axial_stretch, axial_stretch(st));
     }
@@ -145,6 +159,7 @@ bool reject_inadmissible(RobotSolution& s) {
 
 // ---------------------------------------------------------------------------------------------------
 struct ForwardKinematics::Solvers {
+  std::vector<std::vector<BasisDerivatives>> sample_bases;  // read_solution
   std::unique_ptr<NewtonSolver> newton;
   std::unique_ptr<IpoptSolver> ipopt;
   kinematics::PathPredictor predictor;  // start point along a path of inputs
@@ -156,6 +171,7 @@ ForwardKinematics::ForwardKinematics(std::shared_ptr<const RobotModel> model,
       options_(options),
       solvers_(std::make_shared<Solvers>()) {
   x_ = assembly_.initial_guess();
+  solvers_->sample_bases = sample_bases(assembly_, options_.centerline_points);
 }
 
 SolveSummary ForwardKinematics::solve_once(VecX& x, int max_jacobian_evaluations) {
@@ -243,7 +259,7 @@ RobotSolution ForwardKinematics::solve(const VecX& inputs) {
   summary.jacobian_evaluations = jacobians;
   summary.wall_time_seconds = seconds_since(start);
   mark_non_finite(x, summary);
-  RobotSolution out = read_solution(assembly_, x.allFinite() ? x : x_, options_.centerline_points);
+  RobotSolution out = read_solution(assembly_, x.allFinite() ? x : x_, solvers_->sample_bases);
   out.summary = summary;
   if (reject_inadmissible(out)) {
     x_ = x;
@@ -297,6 +313,7 @@ MatX ForwardKinematics::compliance(int platform) const {
 
 // ---------------------------------------------------------------------------------------------------
 struct InverseKinematics::Solvers {
+  std::vector<std::vector<BasisDerivatives>> sample_bases;  // read_solution
   Problem square;     // targets as equations, inputs free without bounds (Newton)
   Problem optimised;  // + bounds and the input-distance objective (Ipopt)
   Problem fk;         // check_stability: the FK system at the solution (target rows off, inputs fixed)
@@ -370,6 +387,7 @@ InverseKinematics::InverseKinematics(std::shared_ptr<const RobotModel> model,
   opt.fix_variable(solvers_->reference, m.default_input_values());
   opt.add_objective_term(std::make_shared<kinematics::InputDistance>(inputs, solvers_->reference, scales));
   x_ = solvers_->square.initial_values();
+  solvers_->sample_bases = sample_bases(assembly_, options_.centerline_points);
   if (reduced_)  // validates the IK options
     solvers_->reduced =
         std::make_unique<kinematics::ReducedIk>(assembly_, solvers_->square, target_variables_, options);
@@ -446,7 +464,7 @@ RobotSolution InverseKinematics::solve(const std::vector<Pose>& target_poses, co
   summary.jacobian_evaluations = jacobians;
   summary.wall_time_seconds = seconds_since(start);
   mark_non_finite(x, summary);
-  RobotSolution out = read_solution(assembly_, x.allFinite() ? x : x_, options_.centerline_points);
+  RobotSolution out = read_solution(assembly_, x.allFinite() ? x : x_, solvers_->sample_bases);
   out.summary = summary;
   if (reject_inadmissible(out)) {
     x_ = x;

@@ -243,8 +243,8 @@ RodVariables CollocationRod::add_to_problem(Problem& problem, const RodEndOption
       auto kernel = [c](const auto& z, auto* r) { mixed_field(z, c, r); };
       if (!field_pattern) field_pattern = detect_kernel_pattern<24, 12>(kernel);
       problem.add_residual_block(make_point_block<24, 12>("rod.mixed_field", name + "@u=" + std::to_string(u),
-                                                          variables_of(b, true), cp, b, kMixedPoint, 23, kernel,
-                                                          *field_pattern));
+                                                          variables_of(b, true), cp, b, kMixedPoint, 23,
+                                                          kernel, *field_pattern));
     }
     for (int j = 1; j + 1 < n; ++j) {
       const PointBasis b = basis_at(tau[j], 0, false);
@@ -322,9 +322,15 @@ double CollocationRod::length(const VecX& x, const RodVariables& vars) const {
 RodState CollocationRod::state_at(const VecX& x, const RodVariables& vars, double s) const {
   const double L = length(x, vars);
   const double u = checked_arc_length(s, L, model_.name) / L;
-  const BasisDerivatives d = basis_derivatives(*knots_, u, 1);
+  return state_with_basis(x, vars, s, basis_derivatives(*knots_, u, 1));
+}
+
+RodState CollocationRod::state_with_basis(const VecX& x, const RodVariables& vars, double s,
+                                          const BasisDerivatives& d) const {
+  const double L = length(x, vars);
   const int cp = control_point_size();
-  VecX value = VecX::Zero(cp), du = VecX::Zero(cp);
+  using ControlPoint = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 13, 1>;  // 7 or 13 values, no heap
+  ControlPoint value = ControlPoint::Zero(cp), du = ControlPoint::Zero(cp);
   for (int i = 0; i <= discretization_.degree; ++i) {
     const auto c = x.segment(vars.control_point_offset + (d.first + i) * cp, cp);
     value += d.values(0, i) * c;
@@ -352,11 +358,28 @@ RodState CollocationRod::state_at(const VecX& x, const RodVariables& vars, doubl
 }
 
 std::vector<RodState> CollocationRod::sample(const VecX& x, const RodVariables& vars, int num_points) const {
+  return sample(x, vars, sample_basis(num_points));
+}
+
+std::vector<BasisDerivatives> CollocationRod::sample_basis(int num_points) const {
+  require(num_points >= 2, "sample: need at least 2 points, got ", num_points);
+  std::vector<BasisDerivatives> basis;
+  basis.reserve(num_points);
+  for (int i = 0; i < num_points; ++i)
+    basis.push_back(basis_derivatives(*knots_, static_cast<double>(i) / (num_points - 1), 1));
+  return basis;
+}
+
+std::vector<RodState> CollocationRod::sample(const VecX& x, const RodVariables& vars,
+                                             const std::vector<BasisDerivatives>& basis) const {
+  const int num_points = static_cast<int>(basis.size());
   require(num_points >= 2, "sample: need at least 2 points, got ", num_points);
   const double L = length(x, vars);
+  require(std::isfinite(L) && L > 0.0, "rod '", model_.name, "': length ", L, " is not positive");
   std::vector<RodState> out;
   out.reserve(num_points);
-  for (int i = 0; i < num_points; ++i) out.push_back(state_at(x, vars, L * i / (num_points - 1)));
+  for (int i = 0; i < num_points; ++i)
+    out.push_back(state_with_basis(x, vars, L * i / (num_points - 1), basis[i]));
   return out;
 }
 

@@ -121,7 +121,8 @@ std::string collapse_of(const CollocationRod& rod, const VecX& x, const RodVaria
 SolveSummary solve_at(const CollocationRod& rod, const RodSolveOptions& options, double load_factor, VecX& x,
                       RodVariables& vars) {
   Problem problem;
-  vars = rod.add_to_problem(problem, {}, load_factor);
+  // One variable group: Newton factors the rod's band directly (NewtonLinearSolver::Auto).
+  vars = rod.add_to_problem(problem, {}, load_factor, false, 0);
   if (x.size() != problem.num_variables()) x = problem.initial_values();
   if (options.solver == SolverKind::Newton) {
     NewtonOptions o;

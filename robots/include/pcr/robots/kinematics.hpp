@@ -19,8 +19,8 @@
 #include <vector>
 
 #include "pcr/robots/robot_assembly.hpp"
-#include "pcr/solve/newton_solver.hpp"
 #include "pcr/rods/rod_solve.hpp"
+#include "pcr/solve/newton_solver.hpp"
 #include "pcr/solve/solve_summary.hpp"
 
 namespace pcr {
@@ -190,5 +190,11 @@ class InverseKinematics {
 
 /// Results (poses, rods, wrenches) read from the assembly's variables x.
 RobotSolution read_solution(const RobotAssembly& assembly, const VecX& x, int centerline_points);
+/// The same with each rod's sample bases computed once (CollocationRod::sample_basis, one entry per
+/// rod with max(2, centerline_points) points), for many solutions of one assembly.
+RobotSolution read_solution(const RobotAssembly& assembly, const VecX& x,
+                            const std::vector<std::vector<BasisDerivatives>>& sample_bases);
+/// sample_bases for read_solution.
+std::vector<std::vector<BasisDerivatives>> sample_bases(const RobotAssembly& assembly, int centerline_points);
 
 }  // namespace pcr

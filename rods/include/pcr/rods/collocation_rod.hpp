@@ -16,6 +16,7 @@
 
 #include "pcr/rods/rod_model.hpp"
 #include "pcr/solve/problem.hpp"
+#include "pcr/splines/basis.hpp"
 #include "pcr/splines/knot_vector.hpp"
 
 namespace pcr {
@@ -37,8 +38,8 @@ const char* to_string(MixedPoints points);
 
 struct RodDiscretization {
   RodFormulation formulation = RodFormulation::Mixed;
-  int degree = 4;    ///< polynomial degree p >= 2
-  int elements = 4;  ///< number of equal knot spans >= 1
+  int degree = 4;                                     ///< polynomial degree p >= 2
+  int elements = 4;                                   ///< number of equal knot spans >= 1
   MixedPoints mixed_points = MixedPoints::Midpoints;  ///< mixed form only
 };
 
@@ -110,6 +111,12 @@ class CollocationRod {
   RodState state_at(const VecX& x, const RodVariables& vars, double s) const;
   /// States at num_points equally spaced arc lengths from 0 to L.
   std::vector<RodState> sample(const VecX& x, const RodVariables& vars, int num_points) const;
+  /// Basis values and first derivatives at num_points equally spaced u = s / L in [0, 1] (they do not
+  /// depend on L): for sampling many states of one rod, e.g. the results along a path.
+  std::vector<BasisDerivatives> sample_basis(int num_points) const;
+  /// sample() with the bases of sample_basis(num_points).
+  std::vector<RodState> sample(const VecX& x, const RodVariables& vars,
+                               const std::vector<BasisDerivatives>& basis) const;
   /// Rod length in x.
   double length(const VecX& x, const RodVariables& vars) const;
 
@@ -120,6 +127,10 @@ class CollocationRod {
   double moment_scale() const { return moment_scale_; }
 
  private:
+  /// state_at with the basis at u = s / L.
+  RodState state_with_basis(const VecX& x, const RodVariables& vars, double s,
+                            const BasisDerivatives& d) const;
+
   RodModel model_;
   RodDiscretization discretization_;
   std::shared_ptr<const KnotVector> knots_;
