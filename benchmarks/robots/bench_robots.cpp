@@ -81,19 +81,10 @@ void print_operation_costs(const InverseKinematics& ik) {
   Eigen::SparseMatrix<double, Eigen::RowMajor> J;
   problem.evaluate_residuals_and_jacobian(x, c, J);
   const FreeJacobian free = free_jacobian(problem, J);
-  std::vector<int> groups;
-  for (int column : free.columns) {
-    int group = -1;
-    for (int v = 0; v < problem.num_variable_blocks(); ++v) {
-      const VariableBlock& b = problem.variable(v);
-      if (column >= b.offset && column < b.offset + b.size) group = b.group;
-    }
-    groups.push_back(group);
-  }
   SparseLu lu;
   lu.compute(free.matrix);
   BorderedBlockLu blocks;
-  if (!blocks.analyze_pattern(free.matrix, groups) || !blocks.factorize(free.matrix)) {
+  if (!blocks.analyze_pattern(free.matrix, free.groups) || !blocks.factorize(free.matrix)) {
     std::printf("  structured LU failed: %s\n", blocks.error_message().c_str());
     return;
   }

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
 namespace pcr {
 
@@ -130,7 +129,6 @@ bool BorderedBlockLu::analyze_pattern(const Eigen::SparseMatrix<double>& A,
     for (int c : columns[g]) group_of_column[c] = static_cast<int>(groups_.size());
     groups_.push_back(std::move(group));
   }
-  for (int c : border_columns_) group_of_column[c] = -1;
 
   // Where each nonzero goes.
   slots_.reserve(A.nonZeros());
@@ -160,7 +158,6 @@ bool BorderedBlockLu::analyze_pattern(const Eigen::SparseMatrix<double>& A,
   for (size_t g = 0; g < groups_.size(); ++g)
     for (int k = 0; k < nb; ++k)
       if (coupled[g][k]) groups_[g].coupled_border.push_back(k);
-  D_ = MatX::Zero(nb, nb);
   S_ = MatX::Zero(nb, nb);
   border_rhs_ = VecX::Zero(nb);
   border_solution_ = VecX::Zero(nb);
@@ -175,12 +172,9 @@ bool BorderedBlockLu::factorize(const Eigen::SparseMatrix<double>& A) {
     error_ = "BorderedBlockLu: factorize before analyze_pattern or with another pattern";
     return false;
   }
-  for (Group& g : groups_) {
-    g.band.set_zero();
-    g.B.setZero();
-    g.C.setZero();
-  }
-  D_.setZero();
+  // B_g, C_g and W_g keep their zeros outside the pattern (only the factorisation writes outside it).
+  for (Group& g : groups_) g.band.set_zero();
+  S_.setZero();
   const double* values = A.valuePtr();
   for (size_t p = 0; p < slots_.size(); ++p) {
     const Slot& s = slots_[p];
@@ -188,17 +182,15 @@ bool BorderedBlockLu::factorize(const Eigen::SparseMatrix<double>& A) {
       case kBand: groups_[s.group].band.data()[s.index] = values[p]; break;
       case kB: groups_[s.group].B.data()[s.index] = values[p]; break;
       case kC: groups_[s.group].C.data()[s.index] = values[p]; break;
-      default: D_.data()[s.index] = values[p]; break;
+      default: S_.data()[s.index] = values[p]; break;
     }
   }
-  S_ = D_;
   for (size_t g = 0; g < groups_.size(); ++g) {
     Group& group = groups_[g];
     if (!group.band.factorize()) {
       error_ = "BorderedBlockLu: diagonal block " + std::to_string(g) + " is singular";
       return false;
     }
-    group.W.setZero();
     for (int k : group.coupled_border) {
       group.W.col(k) = group.B.col(k);
       group.band.solve_in_place(group.W.col(k).data());

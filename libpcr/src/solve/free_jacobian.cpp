@@ -20,6 +20,7 @@ FreeJacobian free_jacobian(const Problem& problem, const Eigen::SparseMatrix<dou
     for (int k = 0; k < b.size; ++k) {
       position[b.offset + k] = static_cast<int>(out.columns.size());
       out.columns.push_back(b.offset + k);
+      out.groups.push_back(b.group);
     }
   }
   std::vector<Eigen::Triplet<double>> entries;

@@ -32,9 +32,6 @@ class BandLu {
   /// Sign of det A (+1 / -1) after a successful factorize().
   int determinant_sign() const;
 
-  int size() const { return n_; }
-  int lower_bandwidth() const { return kl_; }
-  int upper_bandwidth() const { return ku_; }
   /// Nonzero entries of the factors within their actual extents (L without the unit diagonal).
   long factor_nonzeros() const;
 

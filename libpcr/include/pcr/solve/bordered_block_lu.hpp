@@ -68,7 +68,7 @@ class BorderedBlockLu {
   };
   std::vector<Group> groups_;
   std::vector<int> border_rows_, border_columns_;
-  MatX D_, S_;
+  MatX S_;  // the border block D, then D - sum_g C_g W_g
   Eigen::PartialPivLU<MatX> schur_;
   std::vector<Slot> slots_;  // per nonzero of A (CSC order)
   long nonzeros_ = 0;

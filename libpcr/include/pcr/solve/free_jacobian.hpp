@@ -13,11 +13,13 @@ namespace pcr {
 struct FreeJacobian {
   Eigen::SparseMatrix<double> matrix;  ///< active rows x free columns, column-major (for sparse LU)
   std::vector<int> columns;            ///< global variable index of each free column
+  std::vector<int> groups;             ///< VariableBlock::group of each free column (BorderedBlockLu)
 };
 
 /// dc/dx_free at x (all active rows; fixed variables are left out).
 FreeJacobian free_jacobian(const Problem& problem, const VecX& x);
-/// The free columns of a Jacobian J of the problem already evaluated (Problem::evaluate_residuals_and_jacobian).
+/// The free columns of a Jacobian J of the problem already evaluated
+/// (Problem::evaluate_residuals_and_jacobian).
 FreeJacobian free_jacobian(const Problem& problem, const Eigen::SparseMatrix<double, Eigen::RowMajor>& J);
 
 /// Sign of det(dc/dx_free) at x: +1 or -1, and 0 when the problem is not square or the sparse LU finds
