@@ -37,6 +37,7 @@ struct Mesh {
   MixedPoints points;
   bool sparse_lu = false;    // baseline: the general sparse LU instead of the default structured one
   double tolerance = 1e-10;  // Newton tolerance (KinematicsOptions; 1e-10 the default)
+  RodFormulation formulation = RodFormulation::Mixed;
 };
 
 std::string settings_of(const Mesh& mesh) {
@@ -50,20 +51,24 @@ std::string settings_of(const Mesh& mesh) {
 }
 
 std::string method_of(const Mesh& mesh) {
-  const std::string base = mesh.points == MixedPoints::Midpoints ? "collocation-mixed-newton"
-                                                                 : "collocation-mixed-greville-newton";
+  const std::string base = mesh.formulation == RodFormulation::Condensed ? "collocation-condensed-newton"
+                           : mesh.points == MixedPoints::Midpoints       ? "collocation-mixed-newton"
+                                                                   : "collocation-mixed-greville-newton";
   return mesh.sparse_lu ? base + "-sparse-lu" : base;
 }
 
 const char* label_of(const Mesh& mesh) {
   if (mesh.sparse_lu) return "sparse LU";
+  if (mesh.formulation == RodFormulation::Condensed) return "condensed";
   return to_string(mesh.points);
 }
 
 KinematicsOptions options(int degree, int elements, double tolerance = 1e-10,
-                          MixedPoints points = MixedPoints::Midpoints, bool sparse_lu = false) {
+                          MixedPoints points = MixedPoints::Midpoints, bool sparse_lu = false,
+                          RodFormulation formulation = RodFormulation::Mixed) {
   KinematicsOptions o;
-  o.assembly.discretization = {RodFormulation::Mixed, degree, elements, points};
+  o.assembly.discretization = {formulation, degree, elements, points};
+  o.assembly.formulation_by_slenderness = false;  // R5a, R5b: slender rods, mixed by slenderness anyway
   o.tolerance = tolerance;
   if (sparse_lu) o.linear_solver = NewtonLinearSolver::Sparse;
   return o;
@@ -174,12 +179,16 @@ int main(int argc, char** argv) {
 
   // R5b teleoperation: reference inputs along the path at 32 elements, then timed warm solves.
   const std::vector<Pose> path = r5b_path();
-  for (const Mesh& mesh : {Mesh{p, 8, mid}, Mesh{5, 8, mid}, Mesh{p, 16, mid}}) {
+  const RodFormulation condensed = RodFormulation::Condensed;
+  for (const Mesh& mesh :
+       {Mesh{p, 8, mid}, Mesh{5, 8, mid}, Mesh{p, 16, mid}, Mesh{p, 8, mid, false, 1e-10, condensed},
+        Mesh{5, 16, mid, false, 1e-10, condensed}}) {
     // size of the square IK system (structural zeros of the blocks left out)
-    InverseKinematics ik(r5b, {platform_target()}, options(mesh.degree, mesh.elements));
+    InverseKinematics ik(r5b, {platform_target()},
+                         options(mesh.degree, mesh.elements, 1e-10, mesh.points, false, mesh.formulation));
     const Problem& problem = ik.assembly().problem();
-    std::printf("R5b IK %s: %d rows, %d Jacobian nonzeros\n", settings_of(mesh).c_str(), problem.num_rows(),
-                problem.jacobian_nonzeros());
+    std::printf("R5b IK %s %s: %d rows, %d Jacobian nonzeros\n", settings_of(mesh).c_str(),
+                to_string(mesh.formulation), problem.num_rows(), problem.jacobian_nonzeros());
     if (ik.solve({path[0]}).summary.converged()) print_operation_costs(ik);
   }
   std::vector<VecX> reference;
@@ -210,10 +219,19 @@ int main(int argc, char** argv) {
       {p, 8, mid, false, 1e-6},
       {p, 8, mid, true, 1e-6},
       {5, 16, mid, false, 1e-6},
-      {5, 16, mid, true, 1e-6}};
+      {5, 16, mid, true, 1e-6},
+      // the condensed form (rods without distributed loads): 7 instead of 13 unknowns per control point
+      {p, 8, mid, false, 1e-10, condensed},
+      {p, 16, mid, false, 1e-10, condensed},
+      {p, 8, mid, false, 1e-6, condensed},
+      {7, 6, mid, false, 1e-6, condensed},
+      {5, 8, mid, false, 1e-6, condensed},
+      {5, 16, mid, false, 1e-6, condensed},
+      {7, 12, mid, false, 1e-6, condensed}};
   for (const Mesh& mesh : path_meshes) {
-    InverseKinematics ik(r5b, {platform_target()},
-                         options(mesh.degree, mesh.elements, mesh.tolerance, mesh.points, mesh.sparse_lu));
+    InverseKinematics ik(
+        r5b, {platform_target()},
+        options(mesh.degree, mesh.elements, mesh.tolerance, mesh.points, mesh.sparse_lu, mesh.formulation));
     ik.solve({path[0]});  // start of the path (cold), not timed
     std::vector<double> times;
     double error = 0;

@@ -75,8 +75,8 @@ SolveArguments parse_solve_arguments(const std::string& command, int argc, const
       } else if (arg == "--elements") {
         a.elements = parse_count(value, arg, 1);
       } else if (arg == "--formulation") {
-        if (value != "auto" && value != "mixed" && value != "primal")
-          throw UsageError("--formulation " + value + ": expected auto, mixed or primal");
+        if (value != "auto" && value != "mixed" && value != "primal" && value != "condensed")
+          throw UsageError("--formulation " + value + ": expected auto, mixed, condensed or primal");
         a.formulation = value;
       } else if (arg == "--mixed-points") {
         if (value != "midpoints" && value != "greville")
@@ -134,8 +134,10 @@ void print_solve_usage(std::ostream& out, const std::string& command) {
         << "                     elastic energy of all rods\n"
         << "  --max-stress PA    limit on every rod's outer-fibre stress |N|/A + |M_perp| c/I [Pa]\n";
   out << "options:\n"
-      << "  --degree P --elements E --formulation auto|mixed|primal   discretisation of rods without model\n"
-      << "                     hints (auto, the default: primal only for thick rods, d/L >= 1/4)\n"
+      << "  --degree P --elements E --formulation auto|mixed|condensed|primal   discretisation of rods\n"
+      << "                     without model hints (auto, the default: primal only for thick rods,\n"
+      << "                     d/L >= 1/4; mixed rods without distributed loads condensed: n, m\n"
+      << "                     eliminated, the same solution; condensed refuses loaded rods)\n"
       << "  --mixed-points midpoints|greville   where the mixed form collocates its field equations\n"
       << "                     (default midpoints; greville: the published scheme, README)\n"
       << "  --tolerance T      max-abs of the dimensionless residuals (default 1e-10); a looser T saves\n"

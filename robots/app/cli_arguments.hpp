@@ -29,7 +29,7 @@ struct SolveArguments {
   std::vector<NamedArgument> targets;  ///< --target and --orientation-only, in the order given
   std::string solver;                  ///< "", "newton" or "ipopt"
   int degree = 0, elements = 0;        ///< 0 = not given
-  std::string formulation;             ///< "", "auto", "mixed" or "primal"
+  std::string formulation;             ///< "", "auto", "mixed", "condensed" or "primal"
   std::string mixed_points;            ///< "", "midpoints" or "greville"
   std::string objective;               ///< ik: "", "distance", "effort" or "energy"
   double max_stress = 0.0;             ///< ik: rod stress limit [Pa], 0 = none

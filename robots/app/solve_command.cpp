@@ -53,7 +53,11 @@ pcr::KinematicsOptions kinematics_options(const SolveArguments& args) {
   if (args.elements > 0) d.elements = args.elements;
   if (args.formulation == "primal") d.formulation = pcr::RodFormulation::Primal;
   if (args.formulation == "mixed") d.formulation = pcr::RodFormulation::Mixed;
-  if (args.formulation == "primal" || args.formulation == "mixed") options.assembly.formulation_by_slenderness = false;
+  if (args.formulation == "condensed") d.formulation = pcr::RodFormulation::Condensed;
+  if (args.formulation == "primal" || args.formulation == "mixed" || args.formulation == "condensed") {
+    options.assembly.formulation_by_slenderness = false;
+    options.assembly.condense_load_free_rods = false;  // exactly the formulation asked for
+  }
   if (args.mixed_points == "greville") d.mixed_points = pcr::MixedPoints::Greville;
   if (args.objective == "effort") options.ik.objective = pcr::IkObjective::ActuationEffort;
   if (args.objective == "energy") options.ik.objective = pcr::IkObjective::ElasticEnergy;

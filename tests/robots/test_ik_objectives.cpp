@@ -204,24 +204,30 @@ BOOST_AUTO_TEST_CASE(objective_and_stress_values_match_independent_computations)
 }
 
 BOOST_AUTO_TEST_CASE(objective_and_stress_gradients_match_finite_differences) {
-  // Mixed rods (analytic chain rule) on R5a and primal rods (local central differences) on the planar
-  // robot. Central differences with h = 1e-6 (1 + |x|): truncation ~1e-12, round-off ~1e-16 f / h
-  // ~1e-10 relative; tolerance 1e-6 of the gradient's max-abs.
-  for (const bool primal : {false, true}) {
+  // Mixed rods (analytic chain rule) on R5a, condensed rods (analytic) on R5b and primal rods (local
+  // central differences) on the planar robot. Central differences with h = 1e-6 (1 + |x|): truncation
+  // ~1e-12, round-off ~1e-16 f / h ~1e-10 relative; tolerance 1e-6 of the gradient's max-abs.
+  for (const RodFormulation formulation :
+       {RodFormulation::Mixed, RodFormulation::Condensed, RodFormulation::Primal}) {
+    const bool primal = formulation == RodFormulation::Primal;
     KinematicsOptions o;
     // Primal rods lock at R5a's slenderness (FK does not converge); 1 cm rods on the planar robot.
+    o.assembly.discretization.formulation = formulation;
     if (primal) o.assembly.discretization = RodDiscretization{RodFormulation::Primal, 5, 8};
     o.assembly.formulation_by_slenderness = false;
-    const auto model = primal ? planar_with_radius(0.01) : load("stewart_gough");
+    const auto model = primal                                     ? planar_with_radius(0.01)
+                       : formulation == RodFormulation::Condensed ? load("stewart_gough_teleop")
+                                                                  : load("stewart_gough");
     ForwardKinematics fk(model, o);
     BOOST_REQUIRE(fk.solve(moved_inputs(*model, 0.05)).summary.converged());
     const RobotAssembly& a = fk.assembly();
+    BOOST_TEST((a.rod(0).discretization().formulation == formulation));
     const VecX x = fk.state();
     auto check = [&](const std::string& what, const VecX& analytic, const VecX& numeric) {
       const double scale = analytic.cwiseAbs().maxCoeff();
       BOOST_TEST(scale > 0.0);
       BOOST_TEST((analytic - numeric).cwiseAbs().maxCoeff() <= 1e-6 * scale,
-                 what << (primal ? " (primal)" : " (mixed)") << ": error "
+                 what << " (" << to_string(formulation) << "): error "
                       << (analytic - numeric).cwiseAbs().maxCoeff() << " of " << scale);
     };
     VecX g;
@@ -502,10 +508,19 @@ BOOST_AUTO_TEST_CASE(formulation_is_chosen_by_slenderness_unless_given) {
   BOOST_TEST(gyration_ratio(slender->rods()[0]) == 2.5e-4 / 0.5, boost::test_tools::tolerance(1e-12));
   for (RodFormulation f : formulations(slender, {})) BOOST_TEST((f == RodFormulation::Mixed));
   for (RodFormulation f : formulations(thick, {})) BOOST_TEST((f == RodFormulation::Primal));
-  // Every shipped model is slender: mixed everywhere (unchanged default behaviour).
-  for (const char* name :
-       {"stewart_gough", "stewart_gough_teleop", "two_stage", "cantilever", "slider_actuated"})
+  // Every shipped model is slender: mixed, except the one without gravity (R5b), whose load-free
+  // rods are condensed (AssemblyOptions::condense_load_free_rods), unless that is switched off.
+  for (const char* name : {"stewart_gough", "two_stage", "cantilever", "slider_actuated"})
     for (RodFormulation f : formulations(load(name), {})) BOOST_TEST((f == RodFormulation::Mixed), name);
+  const auto teleop = load("stewart_gough_teleop");
+  BOOST_TEST(teleop->gravity().isZero(0.0));
+  for (RodFormulation f : formulations(teleop, {})) BOOST_TEST((f == RodFormulation::Condensed));
+  AssemblyOptions keep_mixed;
+  keep_mixed.condense_load_free_rods = false;
+  for (RodFormulation f : formulations(teleop, keep_mixed)) BOOST_TEST((f == RodFormulation::Mixed));
+  AssemblyOptions greville;  // the condensed form is the midpoint scheme only
+  greville.discretization.mixed_points = MixedPoints::Greville;
+  for (RodFormulation f : formulations(teleop, greville)) BOOST_TEST((f == RodFormulation::Mixed));
   // Options switch the choice off.
   AssemblyOptions explicit_primal;
   explicit_primal.formulation_by_slenderness = false;
@@ -570,9 +585,19 @@ BOOST_AUTO_TEST_CASE(cli_objective_and_stress_options) {
   const Run bad_stress = run_pcr(ik + " --max-stress -5");
   BOOST_TEST(bad_stress.exit_code == 2);
   BOOST_TEST(contains(bad_stress.err, "--max-stress -5"), bad_stress.err);
+  // The condensed form on R5a's gravity-loaded rods: bad input (exit code 2), naming the rod and the
+  // formulation that takes it; on R5b's load-free rods it solves.
+  const Run loaded = run_pcr(ik + " --formulation condensed");
+  BOOST_TEST(loaded.exit_code == 2);
+  BOOST_TEST(contains(loaded.err, "condensed formulation needs a rod without distributed loads"), loaded.err);
+  BOOST_TEST(contains(loaded.err, "use the mixed formulation"), loaded.err);
+  const Run teleop =
+      run_pcr("fk '" + model_path("stewart_gough_teleop") + "' --formulation condensed --json");
+  BOOST_TEST(teleop.exit_code == 0, teleop.err);
+  BOOST_TEST(contains(teleop.out, "\"status\": \"converged\""), teleop.out);
   const Run help = run_pcr("ik --help");
   BOOST_TEST(contains(help.out, "--objective distance|effort|energy"));
-  BOOST_TEST(contains(help.out, "--formulation auto|mixed|primal"));
+  BOOST_TEST(contains(help.out, "--formulation auto|mixed|condensed|primal"));
 }
 
 BOOST_AUTO_TEST_CASE(square_target_gives_the_newton_inputs_whatever_the_objective) {

@@ -306,6 +306,43 @@ BOOST_AUTO_TEST_CASE(structured_and_sparse_lu_give_the_same_kinematics) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(condensed_and_mixed_rods_give_the_same_kinematics) {
+  // R5b's rods carry no distributed load, so the default assembly condenses them; the condensed form
+  // is the mixed midpoint scheme with n, m eliminated (test_collocation_rod), so FK and warm-started
+  // IK must agree with the mixed rods up to the solver tolerance: both solve to 1e-12 (dimensionless),
+  // which moves positions by ~1e-12 L0 times cond; 1e-9 m, and 1e-6 relative on the rod wrenches.
+  const auto teleop = load("stewart_gough_teleop");
+  KinematicsOptions condensed = tight(), mixed = tight();
+  mixed.assembly.condense_load_free_rods = false;
+  ForwardKinematics fc(teleop, condensed), fm(teleop, mixed);
+  BOOST_TEST((fc.assembly().rod(0).discretization().formulation == RodFormulation::Condensed));
+  BOOST_TEST((fm.assembly().rod(0).discretization().formulation == RodFormulation::Mixed));
+  const VecX u = moved_inputs(*teleop, 0.02);
+  const RobotSolution sc = fc.solve(u), sm = fm.solve(u);
+  BOOST_TEST_REQUIRE(sc.summary.converged(), sc.summary.brief_report());
+  BOOST_TEST_REQUIRE(sm.summary.converged(), sm.summary.brief_report());
+  BOOST_TEST((sc.platforms[0].position - sm.platforms[0].position).norm() < 1e-9);
+  BOOST_TEST(rotation_angle_between(sc.platforms[0].rotation(), sm.platforms[0].rotation()) < 1e-9);
+  for (size_t r = 0; r < sc.rods.size(); ++r) {
+    const RodResult &a = sc.rods[r], &b = sm.rods[r];
+    BOOST_TEST((a.base_force - b.base_force).norm() <= 1e-6 * (1.0 + b.base_force.norm()), "rod " << r);
+    BOOST_TEST((a.tip_moment - b.tip_moment).norm() <= 1e-6 * (1.0 + b.tip_moment.norm()), "rod " << r);
+    for (size_t k = 0; k < a.centerline.size(); ++k)
+      BOOST_TEST((a.centerline[k] - b.centerline[k]).norm() < 1e-9, "rod " << r << " point " << k);
+  }
+  LinkTarget target;
+  target.link = "platform";
+  InverseKinematics ic(teleop, {target}, condensed), im(teleop, {target}, mixed);
+  for (int i = 0; i < 10; ++i) {
+    Pose pose;
+    pose.position = Vec3(0.0, 0.02 + 0.001 * i, 0.48 + 0.001 * i);
+    const RobotSolution a = ic.solve({pose}), b = im.solve({pose});
+    BOOST_TEST_REQUIRE(a.summary.converged(), a.summary.brief_report());
+    BOOST_TEST_REQUIRE(b.summary.converged(), b.summary.brief_report());
+    BOOST_TEST((a.inputs - b.inputs).lpNorm<Eigen::Infinity>() < 1e-9, "step " << i);
+  }
+}
+
 BOOST_AUTO_TEST_CASE(summary_counts_the_fresh_jacobians_of_every_attempt) {
   const auto model = load("stewart_gough");
   ForwardKinematics fk(model, tight());

@@ -36,6 +36,14 @@ RodModel loaded_rod(RodEndKind base, RodEndKind tip) {
   return m;
 }
 
+// loaded_rod without distributed loads (gravity, moment per length): what the condensed form takes.
+RodModel end_loaded_rod(RodEndKind base, RodEndKind tip) {
+  RodModel m = loaded_rod(base, tip);
+  m.loads.gravity.setZero();
+  m.loads.moment_per_length.setZero();
+  return m;
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(every_block_jacobian_matches_finite_differences) {
@@ -48,13 +56,15 @@ BOOST_AUTO_TEST_CASE(every_block_jacobian_matches_finite_differences) {
   std::normal_distribution<double> noise(0.0, 0.05);
   const RodDiscretization discretizations[] = {{RodFormulation::Primal, 3, 3},
                                                {RodFormulation::Mixed, 3, 3, MixedPoints::Midpoints},
-                                               {RodFormulation::Mixed, 3, 3, MixedPoints::Greville}};
+                                               {RodFormulation::Mixed, 3, 3, MixedPoints::Greville},
+                                               {RodFormulation::Condensed, 3, 3}};
   for (const RodDiscretization& d : discretizations) {
     const RodFormulation f = d.formulation;
+    const auto model = f == RodFormulation::Condensed ? end_loaded_rod : loaded_rod;
     for (RodEndKind other : kinds) {
       for (bool clamped_base : {true, false}) {
-        RodModel m =
-            clamped_base ? loaded_rod(RodEndKind::Clamped, other) : loaded_rod(other, RodEndKind::Clamped);
+        RodModel m = clamped_base ? model(RodEndKind::Clamped, other) : model(other, RodEndKind::Clamped);
+        m.base.position = Vec3(0.05, -0.1, 0.2);  // moment point c (condensed) away from the origin
         m.intrinsic.varying = [](double s, Vec3& eps0, Vec3& kappa0) {
           eps0[0] += 1e-3 * s;
           kappa0 += Vec3(0.2 * s, -0.1 * s * s, 0.0);
@@ -67,23 +77,27 @@ BOOST_AUTO_TEST_CASE(every_block_jacobian_matches_finite_differences) {
         // Default checker tolerances 1e-6 abs + 1e-6 rel: central differences with relative step
         // 1e-6 have truncation ~1e-12 and round-off ~1e-10 on these O(1)..O(1e3) residuals.
         const JacobianCheckResult r = check_problem_jacobian(problem, x);
-        BOOST_TEST(r.passed, to_string(f) << " (" << to_string(d.mixed_points) << ") base " << to_string(m.base.kind) << " tip "
-                                          << to_string(m.tip.kind) << ": " << r.to_string());
+        BOOST_TEST(r.passed, to_string(f)
+                                 << " (" << to_string(d.mixed_points) << ") base " << to_string(m.base.kind)
+                                 << " tip " << to_string(m.tip.kind) << ": " << r.to_string());
         BOOST_TEST(r.entries_checked > 0);
       }
     }
   }
 }
 
-BOOST_AUTO_TEST_CASE(square_system_in_both_formulations) {
+BOOST_AUTO_TEST_CASE(square_system_in_every_formulation) {
   const RodDiscretization discretizations[] = {{RodFormulation::Primal, 4, 5},
                                                {RodFormulation::Mixed, 4, 5, MixedPoints::Midpoints},
-                                               {RodFormulation::Mixed, 4, 5, MixedPoints::Greville}};
+                                               {RodFormulation::Mixed, 4, 5, MixedPoints::Greville},
+                                               {RodFormulation::Condensed, 4, 5}};
   for (const RodDiscretization& d : discretizations) {
-    CollocationRod rod(loaded_rod(RodEndKind::Clamped, RodEndKind::Free), d);
+    CollocationRod rod(end_loaded_rod(RodEndKind::Clamped, RodEndKind::Free), d);
     Problem problem;
     rod.add_to_problem(problem);
-    const int unknowns = rod.num_control_points() * rod.control_point_size();
+    const int unknowns = rod.configuration_size();  // L is fixed
+    BOOST_TEST(unknowns == rod.num_control_points() * rod.control_point_size() +
+                               (d.formulation == RodFormulation::Condensed ? 6 : 0));
     BOOST_TEST(problem.num_rows() == unknowns);
     BOOST_TEST(rod.num_equations({}) == unknowns);
     BOOST_TEST(rod.num_equations({false, false}) == unknowns - 14);
@@ -119,6 +133,26 @@ BOOST_AUTO_TEST_CASE(bad_discretisation_and_model_are_rejected_with_the_value) {
   bad.base.kind = RodEndKind::Collar;
   bad.tip.kind = RodEndKind::Collar;
   BOOST_CHECK_THROW(CollocationRod(bad, {}), InputError);  // free twist gauge
+  // The condensed form integrates n' = 0, m' + p' x n = 0 in closed form: distributed loads are refused,
+  // with their values and the way out named.
+  for (bool gravity : {true, false}) {
+    RodModel loaded = good;
+    if (gravity) {
+      loaded.mass_per_length = 0.5;
+      loaded.loads.gravity = Vec3(0, 0, -9.81);
+    } else {
+      loaded.loads.moment_per_length = Vec3(0.25, 0, 0);
+    }
+    try {
+      CollocationRod rod(loaded, {RodFormulation::Condensed, 4, 4});
+      BOOST_FAIL("distributed load accepted by the condensed form");
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      BOOST_TEST(what.find("condensed") != std::string::npos, what);
+      BOOST_TEST(what.find(gravity ? "-4.905" : "0.25") != std::string::npos, what);
+      BOOST_TEST(what.find("mixed") != std::string::npos, what);
+    }
+  }
 }
 
 BOOST_AUTO_TEST_CASE(gravity_loaded_cantilever_converges_to_global_equilibrium) {
@@ -152,7 +186,8 @@ BOOST_AUTO_TEST_CASE(gravity_loaded_cantilever_converges_to_global_equilibrium) 
       if (exact)
         BOOST_TEST(error < 1e-12, label << " " << elements << " elements: relative balance error " << error);
       else
-        BOOST_TEST(error < previous / 4, label << " " << elements << " elements: relative balance error " << error);
+        BOOST_TEST(error < previous / 4,
+                   label << " " << elements << " elements: relative balance error " << error);
       previous = error;
       // The tip load itself is an end condition and holds to the solver tolerance.
       BOOST_TEST((sol.tip().force - m.tip.force).norm() < 1e-8 * total.norm());
@@ -167,11 +202,11 @@ BOOST_AUTO_TEST_CASE(newton_and_ipopt_agree) {
   RodModel m = test::cantilever(1.0, Vec3(1e4, 1e4, 1e4), Vec3(1, 1, 0.8));
   m.tip.force = Vec3(2.0, 0.5, -0.3);
   m.tip.moment = Vec3(0.0, 0.3, 0.2);
-  for (RodFormulation f : {RodFormulation::Primal, RodFormulation::Mixed}) {
+  for (RodFormulation f : {RodFormulation::Primal, RodFormulation::Mixed, RodFormulation::Condensed}) {
     RodSolveOptions o;
     o.discretization = {f, 4, 6};
     // Residual tolerances near each formulation's round-off floor (primal: eps K_SE |N''| ~ 1e-11).
-    o.tolerance = f == RodFormulation::Mixed ? 1e-13 : 1e-10;
+    o.tolerance = f == RodFormulation::Primal ? 1e-10 : 1e-13;
     const RodSolution newton = solve_rod(m, o);
     o.solver = SolverKind::Ipopt;
     const RodSolution ipopt = solve_rod(m, o);
@@ -183,6 +218,67 @@ BOOST_AUTO_TEST_CASE(newton_and_ipopt_agree) {
     for (double s = 0.0; s <= 1.0; s += 0.05)
       worst = std::max(worst, (newton.at(s).position - ipopt.at(s).position).norm());
     BOOST_TEST(worst < 1e-10, to_string(f) << " worst centerline difference " << worst);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(condensed_form_equals_the_mixed_midpoint_scheme) {
+  // Without distributed loads the mixed midpoint rows n' = 0 and (m + p x n)' = 0 at the n - 1
+  // midpoints make the derivatives of the splines n and m + p x n (degree p - 1, n - 1 coefficients)
+  // vanish at n - 1 points, hence everywhere: n and m + p x n are constant, which the condensed form
+  // imposes exactly; both then collocate the same constitutive rows at the same points. So a root of
+  // one system maps to a root of the other: mixed -> condensed keeps P, Q and takes n, h = m + (p - c) x n
+  // at the base; condensed -> mixed sets N_i = n, M_i = h - (P_i - c) x n (the spline h - (p - c) x n,
+  // by the partition of unity). Each solved to residual 1e-13; the mapped state's residual must be at
+  // that level too (1e-11: the mapping is exact algebra, the margin is for the residual rows' scales).
+  // (Solved independently, the two can reach different equilibria, e.g. a spherical tip.)
+  const RodEndKind kinds[] = {RodEndKind::Clamped, RodEndKind::Collar, RodEndKind::Spherical,
+                              RodEndKind::Free};
+  for (RodEndKind other : kinds) {
+    RodModel m = end_loaded_rod(RodEndKind::Clamped, other);
+    const Vec3 offset(0.3, -0.2, 0.1);  // the moment point c (the base) away from the origin
+    m.base.position += offset;
+    m.tip.position = offset + Vec3(0.05, -0.1, 0.65);  // loaded_rod's (0.1, 0.05, 0.6): no convergence
+    RodSolveOptions o;
+    o.tolerance = 1e-13;
+    o.discretization = {RodFormulation::Mixed, 4, 5, MixedPoints::Midpoints};
+    const RodSolution mixed = solve_rod(m, o);
+    o.discretization = {RodFormulation::Condensed, 4, 5};
+    const RodSolution condensed = solve_rod(m, o);
+    const std::string label = std::string("tip ") + to_string(other);
+    BOOST_REQUIRE_MESSAGE(mixed.summary.converged(), label << ": " << mixed.summary.brief_report());
+    BOOST_REQUIRE_MESSAGE(condensed.summary.converged(), label << ": " << condensed.summary.brief_report());
+    const CollocationRod& mixed_rod = *mixed.rod;
+    const CollocationRod& condensed_rod = *condensed.rod;
+    const int n = condensed_rod.num_control_points();
+    const Vec3 c = condensed_rod.moment_point();
+
+    VecX to_condensed(condensed_rod.configuration_size());
+    for (int i = 0; i < n; ++i) to_condensed.segment<7>(7 * i) = mixed.x.segment<7>(13 * i);
+    const RodState base = mixed.base();
+    to_condensed.segment<3>(7 * n) = base.force;
+    to_condensed.segment<3>(7 * n + 3) = base.moment + (base.position - c).cross(base.force);
+
+    const VecX& w = condensed.x;
+    const Vec3 force = w.segment<3>(condensed.variables.wrench_offset);
+    const Vec3 h = w.segment<3>(condensed.variables.wrench_offset + 3);
+    VecX to_mixed(mixed_rod.configuration_size());
+    for (int i = 0; i < n; ++i) {
+      const Vec3 P = w.segment<3>(7 * i);
+      to_mixed.segment<7>(13 * i) = w.segment<7>(7 * i);
+      to_mixed.segment<3>(13 * i + 7) = force;
+      to_mixed.segment<3>(13 * i + 10) = h - (P - c).cross(force);
+    }
+    const std::pair<const CollocationRod*, const VecX*> mapped[] = {{&condensed_rod, &to_condensed},
+                                                                    {&mixed_rod, &to_mixed}};
+    for (const auto& [rod, x0] : mapped) {
+      Problem problem;
+      rod->add_to_problem(problem, {}, 1.0, false, -1, x0);
+      VecX r;
+      problem.evaluate_residuals(problem.initial_values(), r);
+      BOOST_TEST(r.lpNorm<Eigen::Infinity>() < 1e-11,
+                 label << ": residual of the " << to_string(rod->discretization().formulation)
+                       << " system at the other's root: " << r.lpNorm<Eigen::Infinity>());
+    }
   }
 }
 
@@ -214,6 +310,16 @@ BOOST_AUTO_TEST_CASE(refinement_carries_the_solution_as_initial_guess) {
   const RodSolution cold5 = solve_rod(m, {{RodFormulation::Mixed, 5, 8}});
   BOOST_REQUIRE(warm5.summary.converged() && cold5.summary.converged());
   BOOST_TEST(warm5.summary.iterations < cold5.summary.iterations);
+  // Condensed form: the constant force and moment carry over with the control points.
+  o.discretization = {RodFormulation::Condensed, 3, 4};
+  const RodSolution coarse_c = solve_rod(m, o);
+  BOOST_REQUIRE(coarse_c.summary.converged());
+  const VecX guess_c = refine_solution(coarse_c, {RodFormulation::Condensed, 3, 12});
+  BOOST_TEST((guess_c.tail(6) - coarse_c.x.segment(coarse_c.variables.wrench_offset, 6)).norm() == 0.0);
+  const RodSolution warm_c = solve_rod(m, {{RodFormulation::Condensed, 3, 12}}, &guess_c);
+  const RodSolution cold_c = solve_rod(m, {{RodFormulation::Condensed, 3, 12}});
+  BOOST_REQUIRE(warm_c.summary.converged() && cold_c.summary.converged());
+  BOOST_TEST(warm_c.summary.iterations < cold_c.summary.iterations);
 }
 
 BOOST_AUTO_TEST_CASE(post_processing_rejects_s_outside_the_rod) {

@@ -14,16 +14,25 @@ namespace {
 
 RodDiscretization discretization_for(const RodElement& e, const AssemblyOptions& o) {
   RodDiscretization d = o.discretization;
-  if (o.formulation_by_slenderness) d.formulation = formulation_by_slenderness(e, o.primal_min_gyration_ratio);
-  if (!o.use_model_hints) return d;
-  if (e.formulation == RodFormulationHint::Primal) d.formulation = RodFormulation::Primal;
-  if (e.formulation == RodFormulationHint::Mixed) d.formulation = RodFormulation::Mixed;
-  if (e.degree > 0) d.degree = e.degree;
-  if (e.elements > 0) d.elements = e.elements;
+  if (o.formulation_by_slenderness)
+    d.formulation = formulation_by_slenderness(e, o.primal_min_gyration_ratio);
+  if (o.use_model_hints) {
+    if (e.formulation == RodFormulationHint::Primal) d.formulation = RodFormulation::Primal;
+    if (e.formulation == RodFormulationHint::Mixed) d.formulation = RodFormulation::Mixed;
+    if (e.degree > 0) d.degree = e.degree;
+    if (e.elements > 0) d.elements = e.elements;
+  }
+  // The condensed form is the mixed midpoint scheme with n, m eliminated (CollocationRod).
+  const bool load_free = e.rod.distributed_force().isZero(0.0) && e.rod.loads.moment_per_length.isZero(0.0);
+  if (o.condense_load_free_rods && load_free && d.formulation == RodFormulation::Mixed &&
+      d.mixed_points == MixedPoints::Midpoints)
+    d.formulation = RodFormulation::Condensed;
   return d;
 }
 
-bool attached(const RodAttachment& a) { return a.link >= 0 && a.coupling != RodEndKind::Free; }
+bool attached(const RodAttachment& a) {
+  return a.link >= 0 && a.coupling != RodEndKind::Free;
+}
 
 // Control points of an initial rod shape: cubic Hermite from the start frame to the end frame
 // (tangents L d3), orientations by normalised linear interpolation (sign-aligned).
@@ -31,7 +40,7 @@ VecX hermite_guess(const CollocationRod& rod, const Pose& start, const Pose* end
   const std::vector<double> tau = rod.knots().greville();
   const int n = rod.num_control_points(), cp = rod.control_point_size();
   const double L = rod.model().length;
-  VecX x = VecX::Zero(n * cp);
+  VecX x = VecX::Zero(rod.configuration_size());  // a condensed rod's wrench starts at zero
   const Vec3 ts = start.rotation().col(2);
   for (int i = 0; i < n; ++i) {
     const double u = tau[i];
@@ -72,7 +81,8 @@ RobotAssembly::RobotAssembly(std::shared_ptr<const RobotModel> model, const Asse
   joint_variables_.assign(m.joint_value_count(), -1);
   for (const Joint& j : m.joints())
     if (j.value_index >= 0)
-      joint_variables_[j.value_index] = problem_.add_variable_block("joint." + j.name, VecX::Constant(1, q0[j.value_index]));
+      joint_variables_[j.value_index] =
+          problem_.add_variable_block("joint." + j.name, VecX::Constant(1, q0[j.value_index]));
 
   // Rods with their couplings.
   std::vector<std::vector<assembly::PlatformRodEnd>> platform_ends(m.platforms().size());
@@ -85,14 +95,20 @@ RobotAssembly::RobotAssembly(std::shared_ptr<const RobotModel> model, const Asse
     rm.base.kind = e.start.coupling;
     rm.tip.kind = e.end.coupling;
     rm.length = e.length_actuated ? e.length_default : e.rod.length;
-    auto rod = std::make_shared<const CollocationRod>(rm, discretization_for(e, options));
     const bool start_attached = attached(e.start), end_attached = attached(e.end);
     const Pose start = start_attached ? m.attachment_pose(e.start, q0, platform0) : Pose{};
     const Pose finish = end_attached ? m.attachment_pose(e.end, q0, platform0) : Pose{};
+    // The rod's base frame at the initial configuration (the couplings hold the ends; the condensed
+    // form takes its moment unknown about this point, CollocationRod::moment_point).
+    if (start_attached) {
+      rm.base.position = start.position;
+      rm.base.orientation = start.orientation;
+    }
+    auto rod = std::make_shared<const CollocationRod>(rm, discretization_for(e, options));
     const VecX guess = start_attached ? hermite_guess(*rod, start, end_attached ? &finish : nullptr, false)
                                       : hermite_guess(*rod, finish, nullptr, true);
-    const RodVariables vars = rod->add_to_problem(problem_, {!start_attached, !end_attached}, 1.0, e.length_actuated,
-                                                  static_cast<int>(i), &guess);
+    const RodVariables vars = rod->add_to_problem(problem_, {!start_attached, !end_attached}, 1.0,
+                                                  e.length_actuated, static_cast<int>(i), &guess);
     collocation::PointConstants scales;
     scales.length_scale = rod->length_scale();
     scales.force_scale = rod->force_scale();
@@ -133,8 +149,9 @@ RobotAssembly::RobotAssembly(std::shared_ptr<const RobotModel> model, const Asse
 
   // Inputs: rod lengths and joint values; fixed at their defaults until told otherwise.
   for (const ActuationInput& in : m.inputs()) {
-    input_variables_.push_back(in.kind == ActuationInput::Kind::RodLength ? rod_variables_[in.index].length
-                                                                          : joint_variables_[m.joints()[in.index].value_index]);
+    input_variables_.push_back(in.kind == ActuationInput::Kind::RodLength
+                                   ? rod_variables_[in.index].length
+                                   : joint_variables_[m.joints()[in.index].value_index]);
   }
   fix_inputs(m.default_input_values());
   // Joints that are not inputs stay at their defaults.
@@ -145,22 +162,27 @@ RobotAssembly::RobotAssembly(std::shared_ptr<const RobotModel> model, const Asse
   int free_unknowns = 0;
   for (int v = 0; v < problem_.num_variable_blocks(); ++v)
     if (!problem_.variable_fixed(v)) free_unknowns += problem_.variable(v).size;
-  require(free_unknowns == problem_.num_rows(), "robot '", m.name(), "': the assembly has ", problem_.num_rows(),
-          " equations for ", free_unknowns, " unknowns (with inputs fixed); check the rod couplings");
+  require(free_unknowns == problem_.num_rows(), "robot '", m.name(), "': the assembly has ",
+          problem_.num_rows(), " equations for ", free_unknowns,
+          " unknowns (with inputs fixed); check the rod couplings");
 }
 
-VecX RobotAssembly::initial_guess() const { return problem_.initial_values(); }
+VecX RobotAssembly::initial_guess() const {
+  return problem_.initial_values();
+}
 
 VecX RobotAssembly::inputs(const VecX& x) const {
   VecX u(input_variables_.size());
-  for (size_t i = 0; i < input_variables_.size(); ++i) u[i] = x[problem_.variable(input_variables_[i]).offset];
+  for (size_t i = 0; i < input_variables_.size(); ++i)
+    u[i] = x[problem_.variable(input_variables_[i]).offset];
   return u;
 }
 
 void RobotAssembly::set_inputs(VecX& x, const VecX& inputs) const {
-  require(inputs.size() == static_cast<int>(input_variables_.size()), "robot '", model_->name(), "': ", inputs.size(),
-          " input values given, the model has ", input_variables_.size());
-  for (size_t i = 0; i < input_variables_.size(); ++i) x[problem_.variable(input_variables_[i]).offset] = inputs[i];
+  require(inputs.size() == static_cast<int>(input_variables_.size()), "robot '", model_->name(),
+          "': ", inputs.size(), " input values given, the model has ", input_variables_.size());
+  for (size_t i = 0; i < input_variables_.size(); ++i)
+    x[problem_.variable(input_variables_[i]).offset] = inputs[i];
 }
 
 Pose RobotAssembly::platform_pose(const VecX& x, int platform) const {
@@ -172,8 +194,8 @@ Pose RobotAssembly::platform_pose(const VecX& x, int platform) const {
 }
 
 void RobotAssembly::fix_inputs(const VecX& inputs) {
-  require(inputs.size() == static_cast<int>(input_variables_.size()), "robot '", model_->name(), "': ", inputs.size(),
-          " input values given, the model has ", input_variables_.size());
+  require(inputs.size() == static_cast<int>(input_variables_.size()), "robot '", model_->name(),
+          "': ", inputs.size(), " input values given, the model has ", input_variables_.size());
   for (size_t i = 0; i < input_variables_.size(); ++i) {
     const ActuationInput& in = model_->inputs()[i];
     require(std::isfinite(inputs[i]), "input '", in.name, "': value is not finite");
@@ -186,7 +208,8 @@ void RobotAssembly::fix_inputs(const VecX& inputs) {
 void RobotAssembly::free_inputs() {
   for (size_t i = 0; i < input_variables_.size(); ++i) {
     const ActuationInput& in = model_->inputs()[i];
-    problem_.set_variable_bounds(input_variables_[i], VecX::Constant(1, in.lower), VecX::Constant(1, in.upper));
+    problem_.set_variable_bounds(input_variables_[i], VecX::Constant(1, in.lower),
+                                 VecX::Constant(1, in.upper));
   }
 }
 

@@ -55,8 +55,43 @@ double point_functional(const CollocationRod& rod, const RodVariables& v, const 
     }
     return value;
   }
-  // Primal: n, m from the strains (state_at); central differences over the p + 1 control points whose
-  // basis functions do not vanish at u, and the length. Step 1e-6 (1 + |x_e|): truncation ~1e-12,
+  if (rod.discretization().formulation == RodFormulation::Condensed) {
+    // n = N (constant), m = H - a x N with a = p - c, p = sum b_i P_i, q = sum b_i Q_i:
+    // dphi/dH = R g_m =: dm, dphi/dN = R g_n + a x dm, dphi/dP_i = b_i (dm x N), dphi/dq as above.
+    const BasisDerivatives b = basis_derivatives(rod.knots(), u, 0);
+    const int cp = rod.control_point_size();
+    const int degree = rod.discretization().degree;
+    Quat q = Quat::Zero();
+    Vec3 p = Vec3::Zero();
+    for (int j = 0; j <= degree; ++j) {
+      const int o = v.control_point_offset + (b.first + j) * cp;
+      q += b.values(0, j) * x.segment<4>(o + kQ);
+      p += b.values(0, j) * x.segment<3>(o);
+    }
+    const Vec3 n = x.segment<3>(v.wrench_offset), arm = p - rod.moment_point();
+    const Vec3 m = x.segment<3>(v.wrench_offset + 3) - arm.cross(n);
+    Mat3 R;
+    QuatRotationJacobian dR;
+    rotation_matrix_derivatives(q, R, dR);
+    const double value = phi(R.transpose() * n, R.transpose() * m, g_n, g_m);
+    if (gradient) {
+      const Vec3 dm = R * g_m, dn = R * g_n + arm.cross(dm), dp = dm.cross(n);
+      const Mat3 D = n * g_n.transpose() + m * g_m.transpose();
+      Quat dq;
+      for (int k = 0; k < 4; ++k) dq[k] = D.cwiseProduct(dR[k]).sum();
+      for (int j = 0; j <= degree; ++j) {
+        const int o = v.control_point_offset + (b.first + j) * cp;
+        const double w = weight * b.values(0, j);
+        gradient->segment<3>(o) += w * dp;
+        gradient->segment<4>(o + kQ) += w * dq;
+      }
+      gradient->segment<3>(v.wrench_offset) += weight * dn;
+      gradient->segment<3>(v.wrench_offset + 3) += weight * dm;
+    }
+    return value;
+  }
+  // Primal: n, m from state_at; central differences over the p + 1 control points whose basis
+  // functions do not vanish at u, and the length. Step 1e-6 (1 + |x_e|): truncation ~1e-12,
   // round-off ~1e-10 relative.
   auto evaluate = [&](const VecX& xx) {
     const RodState st = rod.state_at(xx, v, u * rod.length(xx, v));

@@ -28,6 +28,10 @@ const std::vector<LocalGroup> kMixedPoint = {{0, kQ, 4, 0},  {4, kQ, 4, 1},  {8,
                                              {14, kN, 3, 1}, {17, kM, 3, 0}, {20, kM, 3, 1}};
 const std::vector<LocalGroup> kPrimalEnd = {{0, kP, 3, 0}, {3, kQ, 4, 0}, {7, kQ, 4, 1}, {11, kP, 3, 1}};
 const std::vector<LocalGroup> kMixedEnd = {{0, kP, 3, 0}, {3, kQ, 4, 0}, {7, kN, 3, 0}, {10, kM, 3, 0}};
+// Condensed form: the control point part of z (condensed_field; the wrench block is read directly).
+const std::vector<LocalGroup> kCondensedPoint = {{0, kQ, 4, 0}, {4, kQ, 4, 1}, {8, kP, 3, 1}, {11, kP, 3, 0}};
+const std::vector<LocalGroup> kCondensedEnd = {{0, kP, 3, 0}, {3, kQ, 4, 0}};
+constexpr int kWrenchSize = 6;  // [n (3), h (3)]
 
 // The constant frame and the prescribed loads of a model end (load factor and signs applied).
 struct EndData {
@@ -56,7 +60,12 @@ EndTarget<T> cast_target(const EndTarget<double>& t) {
 }  // namespace
 
 const char* to_string(RodFormulation formulation) {
-  return formulation == RodFormulation::Primal ? "primal" : "mixed";
+  switch (formulation) {
+    case RodFormulation::Primal: return "primal";
+    case RodFormulation::Mixed: return "mixed";
+    case RodFormulation::Condensed: return "condensed";
+  }
+  return "?";
 }
 
 const char* to_string(MixedPoints points) {
@@ -71,6 +80,13 @@ CollocationRod::CollocationRod(RodModel model, RodDiscretization discretization)
           discretization.degree);
   require(discretization.elements >= 1 && discretization.elements <= 100000, "rod '", model_.name,
           "': number of elements must be in [1, 100000], got ", discretization.elements);
+  if (discretization.formulation == RodFormulation::Condensed) {
+    const Vec3 f = model_.distributed_force(), l = model_.loads.moment_per_length;
+    require(f.isZero(0.0) && l.isZero(0.0), "rod '", model_.name,
+            "': the condensed formulation needs a rod without distributed loads (n, m in closed form), got "
+            "f = [",
+            f.transpose(), "] N/m, l = [", l.transpose(), "] N; use the mixed formulation");
+  }
   knots_ = std::make_shared<const KnotVector>(
       KnotVector::open_uniform(discretization.degree, discretization.elements));
   const double L = model_.length;
@@ -87,10 +103,18 @@ int CollocationRod::control_point_size() const {
   return discretization_.formulation == RodFormulation::Mixed ? 13 : 7;
 }
 
+int CollocationRod::configuration_size() const {
+  const bool condensed = discretization_.formulation == RodFormulation::Condensed;
+  return num_control_points() * control_point_size() + (condensed ? kWrenchSize : 0);
+}
+
 int CollocationRod::num_equations(const RodEndOptions& ends) const {
   const int n = num_control_points();
   const int interior = (n - 2) * control_point_size();
-  const int constitutive_ends = discretization_.formulation == RodFormulation::Mixed ? 12 : 0;
+  // Mixed (either point set): 12 (n - 1) + (n - 2) = 13 (n - 2) + 12 rows; condensed: 6 (n - 1) + (n - 2).
+  const int constitutive_ends = discretization_.formulation == RodFormulation::Mixed       ? 12
+                                : discretization_.formulation == RodFormulation::Condensed ? 6
+                                                                                           : 0;
   return interior + constitutive_ends + (ends.base ? 7 : 0) + (ends.tip ? 7 : 0);
 }
 
@@ -102,7 +126,7 @@ VecX CollocationRod::straight_configuration() const {
   const std::vector<double> tau = knots_->greville();
   const int n = num_control_points(), cp = control_point_size();
   const double L = model_.length;
-  VecX x = VecX::Zero(n * cp);
+  VecX x = VecX::Zero(configuration_size());
   for (int i = 0; i < n; ++i) {
     // Greville abscissae reproduce linear functions: sum_i N_i(u) tau_i = u, so P_i = p0 + L tau_i d3.
     const Vec3 p =
@@ -149,7 +173,7 @@ VecX CollocationRod::stress_free_configuration() const {
   require(lu.compute(collocation_matrix(*knots_, tau, 0)), "rod '", model_.name,
           "': Greville interpolation matrix is singular");
   const MatX points = lu.solve(values);
-  VecX x(n * cp);
+  VecX x = VecX::Zero(configuration_size());
   for (int i = 0; i < n; ++i) x.segment(i * cp, cp) = points.row(i).transpose();
   return x;
 }
@@ -158,10 +182,11 @@ RodVariables CollocationRod::add_to_problem(Problem& problem, const RodEndOption
                                             bool free_length, int group, const VecX* initial) const {
   const int n = num_control_points(), cp = control_point_size(), p = discretization_.degree;
   const bool mixed = discretization_.formulation == RodFormulation::Mixed;
+  const bool condensed = discretization_.formulation == RodFormulation::Condensed;
   const std::string& name = model_.name;
   const VecX init = initial ? *initial : straight_configuration();
-  require(init.size() == n * cp, "rod '", name, "': initial guess has ", init.size(), " values, expected ",
-          n * cp);
+  require(init.size() == configuration_size(), "rod '", name, "': initial guess has ", init.size(),
+          " values, expected ", configuration_size());
   require(init.allFinite(), "rod '", name, "': initial guess is not finite");
 
   RodVariables vars;
@@ -169,6 +194,11 @@ RodVariables CollocationRod::add_to_problem(Problem& problem, const RodEndOption
     vars.control_points.push_back(
         problem.add_variable_block(name + ".cp" + std::to_string(i), init.segment(i * cp, cp)));
     if (group >= 0) problem.set_variable_group(vars.control_points.back(), group);
+  }
+  if (condensed) {
+    vars.wrench = problem.add_variable_block(name + ".wrench", init.tail(kWrenchSize));
+    if (group >= 0) problem.set_variable_group(vars.wrench, group);
+    vars.wrench_offset = problem.variable(vars.wrench).offset;
   }
   vars.length = problem.add_variable_block(name + ".length", VecX::Constant(1, model_.length));
   if (group >= 0) problem.set_variable_group(vars.length, group);
@@ -217,10 +247,10 @@ RodVariables CollocationRod::add_to_problem(Problem& problem, const RodEndOption
       for (int i = 0; i <= p; ++i) b.B[k][i] = d.values(k, i);
     return b;
   };
-  auto variables_of = [&](const PointBasis& b, bool with_length) {
+  auto variables_of = [&](const PointBasis& b, std::initializer_list<VariableId> direct) {
     std::vector<VariableId> v(vars.control_points.begin() + b.first,
                               vars.control_points.begin() + b.first + b.count);
-    if (with_length) v.push_back(vars.length);
+    v.insert(v.end(), direct);
     return v;
   };
 
@@ -231,8 +261,23 @@ RodVariables CollocationRod::add_to_problem(Problem& problem, const RodEndOption
   std::optional<KernelPattern<19, 7>> primal_interior_pattern;
   std::optional<KernelPattern<24, 6>> mixed_constitutive_pattern;
   const std::vector<double> tau = knots_->greville();
-  const bool midpoints = mixed && discretization_.mixed_points == MixedPoints::Midpoints;
-  if (midpoints) {
+  const bool midpoints = condensed || (mixed && discretization_.mixed_points == MixedPoints::Midpoints);
+  if (condensed) {
+    // 6 constitutive rows at each of the n - 1 midpoints; |q|^2 = 1 below.
+    std::optional<KernelPattern<21, 6>> field_pattern;
+    const Vec3 c_point = moment_point();
+    for (int j = 0; j + 1 < n; ++j) {
+      const double u = 0.5 * (tau[j] + tau[j + 1]);
+      const PointConstants c = constants_at(u);
+      const PointBasis b = basis_at(u, 1, false);
+      auto kernel = [c, c_point](const auto& z, auto* r) { condensed_field(z, c, c_point, r); };
+      if (!field_pattern) field_pattern = detect_kernel_pattern<21, 6>(kernel);
+      problem.add_residual_block(
+          make_point_block<21, 6>("rod.condensed_field", name + "@u=" + std::to_string(u),
+                                  variables_of(b, {vars.wrench, vars.length}), cp, b, kCondensedPoint,
+                                  {{14, kWrenchSize}, {20, 1}}, kernel, *field_pattern));
+    }
+  } else if (midpoints) {
     // 12 field rows at each of the n - 1 midpoints of consecutive Greville abscissae, |q|^2 = 1 at the
     // n - 2 interior ones: 12 (n - 1) + (n - 2) = 13 n - 14 rows, the same count as the Greville scheme.
     std::optional<KernelPattern<24, 12>> field_pattern;
@@ -243,14 +288,16 @@ RodVariables CollocationRod::add_to_problem(Problem& problem, const RodEndOption
       auto kernel = [c](const auto& z, auto* r) { mixed_field(z, c, r); };
       if (!field_pattern) field_pattern = detect_kernel_pattern<24, 12>(kernel);
       problem.add_residual_block(make_point_block<24, 12>("rod.mixed_field", name + "@u=" + std::to_string(u),
-                                                          variables_of(b, true), cp, b, kMixedPoint, 23,
-                                                          kernel, *field_pattern));
+                                                          variables_of(b, {vars.length}), cp, b, kMixedPoint,
+                                                          {{23, 1}}, kernel, *field_pattern));
     }
+  }
+  if (midpoints) {
     for (int j = 1; j + 1 < n; ++j) {
       const PointBasis b = basis_at(tau[j], 0, false);
       problem.add_residual_block(make_point_block<4, 1>(
-          "rod.unit_quaternion", name + "@u=" + std::to_string(tau[j]), variables_of(b, false), cp, b,
-          {{0, kQ, 4, 0}}, -1, [](const auto& z, auto* r) { r[0] = z.squaredNorm() - 1.0; }));
+          "rod.unit_quaternion", name + "@u=" + std::to_string(tau[j]), variables_of(b, {}), cp, b,
+          {{0, kQ, 4, 0}}, {}, [](const auto& z, auto* r) { r[0] = z.squaredNorm() - 1.0; }));
     }
   }
   for (int j = 0; j < n; ++j) {
@@ -264,16 +311,16 @@ RodVariables CollocationRod::add_to_problem(Problem& problem, const RodEndOption
         const PointBasis b = basis_at(u, 1, false);
         auto kernel = [c](const auto& z, auto* r) { mixed_interior(z, c, r); };
         if (!mixed_interior_pattern) mixed_interior_pattern = detect_kernel_pattern<24, 13>(kernel);
-        problem.add_residual_block(make_point_block<24, 13>("rod.mixed_equilibrium", where,
-                                                            variables_of(b, true), cp, b, kMixedPoint, 23,
-                                                            kernel, *mixed_interior_pattern));
+        problem.add_residual_block(
+            make_point_block<24, 13>("rod.mixed_equilibrium", where, variables_of(b, {vars.length}), cp, b,
+                                     kMixedPoint, {{23, 1}}, kernel, *mixed_interior_pattern));
       } else {
         const PointBasis b = basis_at(u, 2, false);
         auto kernel = [c](const auto& z, auto* r) { primal_interior(z, c, r); };
         if (!primal_interior_pattern) primal_interior_pattern = detect_kernel_pattern<19, 7>(kernel);
-        problem.add_residual_block(make_point_block<19, 7>("rod.primal_equilibrium", where,
-                                                           variables_of(b, true), cp, b, kPrimalInterior, 18,
-                                                           kernel, *primal_interior_pattern));
+        problem.add_residual_block(
+            make_point_block<19, 7>("rod.primal_equilibrium", where, variables_of(b, {vars.length}), cp, b,
+                                    kPrimalInterior, {{18, 1}}, kernel, *primal_interior_pattern));
       }
       continue;
     }
@@ -283,16 +330,29 @@ RodVariables CollocationRod::add_to_problem(Problem& problem, const RodEndOption
       auto kernel = [c](const auto& z, auto* r) { mixed_constitutive(z, c, r); };
       if (!mixed_constitutive_pattern) mixed_constitutive_pattern = detect_kernel_pattern<24, 6>(kernel);
       problem.add_residual_block(make_point_block<24, 6>("rod.mixed_constitutive", where,
-                                                         variables_of(b, true), cp, b, kMixedPoint, 23,
-                                                         kernel, *mixed_constitutive_pattern));
+                                                         variables_of(b, {vars.length}), cp, b, kMixedPoint,
+                                                         {{23, 1}}, kernel, *mixed_constitutive_pattern));
     }
     if (!(at_base ? ends.base : ends.tip)) continue;
     const EndData e = end_data(at_base ? model_.base : model_.tip, at_base, load_factor);
     const std::string kind = std::string("rod.end_") + to_string(e.kind);
-    if (mixed) {
+    if (condensed) {
+      // z = [p (3), q (4), n (3), h (3)]; m = h - (p - c) x n at the end.
+      const PointBasis b = basis_at(u, 0, true);
+      const Vec3 c_point = moment_point();
+      problem.add_residual_block(make_point_block<13, 7>(
+          kind, where, variables_of(b, {vars.wrench}), cp, b, kCondensedEnd, {{7, kWrenchSize}},
+          [c, e, c_point](const auto& z, auto* r) {
+            using T = typename std::decay_t<decltype(z)>::Scalar;
+            const V3<T> p = z.template segment<3>(0), n = z.template segment<3>(7);
+            const V3<T> m = z.template segment<3>(10) - (p - c_point.cast<T>()).cross(n);
+            end_conditions<T>(e.kind, cast_target<T>(e.target), e.loads, c, p, z.template segment<4>(3), n, m,
+                              r);
+          }));
+    } else if (mixed) {
       const PointBasis b = basis_at(u, 0, true);
       problem.add_residual_block(make_point_block<13, 7>(
-          kind, where, variables_of(b, false), cp, b, kMixedEnd, -1, [c, e](const auto& z, auto* r) {
+          kind, where, variables_of(b, {}), cp, b, kMixedEnd, {}, [c, e](const auto& z, auto* r) {
             using T = typename std::decay_t<decltype(z)>::Scalar;
             end_conditions<T>(e.kind, cast_target<T>(e.target), e.loads, c, z.template segment<3>(0),
                               z.template segment<4>(3), z.template segment<3>(7), z.template segment<3>(10),
@@ -301,7 +361,8 @@ RodVariables CollocationRod::add_to_problem(Problem& problem, const RodEndOption
     } else {
       const PointBasis b = basis_at(u, 1, false);
       problem.add_residual_block(make_point_block<15, 7>(
-          kind, where, variables_of(b, true), cp, b, kPrimalEnd, 14, [c, e](const auto& z, auto* r) {
+          kind, where, variables_of(b, {vars.length}), cp, b, kPrimalEnd, {{14, 1}},
+          [c, e](const auto& z, auto* r) {
             using T = typename std::decay_t<decltype(z)>::Scalar;
             Eigen::Matrix<T, 12, 1> w;
             w << z.template segment<4>(3), z.template segment<4>(7), z.template segment<3>(11), z[14];
@@ -348,6 +409,9 @@ RodState CollocationRod::state_with_basis(const VecX& x, const RodVariables& var
   if (discretization_.formulation == RodFormulation::Mixed) {
     st.force = value.segment<3>(kN);
     st.moment = value.segment<3>(kM);
+  } else if (discretization_.formulation == RodFormulation::Condensed) {
+    st.force = x.segment<3>(vars.wrench_offset);
+    st.moment = x.segment<3>(vars.wrench_offset + 3) - (st.position - moment_point()).cross(st.force);
   } else {
     Vec3 eps0, kappa0;
     model_.intrinsic.at(s, eps0, kappa0);

@@ -1,7 +1,8 @@
 #include "pcr/rods/rod_end.hpp"
 
-#include "pcr/rods/collocation/equations.hpp"
 #include "pcr/math/dual.hpp"
+#include "pcr/math/so3.hpp"
+#include "pcr/rods/collocation/equations.hpp"
 #include "pcr/splines/basis.hpp"
 
 namespace pcr {
@@ -10,13 +11,18 @@ using namespace collocation;
 RodEndEvaluator::RodEndEvaluator(const CollocationRod& rod, const RodVariables& variables, bool at_tip)
     : at_tip_(at_tip),
       mixed_(rod.discretization().formulation == RodFormulation::Mixed),
+      condensed_(rod.discretization().formulation == RodFormulation::Condensed),
       cp_size_(rod.control_point_size()) {
   const int n = rod.num_control_points(), p = rod.discretization().degree;
   const double u = at_tip ? 1.0 : 0.0;
-  if (mixed_) {
+  if (mixed_ || condensed_) {
     count_ = 1;
     variables_ = {variables.control_points[at_tip ? n - 1 : 0]};
     value_basis_ = {1.0};
+    if (condensed_) {
+      variables_.push_back(variables.wrench);
+      moment_point_ = rod.moment_point();
+    }
     return;
   }
   const BasisDerivatives d = basis_derivatives(rod.knots(), u, 1);
@@ -33,12 +39,35 @@ RodEndEvaluator::RodEndEvaluator(const CollocationRod& rod, const RodVariables& 
   m.intrinsic.at(u * m.length, eps0_, kappa0_);
 }
 
-void RodEndEvaluator::evaluate(const double* const* values, RodEndVector& y, std::vector<MatX>* jacobians) const {
+void RodEndEvaluator::evaluate(const double* const* values, RodEndVector& y,
+                               std::vector<MatX>* jacobians) const {
   if (mixed_) {
     y = Eigen::Map<const RodEndVector>(values[0]);
     if (jacobians) {
       jacobians->resize(1);
       (*jacobians)[0] = MatX::Identity(13, 13);
+    }
+    return;
+  }
+  if (condensed_) {
+    // y = [P, Q, n, h - (P - c) x n]: dm/dP = hat(n), dm/dn = -hat(P - c), dm/dh = I.
+    const Eigen::Map<const Eigen::Matrix<double, 7, 1>> point(values[0]);
+    const Eigen::Map<const Eigen::Matrix<double, 6, 1>> wrench(values[1]);
+    const Vec3 n = wrench.head<3>(), arm = point.head<3>() - moment_point_;
+    y.head<7>() = point;
+    y.segment<3>(7) = n;
+    y.segment<3>(10) = wrench.tail<3>() - arm.cross(n);
+    if (jacobians) {
+      jacobians->assign(2, MatX());
+      MatX& Jp = (*jacobians)[0];
+      Jp = MatX::Zero(13, 7);
+      Jp.topRows<7>().setIdentity();
+      Jp.block<3, 3>(10, 0) = hat(n);
+      MatX& Jw = (*jacobians)[1];
+      Jw = MatX::Zero(13, 6);
+      Jw.block<3, 3>(7, 0).setIdentity();
+      Jw.block<3, 3>(10, 0) = -hat(arm);
+      Jw.block<3, 3>(10, 3).setIdentity();
     }
     return;
   }

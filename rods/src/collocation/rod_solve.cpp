@@ -279,8 +279,10 @@ VecX refine_solution(const RodSolution& solution, const RodDiscretization& finer
   require(lu.compute(collocation_matrix(target.knots(), tau, 0)),
           "refine_solution: Greville interpolation matrix is singular");
   const MatX refined = lu.solve(values);  // n x cp
-  VecX out(n * cp);
+  VecX out = VecX::Zero(target.configuration_size());
   for (int j = 0; j < n; ++j) out.segment(j * cp, cp) = refined.row(j).transpose();
+  if (solution.variables.wrench >= 0)  // condensed form: the constant force and moment carry over
+    out.tail(6) = solution.x.segment(solution.variables.wrench_offset, 6);
   return out;
 }
 

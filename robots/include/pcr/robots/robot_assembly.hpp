@@ -32,6 +32,11 @@ struct AssemblyOptions {
   /// primal form locks for slender rods, DESIGN.md §2). Off: discretization.formulation for all.
   bool formulation_by_slenderness = true;
   double primal_min_gyration_ratio = 1.0 / 16.0;  ///< threshold of gyration_ratio() for primal
+  /// Mixed rods at the midpoints (MixedPoints::Midpoints) without distributed loads (no gravity on
+  /// them, no force or moment per length) are solved in the condensed form instead: the same discrete
+  /// solution with n, m eliminated (RodFormulation::Condensed; 7 instead of 13 unknowns per control
+  /// point). Off: such rods stay mixed.
+  bool condense_load_free_rods = true;
 };
 
 /// Radius of gyration over length, sqrt(min(EI1, EI2) / EA) / L, with the longest length of a fed

@@ -6,7 +6,9 @@
 // form, [P (3), Q (4), N (3), M (3)] in the mixed form; the rod length L is one more block (fixed for
 // a rod of given length, free when it is an actuation input). Equations at the Greville abscissae
 // tau_1 = 0 < ... < tau_n = 1: u = 0 and u = 1 carry the end conditions (7 each); in the primal form
-// the n - 2 interior points carry the field equations. Mixed form: see MixedPoints. All residuals are
+// the n - 2 interior points carry the field equations. Mixed form: see MixedPoints. Condensed form
+// (rods without distributed loads): [P (3), Q (4)] per control point and one block [n (3), h (3)] per
+// rod, see RodFormulation. All residuals are
 // dimensionless: forces by F0 = max(K_BT) / L0^2, moments by M0 = max(K_BT) / L0, lengths by L0
 // (the model's length), constitutive equations as strains; the primal force balance (which carries
 // K_SE times the round-off of p'') by max(K_SE) / L0.
@@ -21,7 +23,15 @@
 
 namespace pcr {
 
-enum class RodFormulation { Primal, Mixed };
+/// - Primal: p, q; n, m from the constitutive law (locks for slender rods, DESIGN.md §2).
+/// - Mixed: p, q, n, m all splines; balance and constitutive laws collocated.
+/// - Condensed: for rods without distributed loads the balance laws integrate in closed form,
+///   n(s) = n and m(s) = h - (p(s) - c) x n with the constant force n and moment h about the fixed
+///   point c (moment_point(): the model's base position), so only p, q are splines and the 6
+///   constitutive rows are collocated at the midpoints of the Greville abscissae (as the mixed form's
+///   MixedPoints::Midpoints). Equilibrium is exact; 7 instead of 13 unknowns per control point. Free
+///   of shear locking for the same reason as the mixed form (n is not computed from p').
+enum class RodFormulation { Primal, Mixed, Condensed };
 const char* to_string(RodFormulation formulation);
 
 /// Where the mixed form collocates its 12 first-order field equations (n' + f, m' + p' x n + l and the
@@ -40,7 +50,7 @@ struct RodDiscretization {
   RodFormulation formulation = RodFormulation::Mixed;
   int degree = 4;                                     ///< polynomial degree p >= 2
   int elements = 4;                                   ///< number of equal knot spans >= 1
-  MixedPoints mixed_points = MixedPoints::Midpoints;  ///< mixed form only
+  MixedPoints mixed_points = MixedPoints::Midpoints;  ///< mixed form only (the condensed form: midpoints)
 };
 
 /// State of a rod at arc length s (world frame unless named _body).
@@ -70,8 +80,10 @@ inline bool admissible_axial_stretch(double v3) {
 struct RodVariables {
   std::vector<VariableId> control_points;
   VariableId length = -1;
+  VariableId wrench = -1;        ///< condensed form: [n (3), h (3)]; -1 otherwise
   int control_point_offset = 0;  ///< index in x of the first control point (they are contiguous)
   int length_offset = 0;         ///< index in x of L
+  int wrench_offset = -1;        ///< index in x of the wrench block (condensed form), else -1
 };
 
 /// Which end conditions of the model the rod adds itself (robots add coupling blocks instead).
@@ -89,7 +101,12 @@ class CollocationRod {
   const RodDiscretization& discretization() const { return discretization_; }
   const KnotVector& knots() const { return *knots_; }
   int num_control_points() const;
-  int control_point_size() const;  ///< 7 (primal) or 13 (mixed)
+  int control_point_size() const;  ///< 7 (primal, condensed) or 13 (mixed)
+  /// Values of a rod configuration (initial guesses): the control points, then in the condensed
+  /// form the wrench [n, h] (6).
+  int configuration_size() const;
+  /// Condensed form: the point c about which the moment unknown h is taken (the model's base position).
+  const Vec3& moment_point() const { return model_.base.position; }
   /// Rows of the interior/end equations added for the given end options (for counting).
   int num_equations(const RodEndOptions& ends) const;
 
@@ -100,7 +117,8 @@ class CollocationRod {
   RodVariables add_to_problem(Problem& problem, const RodEndOptions& ends = {}, double load_factor = 1.0,
                               bool free_length = false, int group = -1, const VecX* initial = nullptr) const;
 
-  /// Control point values of the straight rod along the frame of `end` (or the base frame if free).
+  /// Control point values of the straight rod along the frame of `end` (or the base frame if free);
+  /// configuration_size() values (a zero wrench in the condensed form).
   VecX straight_configuration() const;
   /// Control point values of the stress-free shape (intrinsic strains, no load) leaving the base frame:
   /// p' = R (e3 + eps0), R' = R hat(kappa0), integrated from the base, interpolated at the Greville

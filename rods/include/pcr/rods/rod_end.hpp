@@ -3,7 +3,8 @@
 // frame — as functions of the rod's variable blocks, with their Jacobians. Coupling and balance
 // blocks of a robot are built on top of this (robots/): they never need to know the formulation.
 // Mixed form: y is the end control point itself (open knot vector: the spline interpolates its end
-// control points). Primal form: p, q from the end control point, n = R K_SE (eps - eps0) and
+// control points). Condensed form: p, q from the end control point, n and m = h - (p - c) x n from
+// the rod's wrench block [n, h]. Primal form: p, q from the end control point, n = R K_SE (eps - eps0) and
 // m = R K_BT (kappa - kappa0) from the p+1 end control points and L.
 #include <vector>
 
@@ -29,11 +30,13 @@ class RodEndEvaluator {
  private:
   bool at_tip_;
   bool mixed_;
+  bool condensed_;
   int cp_size_;
   int count_;  ///< control points touched
   std::vector<VariableId> variables_;
   std::vector<double> value_basis_, derivative_basis_;  ///< N_i and N_i' at the end
   Vec3 k_se_, k_bt_, eps0_, kappa0_;
+  Vec3 moment_point_ = Vec3::Zero();  ///< condensed form
 };
 
 }  // namespace pcr

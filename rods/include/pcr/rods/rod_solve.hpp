@@ -59,8 +59,8 @@ struct RodSolution {
 };
 
 /// Solves the rod, directly from the stress-free shape (CollocationRod::stress_free_configuration),
-/// then if needed by load stepping from the straight rod; `initial` (control point values, size
-/// n * control_point_size) replaces both starts.
+/// then if needed by load stepping from the straight rod; `initial` (a configuration of
+/// CollocationRod::configuration_size() values) replaces both starts.
 RodSolution solve_rod(const RodModel& model, const RodSolveOptions& options = {},
                       const VecX* initial = nullptr);
 

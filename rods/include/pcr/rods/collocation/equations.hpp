@@ -39,7 +39,7 @@ M3<T> rotation(const V4<T>& q) {
   const T s = q.squaredNorm();
   M3<T> A;
   A << w * w + x * x - y * y - z * z, 2.0 * (x * y - w * z), 2.0 * (x * z + w * y),  //
-      2.0 * (x * y + w * z), w * w - x * x + y * y - z * z, 2.0 * (y * z - w * x),      //
+      2.0 * (x * y + w * z), w * w - x * x + y * y - z * z, 2.0 * (y * z - w * x),   //
       2.0 * (x * z - w * y), 2.0 * (y * z + w * x), w * w - x * x - y * y + z * z;
   return A / s;
 }
@@ -105,24 +105,46 @@ void primal_interior(const Eigen::Matrix<T, 19, 1>& z, const PointConstants& c, 
   r[6] = S - 1.0;
 }
 
-/// Mixed form constitutive equations (6) in compliance form, equivalent to n_d = R K_SE (eps - eps0)
-/// and m_d = R K_BT (kappa - kappa0) but scaled as strains so that stiff axial/shear directions do not
-/// swamp the residual:  K_SE^-1 R^T n_d - (eps - eps0) = 0,  L0 (K_BT^-1 R^T m_d - (kappa - kappa0)) = 0.
+/// Constitutive equations (6) in compliance form, equivalent to n = R K_SE (eps - eps0) and
+/// m = R K_BT (kappa - kappa0) but scaled as strains so that stiff axial/shear directions do not swamp
+/// the residual:  K_SE^-1 R^T n - (eps - eps0) = 0,  L0 (K_BT^-1 R^T m - (kappa - kappa0)) = 0, with
+/// eps = R^T p' - e3 and kappa from q, q' (s-derivatives).
 template <typename T>
-void mixed_constitutive(const Eigen::Matrix<T, 24, 1>& z, const PointConstants& c, T* r) {
-  const V4<T> q = z.template segment<4>(0);
-  const T L = z[23];
-  const V4<T> q_s = z.template segment<4>(4) / L;
-  const V3<T> p_s = z.template segment<3>(8) / L;
+void constitutive_rows(const V4<T>& q, const V4<T>& q_s, const V3<T>& p_s, const V3<T>& n, const V3<T>& m,
+                       const PointConstants& c, T* r) {
   const M3<T> R = rotation(q);
-  const V3<T> sigma = R.transpose() * z.template segment<3>(11);
-  const V3<T> chi = R.transpose() * z.template segment<3>(17);
+  const V3<T> sigma = R.transpose() * n;
+  const V3<T> chi = R.transpose() * m;
   const V3<T> eps = R.transpose() * p_s;
   const V3<T> kappa = body_curvature(q, q_s);
   for (int i = 0; i < 3; ++i) {
     r[i] = sigma[i] / c.k_se[i] - (eps[i] - (i == 2 ? 1.0 : 0.0) - c.eps0[i]);
     r[3 + i] = (chi[i] / c.k_bt[i] - (kappa[i] - c.kappa0[i])) * c.length_scale;
   }
+}
+
+/// Mixed form constitutive equations (constitutive_rows) at a point.
+/// z = [q (4), q_u (4), p_u (3), n (3), n_u (3), m (3), m_u (3), L (1)].
+template <typename T>
+void mixed_constitutive(const Eigen::Matrix<T, 24, 1>& z, const PointConstants& c, T* r) {
+  const T L = z[23];
+  constitutive_rows<T>(z.template segment<4>(0), z.template segment<4>(4) / L, z.template segment<3>(8) / L,
+                       z.template segment<3>(11), z.template segment<3>(17), c, r);
+}
+
+/// Condensed form (rods without distributed loads): n' = 0 and (m + (p - c) x n)' = m' + p' x n = 0, so
+/// n(s) = n and m(s) = h - (p(s) - c) x n with two constant unknowns, the force n and the moment h
+/// about a fixed point c. Only the constitutive rows remain.
+/// z = [q (4), q_u (4), p_u (3), p (3), n (3), h (3), L (1)].
+template <typename T>
+void condensed_field(const Eigen::Matrix<T, 21, 1>& z, const PointConstants& c, const Vec3& moment_point,
+                     T* r) {
+  const T L = z[20];
+  const V3<T> n = z.template segment<3>(14);
+  const V3<T> arm = z.template segment<3>(11) - moment_point.cast<T>();
+  const V3<T> m = z.template segment<3>(17) - arm.cross(n);
+  constitutive_rows<T>(z.template segment<4>(0), z.template segment<4>(4) / L, z.template segment<3>(8) / L,
+                       n, m, c, r);
 }
 
 /// Mixed form field equations at a point: n_d' + f (3), m_d' + p_d' x n_d + l (3), then the two

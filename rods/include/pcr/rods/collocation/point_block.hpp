@@ -5,7 +5,7 @@
 // at the point, and the rod length L). z is gathered from the p+1 active control points with the basis
 // values cached at construction: z_g = sum_i B_d(u)[i] c_i[component]. The kernel is evaluated with
 // Dual<NL> numbers, which gives dr/dz exactly; the chain rule dz/dc_i = B_d(u)[i] scatters it into one
-// dense Jacobian per control point (and dr/dL into the length block).
+// dense Jacobian per control point (and dr/dz directly into the direct blocks, e.g. the length).
 //
 // Structural sparsity: control point components that no local group reads, and basis functions whose
 // value is zero at the point, give zero columns. The kernel's own zero derivatives dr_row/dz_k come from
@@ -33,6 +33,13 @@ struct LocalGroup {
   int component;
   int dim;
   int derivative;
+};
+
+/// A variable block read directly (not through the basis): z[local .. local+size) = its values, e.g.
+/// the rod length L or the condensed form's constant force and moment.
+struct DirectBlock {
+  int local;
+  int size;
 };
 
 /// Basis values at a point: B[d][i] = d-th u-derivative of the i-th active function (first + i).
@@ -77,20 +84,20 @@ KernelPattern<NL, NR> detect_kernel_pattern(const Kernel& kernel) {
 template <int NL, int NR, typename Kernel>
 class PointBlock final : public ResidualBlock {
  public:
-  /// variables: the `basis.count` control point blocks, then the length block (if length_local >= 0).
+  /// variables: the `basis.count` control point blocks, then one block per entry of `direct`.
   PointBlock(std::string kind, std::string name, std::vector<VariableId> variables, int control_point_size,
-             PointBasis basis, std::vector<LocalGroup> groups, int length_local, Kernel kernel,
+             PointBasis basis, std::vector<LocalGroup> groups, std::vector<DirectBlock> direct, Kernel kernel,
              const KernelPattern<NL, NR>& depends = dense_kernel_pattern<NL, NR>())
       : ResidualBlock(std::move(kind), std::move(name), NR, std::move(variables)),
         cp_size_(control_point_size),
         depends_(depends),
         basis_(basis),
         groups_(std::move(groups)),
-        length_local_(length_local),
+        direct_(std::move(direct)),
         kernel_(std::move(kernel)) {}
 
   bool structural_nonzero(int k, int row, int column) const override {
-    if (k == basis_.count) return length_local_ >= 0 && depends(row, length_local_);
+    if (k >= basis_.count) return depends(row, direct_[k - basis_.count].local + column);
     for (const LocalGroup& g : groups_)
       if (column >= g.component && column < g.component + g.dim && basis_.B[g.derivative][k] != 0.0 &&
           depends(row, g.local + column - g.component))
@@ -124,8 +131,13 @@ class PointBlock final : public ResidualBlock {
           for (int c = 0; c < g.dim; ++c) J[row * cp_size_ + g.component + c] += r[row].v[g.local + c] * b;
       }
     }
-    if (length_local_ >= 0 && jacobians[basis_.count] != nullptr)
-      for (int row = 0; row < NR; ++row) jacobians[basis_.count][row] = r[row].v[length_local_];
+    for (size_t j = 0; j < direct_.size(); ++j) {
+      double* J = jacobians[basis_.count + j];
+      if (J == nullptr) continue;
+      const DirectBlock& d = direct_[j];
+      for (int row = 0; row < NR; ++row)
+        for (int c = 0; c < d.size; ++c) J[row * d.size + c] = r[row].v[d.local + c];
+    }
   }
 
  private:
@@ -136,7 +148,8 @@ class PointBlock final : public ResidualBlock {
         const double b = basis_.B[g.derivative][i];
         for (int c = 0; c < g.dim; ++c) z[g.local + c] += b * values[i][g.component + c];
       }
-    if (length_local_ >= 0) z[length_local_] = values[basis_.count][0];
+    for (size_t j = 0; j < direct_.size(); ++j)
+      for (int c = 0; c < direct_[j].size; ++c) z[direct_[j].local + c] = values[basis_.count + j][c];
   }
 
   bool depends(int row, int local) const { return depends_[row * NL + local]; }
@@ -145,17 +158,17 @@ class PointBlock final : public ResidualBlock {
   KernelPattern<NL, NR> depends_;
   PointBasis basis_;
   std::vector<LocalGroup> groups_;
-  int length_local_;
+  std::vector<DirectBlock> direct_;
   Kernel kernel_;
 };
 
 template <int NL, int NR, typename Kernel>
 std::shared_ptr<const ResidualBlock> make_point_block(
     std::string kind, std::string name, std::vector<VariableId> variables, int cp_size,
-    const PointBasis& basis, std::vector<LocalGroup> groups, int length_local, Kernel kernel,
+    const PointBasis& basis, std::vector<LocalGroup> groups, std::vector<DirectBlock> direct, Kernel kernel,
     const KernelPattern<NL, NR>& depends = dense_kernel_pattern<NL, NR>()) {
   return std::make_shared<PointBlock<NL, NR, Kernel>>(std::move(kind), std::move(name), std::move(variables),
-                                                      cp_size, basis, std::move(groups), length_local,
+                                                      cp_size, basis, std::move(groups), std::move(direct),
                                                       std::move(kernel), depends);
 }
 
