@@ -121,14 +121,16 @@ RobotSolution read_solution(const RobotAssembly& a, const VecX& x,
     RodResult r;
     r.name = rod.model().name;
     r.length = rod.length(x, v);
-    const RodState b = rod.state_at(x, v, 0.0), t = rod.state_at(x, v, r.length);
+    const std::vector<RodState> states = rod.sample(x, v, sample_bases[i]);  // s = 0 .. L, ends included
+    const RodState &b = states.front(), &t = states.back();
     r.base_force = b.force;
     r.base_moment = b.moment;
     r.tip_force = t.force;
     r.tip_moment = t.moment;
     r.axial_force = b.force.dot(b.rotation.col(2));
     r.min_axial_stretch = std::numeric_limits<double>::infinity();
-    for (const RodState& st : rod.sample(x, v, sample_bases[i])) {  // s = 0 .. L
+    r.centerline.reserve(states.size());
+    for (const RodState& st : states) {
       r.centerline.push_back(st.position);
       r.min_axial_stretch = std::min(r.min_axial_stretch, axial_stretch(st));
     }
