@@ -16,6 +16,7 @@
 // pattern does not depend on the constants either, and one detection serves every point of a rod that
 // uses the same kernel function. The problem's Jacobian check compares every left-out entry with finite
 // differences.
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <utility>
@@ -90,6 +91,7 @@ class PointBlock final : public ResidualBlock {
              const KernelPattern<NL, NR>& depends = dense_kernel_pattern<NL, NR>())
       : ResidualBlock(std::move(kind), std::move(name), NR, std::move(variables)),
         cp_size_(control_point_size),
+        max_derivative_(max_derivative_of(groups)),
         depends_(depends),
         basis_(basis),
         groups_(std::move(groups)),
@@ -141,20 +143,35 @@ class PointBlock final : public ResidualBlock {
   }
 
  private:
+  // z from the control points: first the values and derivatives of all components,
+  // sums[d][c] = sum_i B[d][i] c_i[c] (contiguous loops over the components), then the groups' slices.
   void gather(const double* const* values, Eigen::Matrix<double, NL, 1>& z) const {
+    constexpr int kMaxComponents = 13, kMaxDerivatives = 3;
+    double sums[kMaxDerivatives][kMaxComponents] = {};
+    for (int i = 0; i < basis_.count; ++i) {
+      const double* c = values[i];
+      for (int d = 0; d <= max_derivative_; ++d) {
+        const double b = basis_.B[d][i];
+        for (int k = 0; k < cp_size_; ++k) sums[d][k] += b * c[k];
+      }
+    }
     z.setZero();
     for (const LocalGroup& g : groups_)
-      for (int i = 0; i < basis_.count; ++i) {
-        const double b = basis_.B[g.derivative][i];
-        for (int c = 0; c < g.dim; ++c) z[g.local + c] += b * values[i][g.component + c];
-      }
+      for (int c = 0; c < g.dim; ++c) z[g.local + c] = sums[g.derivative][g.component + c];
     for (size_t j = 0; j < direct_.size(); ++j)
       for (int c = 0; c < direct_[j].size; ++c) z[direct_[j].local + c] = values[basis_.count + j][c];
   }
 
   bool depends(int row, int local) const { return depends_[row * NL + local]; }
 
+  static int max_derivative_of(const std::vector<LocalGroup>& groups) {
+    int d = 0;
+    for (const LocalGroup& g : groups) d = std::max(d, g.derivative);
+    return d;
+  }
+
   int cp_size_;
+  int max_derivative_;
   KernelPattern<NL, NR> depends_;
   PointBasis basis_;
   std::vector<LocalGroup> groups_;
