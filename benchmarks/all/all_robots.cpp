@@ -94,7 +94,7 @@ KinematicsOptions collocation_options(RodFormulation formulation, int degree, in
   o.assembly.discretization = {formulation, degree, elements};
   o.assembly.use_model_hints = false;
   o.assembly.formulation_by_slenderness = false;  // exactly the formulation asked for (the slenderness
-  o.assembly.condense_load_free_rods = false;     // rule would make every rod here mixed or condensed)
+  o.assembly.condense_mixed_rods = false;         // rule would make every rod here mixed or condensed)
   o.solver = solver;
   o.tolerance = tolerance;
   return o;

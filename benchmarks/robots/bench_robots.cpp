@@ -69,7 +69,7 @@ KinematicsOptions options(int degree, int elements, double tolerance = 1e-10,
   KinematicsOptions o;
   o.assembly.discretization = {formulation, degree, elements, points};
   o.assembly.formulation_by_slenderness = false;  // R5a, R5b: slender rods, mixed by slenderness anyway
-  o.assembly.condense_load_free_rods = false;     // exactly the formulation asked for
+  o.assembly.condense_mixed_rods = false;         // exactly the formulation asked for
   o.tolerance = tolerance;
   if (sparse_lu) o.linear_solver = NewtonLinearSolver::Sparse;
   return o;

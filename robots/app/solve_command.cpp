@@ -56,7 +56,7 @@ pcr::KinematicsOptions kinematics_options(const SolveArguments& args) {
   if (args.formulation == "condensed") d.formulation = pcr::RodFormulation::Condensed;
   if (args.formulation == "primal" || args.formulation == "mixed" || args.formulation == "condensed") {
     options.assembly.formulation_by_slenderness = false;
-    options.assembly.condense_load_free_rods = false;  // exactly the formulation asked for
+    options.assembly.condense_mixed_rods = false;  // exactly the formulation asked for
   }
   if (args.mixed_points == "greville") d.mixed_points = pcr::MixedPoints::Greville;
   if (args.objective == "effort") options.ik.objective = pcr::IkObjective::ActuationEffort;

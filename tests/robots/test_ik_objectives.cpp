@@ -204,31 +204,38 @@ BOOST_AUTO_TEST_CASE(objective_and_stress_values_match_independent_computations)
 }
 
 BOOST_AUTO_TEST_CASE(objective_and_stress_gradients_match_finite_differences) {
-  // Mixed rods (analytic chain rule) on R5a, condensed rods (analytic) on R5b and primal rods (local
-  // central differences) on the planar robot. Central differences with h = 1e-6 (1 + |x|): truncation
-  // ~1e-12, round-off ~1e-16 f / h ~1e-10 relative; tolerance 1e-6 of the gradient's max-abs.
-  for (const RodFormulation formulation :
-       {RodFormulation::Mixed, RodFormulation::Condensed, RodFormulation::Primal}) {
+  // Mixed rods (analytic chain rule) on R5a, condensed rods (analytic) on R5b (no distributed loads) and
+  // R5a (gravity: n, m also read L and the integral of p), primal rods (local central differences) on
+  // the planar robot. Central differences with h = 1e-6 (1 + |x|): truncation ~1e-12, round-off
+  // ~1e-16 f / h ~1e-10 relative; tolerance 1e-6 of the gradient's max-abs.
+  struct Case {
+    RodFormulation formulation;
+    std::string model;
+  };
+  for (const Case& k :
+       {Case{RodFormulation::Mixed, "stewart_gough"}, Case{RodFormulation::Condensed, "stewart_gough_teleop"},
+        Case{RodFormulation::Condensed, "stewart_gough"}, Case{RodFormulation::Primal, ""}}) {
+    const RodFormulation formulation = k.formulation;
     const bool primal = formulation == RodFormulation::Primal;
     KinematicsOptions o;
     // Primal rods lock at R5a's slenderness (FK does not converge); 1 cm rods on the planar robot.
     o.assembly.discretization.formulation = formulation;
     if (primal) o.assembly.discretization = RodDiscretization{RodFormulation::Primal, 5, 8};
     o.assembly.formulation_by_slenderness = false;
-    const auto model = primal                                     ? planar_with_radius(0.01)
-                       : formulation == RodFormulation::Condensed ? load("stewart_gough_teleop")
-                                                                  : load("stewart_gough");
+    o.assembly.condense_mixed_rods = false;
+    const auto model = primal ? planar_with_radius(0.01) : load(k.model);
     ForwardKinematics fk(model, o);
     BOOST_REQUIRE(fk.solve(moved_inputs(*model, 0.05)).summary.converged());
     const RobotAssembly& a = fk.assembly();
     BOOST_TEST((a.rod(0).discretization().formulation == formulation));
     const VecX x = fk.state();
+    const std::string label = std::string(to_string(formulation)) + ", " + (primal ? "planar" : k.model);
     auto check = [&](const std::string& what, const VecX& analytic, const VecX& numeric) {
       const double scale = analytic.cwiseAbs().maxCoeff();
       BOOST_TEST(scale > 0.0);
       BOOST_TEST((analytic - numeric).cwiseAbs().maxCoeff() <= 1e-6 * scale,
-                 what << " (" << to_string(formulation) << "): error "
-                      << (analytic - numeric).cwiseAbs().maxCoeff() << " of " << scale);
+                 what << " (" << label << "): error " << (analytic - numeric).cwiseAbs().maxCoeff() << " of "
+                      << scale);
     };
     VecX g;
     kinematics::actuation_effort(a, x, &g);
@@ -506,21 +513,25 @@ BOOST_AUTO_TEST_CASE(formulation_is_chosen_by_slenderness_unless_given) {
   const auto thick = planar_with_radius(0.07);
   // sqrt(EI / EA) = r / 2 for a circle: equal up to round-off (1e-12 relative).
   BOOST_TEST(gyration_ratio(slender->rods()[0]) == 2.5e-4 / 0.5, boost::test_tools::tolerance(1e-12));
-  for (RodFormulation f : formulations(slender, {})) BOOST_TEST((f == RodFormulation::Mixed));
+  // Slender rods: mixed, solved in the condensed form (AssemblyOptions::condense_mixed_rods) unless that
+  // is switched off or the mixed form is at the Greville points (the condensed form is the midpoint
+  // scheme only).
+  for (RodFormulation f : formulations(slender, {})) BOOST_TEST((f == RodFormulation::Condensed));
   for (RodFormulation f : formulations(thick, {})) BOOST_TEST((f == RodFormulation::Primal));
-  // Every shipped model is slender: mixed, except the one without gravity (R5b), whose load-free
-  // rods are condensed (AssemblyOptions::condense_load_free_rods), unless that is switched off.
-  for (const char* name : {"stewart_gough", "two_stage", "cantilever", "slider_actuated"})
-    for (RodFormulation f : formulations(load(name), {})) BOOST_TEST((f == RodFormulation::Mixed), name);
-  const auto teleop = load("stewart_gough_teleop");
-  BOOST_TEST(teleop->gravity().isZero(0.0));
-  for (RodFormulation f : formulations(teleop, {})) BOOST_TEST((f == RodFormulation::Condensed));
   AssemblyOptions keep_mixed;
-  keep_mixed.condense_load_free_rods = false;
-  for (RodFormulation f : formulations(teleop, keep_mixed)) BOOST_TEST((f == RodFormulation::Mixed));
-  AssemblyOptions greville;  // the condensed form is the midpoint scheme only
+  keep_mixed.condense_mixed_rods = false;
+  AssemblyOptions greville;
   greville.discretization.mixed_points = MixedPoints::Greville;
-  for (RodFormulation f : formulations(teleop, greville)) BOOST_TEST((f == RodFormulation::Mixed));
+  // Every shipped model is slender, with gravity (R5a, ...) or without (R5b); the cantilever model names
+  // the mixed form in its discretisation hint and keeps it.
+  for (RodFormulation f : formulations(load("cantilever"), {})) BOOST_TEST((f == RodFormulation::Mixed));
+  for (const char* name : {"stewart_gough", "stewart_gough_teleop", "two_stage", "slider_actuated"}) {
+    for (RodFormulation f : formulations(load(name), {})) BOOST_TEST((f == RodFormulation::Condensed), name);
+    for (RodFormulation f : formulations(load(name), keep_mixed))
+      BOOST_TEST((f == RodFormulation::Mixed), name);
+    for (RodFormulation f : formulations(load(name), greville))
+      BOOST_TEST((f == RodFormulation::Mixed), name);
+  }
   // Options switch the choice off.
   AssemblyOptions explicit_primal;
   explicit_primal.formulation_by_slenderness = false;
@@ -585,16 +596,11 @@ BOOST_AUTO_TEST_CASE(cli_objective_and_stress_options) {
   const Run bad_stress = run_pcr(ik + " --max-stress -5");
   BOOST_TEST(bad_stress.exit_code == 2);
   BOOST_TEST(contains(bad_stress.err, "--max-stress -5"), bad_stress.err);
-  // The condensed form on R5a's gravity-loaded rods: bad input (exit code 2), naming the rod and the
-  // formulation that takes it; on R5b's load-free rods it solves.
-  const Run loaded = run_pcr(ik + " --formulation condensed");
-  BOOST_TEST(loaded.exit_code == 2);
-  BOOST_TEST(contains(loaded.err, "condensed formulation needs a rod without distributed loads"), loaded.err);
-  BOOST_TEST(contains(loaded.err, "use the mixed formulation"), loaded.err);
-  const Run teleop =
-      run_pcr("fk '" + model_path("stewart_gough_teleop") + "' --formulation condensed --json");
-  BOOST_TEST(teleop.exit_code == 0, teleop.err);
-  BOOST_TEST(contains(teleop.out, "\"status\": \"converged\""), teleop.out);
+  // --formulation condensed solves R5a's rods under gravity (n, m with the integral of p); the
+  // agreement with the mixed form is tested in test_kinematics and test_shooting_crosscheck.
+  const Run condensed = run_pcr(ik + " --formulation condensed --json");
+  BOOST_TEST(condensed.exit_code == 0, condensed.err);
+  BOOST_TEST(contains(condensed.out, "\"status\": \"converged\""), condensed.out);
   const Run help = run_pcr("ik --help");
   BOOST_TEST(contains(help.out, "--objective distance|effort|energy"));
   BOOST_TEST(contains(help.out, "--formulation auto|mixed|condensed|primal"));

@@ -259,3 +259,37 @@ BOOST_AUTO_TEST_CASE(single_element_basis_is_bernstein_also_beyond_the_stack_buf
     }
   }
 }
+
+BOOST_AUTO_TEST_CASE(basis_integrals_match_their_closed_forms_and_derivatives) {
+  // J_j(u) = integral_0^u N_j, checked against facts independent of the quadrature:
+  //  - J_j(1) = (t_{j+p+1} - t_j) / (p + 1) (the integral of a B-spline);
+  //  - sum_j J_j(u) = u (the integral of the partition of unity);
+  //  - dJ_j/du = N_j(u) by central differences away from knots (J_j is a polynomial of degree p + 1
+  //    there: truncation h^2 / 6 |N_j''| <= 1e-12 (2 p / min_span)^2 with h = 1e-6; round-off 1e-16 / h).
+  // Tolerance 1e-13 for the sums (quadrature exact, round-off of ~n (p + 1) terms of size <= 1), 1e-8 for
+  // the differences (truncation <= 2.6e-9 for p = 8 and min span 0.1, plus round-off 1e-10).
+  for (const Case& c : all_cases()) {
+    const KnotVector& knots = c.knots;
+    const int p = knots.degree();
+    const std::vector<double>& t = knots.knots();
+    const VecX full = basis_integrals(knots, 1.0);
+    for (int j = 0; j < knots.num_basis(); ++j)
+      BOOST_TEST(std::abs(full[j] - (t[j + p + 1] - t[j]) / (p + 1)) < 1e-13, "p = " << p << ", j = " << j);
+    BOOST_TEST(basis_integrals(knots, 0.0).cwiseAbs().maxCoeff() == 0.0);
+    for (double u : sample_points()) {
+      BOOST_TEST(std::abs(basis_integrals(knots, u).sum() - u) < 1e-13, "p = " << p << ", u = " << u);
+      bool near_knot = false;
+      for (double x : t) near_knot = near_knot || std::abs(u - x) < 1e-3;
+      if (near_knot) continue;
+      const double h = 1e-6;
+      const VecX slope = (basis_integrals(knots, u + h) - basis_integrals(knots, u - h)) / (2 * h);
+      const BasisDerivatives at = basis_derivatives(knots, u, 0);
+      for (int j = 0; j < knots.num_basis(); ++j) {
+        const bool active = j >= at.first && j <= at.first + p;
+        const double expected = active ? at.values(0, j - at.first) : 0.0;
+        BOOST_TEST(std::abs(slope[j] - expected) < 1e-8, "p = " << p << ", u = " << u << ", j = " << j);
+      }
+    }
+  }
+  BOOST_CHECK_THROW(basis_integrals(KnotVector::open_uniform(3, 4), 1.5), InputError);
+}

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "pcr/core/error.hpp"
+#include "pcr/math/gauss_legendre.hpp"
 
 namespace pcr {
 
@@ -155,6 +156,27 @@ Eigen::SparseMatrix<double> collocation_matrix(const KnotVector& knots, const st
   Eigen::SparseMatrix<double> matrix(static_cast<Eigen::Index>(points.size()), knots.num_basis());
   matrix.setFromTriplets(entries.begin(), entries.end());
   return matrix;
+}
+
+VecX basis_integrals(const KnotVector& knots, double u) {
+  require(u >= 0.0 && u <= 1.0, "basis_integrals: u = ", u, " is outside [0, 1]");
+  const int p = knots.degree();
+  std::vector<double> nodes, weights;
+  gauss_legendre(p / 2 + 1, nodes, weights);  // exact for degree <= p + 1
+  VecX J = VecX::Zero(knots.num_basis());
+  MatX values(1, p + 1);
+  const std::vector<double>& t = knots.knots();
+  for (size_t k = 0; k + 1 < t.size() && t[k] < u; ++k) {
+    const double a = t[k], b = std::min(t[k + 1], u);
+    if (!(b > a)) continue;
+    for (size_t q = 0; q < nodes.size(); ++q) {
+      const double x = 0.5 * (a + b) + 0.5 * (b - a) * nodes[q];
+      int first = 0;
+      basis_derivatives(knots, x, 0, first, values);
+      J.segment(first, p + 1) += (0.5 * (b - a) * weights[q]) * values.row(0).transpose();
+    }
+  }
+  return J;
 }
 
 }  // namespace pcr

@@ -22,9 +22,10 @@ RodDiscretization discretization_for(const RodElement& e, const AssemblyOptions&
     if (e.degree > 0) d.degree = e.degree;
     if (e.elements > 0) d.elements = e.elements;
   }
-  // The condensed form is the mixed midpoint scheme with n, m eliminated (CollocationRod).
-  const bool load_free = e.rod.distributed_force().isZero(0.0) && e.rod.loads.moment_per_length.isZero(0.0);
-  if (o.condense_load_free_rods && load_free && d.formulation == RodFormulation::Mixed &&
+  // The condensed form is the mixed midpoint scheme with n, m from the closed-form balance (CollocationRod);
+  // a model that asks for the mixed form by name gets it.
+  const bool hinted_mixed = o.use_model_hints && e.formulation == RodFormulationHint::Mixed;
+  if (o.condense_mixed_rods && !hinted_mixed && d.formulation == RodFormulation::Mixed &&
       d.mixed_points == MixedPoints::Midpoints)
     d.formulation = RodFormulation::Condensed;
   return d;

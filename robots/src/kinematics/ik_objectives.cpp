@@ -5,6 +5,7 @@
 #include <functional>
 
 #include "pcr/core/error.hpp"
+#include "pcr/math/gauss_legendre.hpp"
 #include "pcr/math/quaternion.hpp"
 #include "pcr/splines/basis.hpp"
 
@@ -12,7 +13,6 @@ namespace pcr::kinematics {
 namespace {
 
 constexpr int kQ = 3, kN = 7, kM = 10;  // offsets in a mixed control point [P, Q, N, M]
-constexpr double kPi = 3.14159265358979323846;
 
 /// phi(n_b, m_b) with its partials g_n = dphi/dn_b, g_m = dphi/dm_b (body frame).
 using BodyFunctional = std::function<double(const Vec3& n_b, const Vec3& m_b, Vec3& g_n, Vec3& g_m)>;
@@ -56,26 +56,36 @@ double point_functional(const CollocationRod& rod, const RodVariables& v, const 
     return value;
   }
   if (rod.discretization().formulation == RodFormulation::Condensed) {
-    // n = N (constant), m = H - a x N with a = p - c, p = sum b_i P_i, q = sum b_i Q_i:
-    // dphi/dH = R g_m =: dm, dphi/dN = R g_n + a x dm, dphi/dP_i = b_i (dm x N), dphi/dq as above.
+    // n = N - f s, m = H - a x n - l s - L (I - c u) x f with s = u L, a = p - c, p = sum b_i P_i,
+    // I = sum_j J_j P_j (J_j = integral_0^u N_j; f = l = 0 without distributed loads), q = sum b_i Q_i:
+    // with dm = R g_m: dphi/dH = dm, dphi/dN = R g_n + a x dm, dphi/dP_i = b_i (dm x n) + L J_i (dm x f),
+    // dphi/dL = R g_n . (-f u) + dm . (u a x f - l u - (I - c u) x f), dphi/dq as above.
     const BasisDerivatives b = basis_derivatives(rod.knots(), u, 0);
     const int cp = rod.control_point_size();
     const int degree = rod.discretization().degree;
+    const bool loads = rod.condensed_with_loads();
+    const VecX J = loads ? basis_integrals(rod.knots(), u) : VecX();
+    const Vec3 f = loads ? rod.model().distributed_force() : Vec3::Zero();
+    const Vec3 l = loads ? Vec3(rod.model().loads.moment_per_length) : Vec3::Zero();
+    const Vec3 c = rod.moment_point();
+    const double L = rod.length(x, v);
     Quat q = Quat::Zero();
-    Vec3 p = Vec3::Zero();
+    Vec3 p = Vec3::Zero(), I = Vec3::Zero();
     for (int j = 0; j <= degree; ++j) {
       const int o = v.control_point_offset + (b.first + j) * cp;
       q += b.values(0, j) * x.segment<4>(o + kQ);
       p += b.values(0, j) * x.segment<3>(o);
     }
-    const Vec3 n = x.segment<3>(v.wrench_offset), arm = p - rod.moment_point();
-    const Vec3 m = x.segment<3>(v.wrench_offset + 3) - arm.cross(n);
+    for (int j = 0; j < J.size(); ++j) I += J[j] * x.segment<3>(v.control_point_offset + j * cp);
+    const Vec3 arm = p - c, n = x.segment<3>(v.wrench_offset) - f * (u * L);
+    const Vec3 m =
+        x.segment<3>(v.wrench_offset + 3) - arm.cross(n) - l * (u * L) - (L * (I - c * u)).cross(f);
     Mat3 R;
     QuatRotationJacobian dR;
     rotation_matrix_derivatives(q, R, dR);
     const double value = phi(R.transpose() * n, R.transpose() * m, g_n, g_m);
     if (gradient) {
-      const Vec3 dm = R * g_m, dn = R * g_n + arm.cross(dm), dp = dm.cross(n);
+      const Vec3 dm = R * g_m, dn = R * g_n + arm.cross(dm), dp = dm.cross(n), dI = L * dm.cross(f);
       const Mat3 D = n * g_n.transpose() + m * g_m.transpose();
       Quat dq;
       for (int k = 0; k < 4; ++k) dq[k] = D.cwiseProduct(dR[k]).sum();
@@ -85,8 +95,14 @@ double point_functional(const CollocationRod& rod, const RodVariables& v, const 
         gradient->segment<3>(o) += w * dp;
         gradient->segment<4>(o + kQ) += w * dq;
       }
+      for (int j = 0; j < J.size(); ++j)
+        if (J[j] != 0.0) gradient->segment<3>(v.control_point_offset + j * cp) += (weight * J[j]) * dI;
       gradient->segment<3>(v.wrench_offset) += weight * dn;
       gradient->segment<3>(v.wrench_offset + 3) += weight * dm;
+      if (loads) {
+        const Vec3 dm_dL = u * arm.cross(f) - l * u - (I - c * u).cross(f);
+        (*gradient)[v.length_offset] += weight * ((R * g_n).dot(-f * u) + dm.dot(dm_dL));
+      }
     }
     return value;
   }
@@ -117,29 +133,6 @@ double point_functional(const CollocationRod& rod, const RodVariables& v, const 
     }
   }
   return value;
-}
-
-/// Gauss-Legendre nodes and weights on [-1, 1] (Newton on P_n from the Chebyshev guesses).
-void gauss_legendre(int n, std::vector<double>& nodes, std::vector<double>& weights) {
-  nodes.assign(n, 0.0);
-  weights.assign(n, 0.0);
-  for (int i = 0; i < n; ++i) {
-    double t = std::cos(kPi * (i + 0.75) / (n + 0.5)), dp = 1.0;
-    for (int it = 0; it < 100; ++it) {
-      double p0 = 1.0, p1 = t;  // P_0, P_1; recurrence (k+1) P_{k+1} = (2k+1) t P_k - k P_{k-1}
-      for (int k = 1; k < n; ++k) {
-        const double p2 = ((2.0 * k + 1.0) * t * p1 - k * p0) / (k + 1.0);
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = n * (t * p1 - p0) / (t * t - 1.0);
-      const double dt = p1 / dp;
-      t -= dt;
-      if (std::abs(dt) < 1e-15) break;
-    }
-    nodes[i] = t;
-    weights[i] = 2.0 / ((1.0 - t * t) * dp * dp);
-  }
 }
 
 /// Rods fed by an input (their length is actuated).

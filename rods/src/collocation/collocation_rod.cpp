@@ -31,6 +31,10 @@ const std::vector<LocalGroup> kMixedEnd = {{0, kP, 3, 0}, {3, kQ, 4, 0}, {7, kN,
 // Condensed form: the control point part of z (condensed_field; the wrench block is read directly).
 const std::vector<LocalGroup> kCondensedPoint = {{0, kQ, 4, 0}, {4, kQ, 4, 1}, {8, kP, 3, 1}, {11, kP, 3, 0}};
 const std::vector<LocalGroup> kCondensedEnd = {{0, kP, 3, 0}, {3, kQ, 4, 0}};
+// Condensed form with distributed loads: also I(u) = integral_0^u p (condensed_loaded_field).
+const std::vector<LocalGroup> kCondensedLoadedPoint = {
+    {0, kQ, 4, 0}, {4, kQ, 4, 1}, {8, kP, 3, 1}, {11, kP, 3, 0}, {21, kP, 3, kIntegral}};
+const std::vector<LocalGroup> kCondensedLoadedEnd = {{0, kP, 3, 0}, {3, kQ, 4, 0}, {14, kP, 3, kIntegral}};
 constexpr int kWrenchSize = 6;  // [n (3), h (3)]
 
 // The constant frame and the prescribed loads of a model end (load factor and signs applied).
@@ -80,13 +84,8 @@ CollocationRod::CollocationRod(RodModel model, RodDiscretization discretization)
           discretization.degree);
   require(discretization.elements >= 1 && discretization.elements <= 100000, "rod '", model_.name,
           "': number of elements must be in [1, 100000], got ", discretization.elements);
-  if (discretization.formulation == RodFormulation::Condensed) {
-    const Vec3 f = model_.distributed_force(), l = model_.loads.moment_per_length;
-    require(f.isZero(0.0) && l.isZero(0.0), "rod '", model_.name,
-            "': the condensed formulation needs a rod without distributed loads (n, m in closed form), got "
-            "f = [",
-            f.transpose(), "] N/m, l = [", l.transpose(), "] N; use the mixed formulation");
-  }
+  loaded_condensed_ = discretization.formulation == RodFormulation::Condensed &&
+                      !(model_.distributed_force().isZero(0.0) && model_.loads.moment_per_length.isZero(0.0));
   knots_ = std::make_shared<const KnotVector>(
       KnotVector::open_uniform(discretization.degree, discretization.elements));
   const double L = model_.length;
@@ -237,14 +236,28 @@ RodVariables CollocationRod::add_to_problem(Problem& problem, const RodEndOption
     if (end_value_only) {  // open knot vector: p(0) = P_0, p(1) = P_{n-1}
       b.first = u == 0.0 ? 0 : n - 1;
       b.count = 1;
-      b.B[0][0] = 1.0;
+      b.B.assign(1, {1.0, 0.0, 0.0, 0.0});
       return b;
     }
     const BasisDerivatives d = basis_derivatives(*knots_, u, max_derivative);
     b.first = d.first;
     b.count = p + 1;
+    b.B.assign(p + 1, {0.0, 0.0, 0.0, 0.0});
     for (int k = 0; k <= max_derivative; ++k)
-      for (int i = 0; i <= p; ++i) b.B[k][i] = d.values(k, i);
+      for (int i = 0; i <= p; ++i) b.B[i][k] = d.values(k, i);
+    return b;
+  };
+  // The basis at u widened to the control points 0 .. last active, with the integrals
+  // integral_0^u N_i (kIntegral): what I(u) = integral_0^u p reads (condensed form with loads).
+  auto basis_with_integrals = [&](PointBasis b, double u) {
+    const VecX J = basis_integrals(*knots_, u);
+    const int last = b.first + b.count - 1;
+    std::vector<std::array<double, 4>> B(last + 1, {0.0, 0.0, 0.0, 0.0});
+    for (int i = 0; i < b.count; ++i) B[b.first + i] = b.B[i];
+    for (int i = 0; i <= last; ++i) B[i][kIntegral] = J[i];
+    b.B = std::move(B);
+    b.first = 0;
+    b.count = last + 1;
     return b;
   };
   auto variables_of = [&](const PointBasis& b, std::initializer_list<VariableId> direct) {
@@ -262,7 +275,23 @@ RodVariables CollocationRod::add_to_problem(Problem& problem, const RodEndOption
   std::optional<KernelPattern<24, 6>> mixed_constitutive_pattern;
   const std::vector<double> tau = knots_->greville();
   const bool midpoints = condensed || (mixed && discretization_.mixed_points == MixedPoints::Midpoints);
-  if (condensed) {
+  if (condensed && loaded_condensed_) {
+    // As below, with the distributed loads: each row also reads I(u), i.e. every control point up to
+    // the last active one (the rod's block fills its lower part).
+    std::optional<KernelPattern<24, 6>> field_pattern;
+    const Vec3 c_point = moment_point();
+    for (int j = 0; j + 1 < n; ++j) {
+      const double u = 0.5 * (tau[j] + tau[j + 1]);
+      const PointConstants c = constants_at(u);
+      const PointBasis b = basis_with_integrals(basis_at(u, 1, false), u);
+      auto kernel = [c, c_point, u](const auto& z, auto* r) { condensed_loaded_field(z, c, c_point, u, r); };
+      if (!field_pattern) field_pattern = detect_kernel_pattern<24, 6>(kernel);
+      problem.add_residual_block(
+          make_point_block<24, 6>("rod.condensed_field", name + "@u=" + std::to_string(u),
+                                  variables_of(b, {vars.wrench, vars.length}), cp, b, kCondensedLoadedPoint,
+                                  {{14, kWrenchSize}, {20, 1}}, kernel, *field_pattern));
+    }
+  } else if (condensed) {
     // 6 constitutive rows at each of the n - 1 midpoints; |q|^2 = 1 below.
     std::optional<KernelPattern<21, 6>> field_pattern;
     const Vec3 c_point = moment_point();
@@ -336,7 +365,23 @@ RodVariables CollocationRod::add_to_problem(Problem& problem, const RodEndOption
     if (!(at_base ? ends.base : ends.tip)) continue;
     const EndData e = end_data(at_base ? model_.base : model_.tip, at_base, load_factor);
     const std::string kind = std::string("rod.end_") + to_string(e.kind);
-    if (condensed) {
+    if (condensed && loaded_condensed_) {
+      // z = [p (3), q (4), n (3), h (3), L (1), I (3)]; n, m at the end as in condensed_loaded_field.
+      const PointBasis b = at_base ? basis_at(u, 0, true) : basis_with_integrals(basis_at(u, 0, true), u);
+      const Vec3 c_point = moment_point();
+      problem.add_residual_block(make_point_block<17, 7>(
+          kind, where, variables_of(b, {vars.wrench, vars.length}), cp, b, kCondensedLoadedEnd,
+          {{7, kWrenchSize}, {13, 1}}, [c, e, c_point, u](const auto& z, auto* r) {
+            using T = typename std::decay_t<decltype(z)>::Scalar;
+            const V3<T> p = z.template segment<3>(0);
+            const T L = z[13];
+            const V3<T> n = z.template segment<3>(7) - c.f.cast<T>() * (u * L);
+            const V3<T> m = condensed_moment<T>(p, n, z.template segment<3>(10), L, z.template segment<3>(14),
+                                                c, c_point, u);
+            end_conditions<T>(e.kind, cast_target<T>(e.target), e.loads, c, p, z.template segment<4>(3), n, m,
+                              r);
+          }));
+    } else if (condensed) {
       // z = [p (3), q (4), n (3), h (3)]; m = h - (p - c) x n at the end.
       const PointBasis b = basis_at(u, 0, true);
       const Vec3 c_point = moment_point();
@@ -383,7 +428,9 @@ double CollocationRod::length(const VecX& x, const RodVariables& vars) const {
 RodState CollocationRod::state_at(const VecX& x, const RodVariables& vars, double s) const {
   const double L = length(x, vars);
   const double u = checked_arc_length(s, L, model_.name) / L;
-  return state_with_basis(x, vars, s, basis_derivatives(*knots_, u, 1));
+  BasisDerivatives d = basis_derivatives(*knots_, u, 1);
+  if (loaded_condensed_) d.integrals = basis_integrals(*knots_, u);
+  return state_with_basis(x, vars, s, d);
 }
 
 RodState CollocationRod::state_with_basis(const VecX& x, const RodVariables& vars, double s,
@@ -410,8 +457,24 @@ RodState CollocationRod::state_with_basis(const VecX& x, const RodVariables& var
     st.force = value.segment<3>(kN);
     st.moment = value.segment<3>(kM);
   } else if (discretization_.formulation == RodFormulation::Condensed) {
-    st.force = x.segment<3>(vars.wrench_offset);
-    st.moment = x.segment<3>(vars.wrench_offset + 3) - (st.position - moment_point()).cross(st.force);
+    const Vec3 n0 = x.segment<3>(vars.wrench_offset), h = x.segment<3>(vars.wrench_offset + 3);
+    if (loaded_condensed_) {  // condensed_loaded_field at u = s / L (model loads, load factor 1)
+      require(d.integrals.size() == num_control_points(), "rod '", model_.name,
+              "': sample basis without the basis integrals the condensed form with loads needs");
+      const double u = s / L;
+      Vec3 I = Vec3::Zero();
+      for (int j = 0; j < num_control_points(); ++j)
+        if (d.integrals[j] != 0.0)
+          I += d.integrals[j] * x.segment<3>(vars.control_point_offset + j * cp + kP);
+      PointConstants c;
+      c.f = model_.distributed_force();
+      c.l = model_.loads.moment_per_length;
+      st.force = n0 - c.f * (u * L);
+      st.moment = condensed_moment<double>(st.position, st.force, h, L, I, c, moment_point(), u);
+    } else {
+      st.force = n0;
+      st.moment = h - (st.position - moment_point()).cross(st.force);
+    }
   } else {
     Vec3 eps0, kappa0;
     model_.intrinsic.at(s, eps0, kappa0);
@@ -429,8 +492,11 @@ std::vector<BasisDerivatives> CollocationRod::sample_basis(int num_points) const
   require(num_points >= 2, "sample: need at least 2 points, got ", num_points);
   std::vector<BasisDerivatives> basis;
   basis.reserve(num_points);
-  for (int i = 0; i < num_points; ++i)
-    basis.push_back(basis_derivatives(*knots_, static_cast<double>(i) / (num_points - 1), 1));
+  for (int i = 0; i < num_points; ++i) {
+    const double u = static_cast<double>(i) / (num_points - 1);
+    basis.push_back(basis_derivatives(*knots_, u, 1));
+    if (loaded_condensed_) basis.back().integrals = basis_integrals(*knots_, u);
+  }
   return basis;
 }
 

@@ -20,8 +20,19 @@ RodEndEvaluator::RodEndEvaluator(const CollocationRod& rod, const RodVariables& 
     variables_ = {variables.control_points[at_tip ? n - 1 : 0]};
     value_basis_ = {1.0};
     if (condensed_) {
-      variables_.push_back(variables.wrench);
       moment_point_ = rod.moment_point();
+      if (at_tip && rod.condensed_with_loads()) {
+        // The tip's m reads I(1) = sum_j w_j P_j, w_j = integral_0^1 N_j: every control point, and L.
+        loads_ = true;
+        count_ = n;
+        variables_ = variables.control_points;
+        const VecX w = basis_integrals(rod.knots(), 1.0);
+        integral_weights_.assign(w.data(), w.data() + w.size());
+        f_ = rod.model().distributed_force();
+        l_ = rod.model().loads.moment_per_length;
+      }
+      variables_.push_back(variables.wrench);
+      if (loads_) variables_.push_back(variables.length);
     }
     return;
   }
@@ -46,6 +57,43 @@ void RodEndEvaluator::evaluate(const double* const* values, RodEndVector& y,
     if (jacobians) {
       jacobians->resize(1);
       (*jacobians)[0] = MatX::Identity(13, 13);
+    }
+    return;
+  }
+  if (condensed_ && loads_) {
+    // At s = L: n = n0 - f L, m = h - a x n - l L - L (I - c) x f with a = P_end - c, I = sum_j w_j P_j.
+    // dm/dP_j = L w_j hat(f) (+ hat(n) for P_end), dm/dn0 = -hat(a), dm/dh = 1,
+    // dn/dL = -f, dm/dL = a x f - l - (I - c) x f.
+    const int end = count_ - 1;
+    const Eigen::Map<const Eigen::Matrix<double, 7, 1>> point(values[end]);
+    const Eigen::Map<const Eigen::Matrix<double, 6, 1>> wrench(values[count_]);
+    const double L = values[count_ + 1][0];
+    Vec3 I = Vec3::Zero();
+    for (int j = 0; j < count_; ++j) I += integral_weights_[j] * Eigen::Map<const Vec3>(values[j]);
+    const Vec3 a = point.head<3>() - moment_point_, n = wrench.head<3>() - f_ * L;
+    y.head<7>() = point;
+    y.segment<3>(7) = n;
+    y.segment<3>(10) = wrench.tail<3>() - a.cross(n) - l_ * L - (L * (I - moment_point_)).cross(f_);
+    if (jacobians) {
+      jacobians->assign(count_ + 2, MatX());
+      const Mat3 hat_f = hat(f_);
+      for (int j = 0; j < count_; ++j) {
+        MatX& J = (*jacobians)[j];
+        J = MatX::Zero(13, 7);
+        J.block<3, 3>(10, 0) = (L * integral_weights_[j]) * hat_f;
+      }
+      MatX& Jp = (*jacobians)[end];
+      Jp.topRows<7>().setIdentity();
+      Jp.block<3, 3>(10, 0) += hat(n);
+      MatX& Jw = (*jacobians)[count_];
+      Jw = MatX::Zero(13, 6);
+      Jw.block<3, 3>(7, 0).setIdentity();
+      Jw.block<3, 3>(10, 0) = -hat(a);
+      Jw.block<3, 3>(10, 3).setIdentity();
+      MatX& JL = (*jacobians)[count_ + 1];
+      JL = MatX::Zero(13, 1);
+      JL.block<3, 1>(7, 0) = -f_;
+      JL.block<3, 1>(10, 0) = a.cross(f_) - l_ - (I - moment_point_).cross(f_);
     }
     return;
   }

@@ -13,7 +13,12 @@ namespace pcr {
 struct BasisDerivatives {
   int first = 0;
   MatX values;
+  VecX integrals;  ///< optional (empty unless asked for): basis_integrals(knots, u), all num_basis()
 };
+
+/// J_j(u) = integral_0^u N_j(t) dt for every basis function j (dense, num_basis() values; zero for the
+/// functions that start after u), by Gauss-Legendre quadrature on each knot span (exact: degree / 2 + 1
+/// nodes). Throws InputError for u outside [0, 1].
 
 /// The NURBS Book A2.3 (all non-zero basis functions and derivatives up to max_derivative at u).
 /// Derivatives of order > degree are zero. Throws InputError for u outside [0,1] or max_derivative < 0.
@@ -23,6 +28,8 @@ BasisDerivatives basis_derivatives(const KnotVector& knots, double u, int max_de
 /// Allocates only for degree > 24 (scratch space beyond the fixed stack buffer).
 void basis_derivatives(const KnotVector& knots, double u, int max_derivative, int& first,
                        Eigen::Ref<MatX> values);
+
+VecX basis_integrals(const KnotVector& knots, double u);
 
 /// NURBS rational basis R_i = N_i w_i / W and its derivatives (The NURBS Book eq. 4.8 / A4.2 applied to
 /// the basis); weights.size() == knots.num_basis(), all > 0 (else InputError).

@@ -25,12 +25,15 @@ namespace pcr {
 
 /// - Primal: p, q; n, m from the constitutive law (locks for slender rods, DESIGN.md §2).
 /// - Mixed: p, q, n, m all splines; balance and constitutive laws collocated.
-/// - Condensed: for rods without distributed loads the balance laws integrate in closed form,
-///   n(s) = n and m(s) = h - (p(s) - c) x n with the constant force n and moment h about the fixed
-///   point c (moment_point(): the model's base position), so only p, q are splines and the 6
-///   constitutive rows are collocated at the midpoints of the Greville abscissae (as the mixed form's
-///   MixedPoints::Midpoints). Equilibrium is exact; 7 instead of 13 unknowns per control point. Free
-///   of shear locking for the same reason as the mixed form (n is not computed from p').
+/// - Condensed: the balance laws integrate in closed form, n(s) = n - f s and
+///   m(s) = h - (p(s) - c) x n(s) - l s - (integral_0^s (p - c)) x f with the constant unknowns n, h
+///   (force and moment about the fixed point c = moment_point(), the model's base position) and the
+///   constant distributed loads f, l; so only p, q are splines and the 6 constitutive rows are
+///   collocated at the midpoints of the Greville abscissae (as MixedPoints::Midpoints). Equilibrium is
+///   exact; 7 instead of 13 unknowns per control point. Without distributed loads it is the mixed
+///   midpoint scheme with n, m eliminated (the same discrete solution); with them each row also reads
+///   the integral of p up to its point (every control point before it). Free of shear locking for the
+///   same reason as the mixed form (n is not computed from p').
 enum class RodFormulation { Primal, Mixed, Condensed };
 const char* to_string(RodFormulation formulation);
 
@@ -100,6 +103,8 @@ class CollocationRod {
   const RodModel& model() const { return model_; }
   const RodDiscretization& discretization() const { return discretization_; }
   const KnotVector& knots() const { return *knots_; }
+  /// Condensed form with distributed loads: n, m read the integral of p (basis integrals).
+  bool condensed_with_loads() const { return loaded_condensed_; }
   int num_control_points() const;
   int control_point_size() const;  ///< 7 (primal, condensed) or 13 (mixed)
   /// Values of a rod configuration (initial guesses): the control points, then in the condensed
@@ -130,7 +135,8 @@ class CollocationRod {
   /// States at num_points equally spaced arc lengths from 0 to L.
   std::vector<RodState> sample(const VecX& x, const RodVariables& vars, int num_points) const;
   /// Basis values and first derivatives at num_points equally spaced u = s / L in [0, 1] (they do not
-  /// depend on L): for sampling many states of one rod, e.g. the results along a path.
+  /// depend on L), with the basis integrals when condensed_with_loads(): for sampling many states of
+  /// one rod, e.g. the results along a path.
   std::vector<BasisDerivatives> sample_basis(int num_points) const;
   /// sample() with the bases of sample_basis(num_points).
   std::vector<RodState> sample(const VecX& x, const RodVariables& vars,
@@ -153,6 +159,7 @@ class CollocationRod {
   RodDiscretization discretization_;
   std::shared_ptr<const KnotVector> knots_;
   double force_scale_ = 1.0, moment_scale_ = 1.0;
+  bool loaded_condensed_ = false;
 };
 
 }  // namespace pcr

@@ -147,6 +147,30 @@ void condensed_field(const Eigen::Matrix<T, 21, 1>& z, const PointConstants& c, 
                        n, m, c, r);
 }
 
+/// Condensed form with constant distributed loads f, l (world frame; PointConstants): n' = -f and
+/// (m + (p - c) x n)' = -l - (p - c) x f integrate to n(s) = n - f s and
+/// m(s) = h - (p(s) - c) x n(s) - l s - A(s) x f,  A(s) = integral_0^s (p - c) dt = L (I(u) - c u),
+/// with I(u) = integral_0^u p du' (from the basis integrals). s = u L at the point's u.
+/// z = [q (4), q_u (4), p_u (3), p (3), n (3), h (3), L (1), I (3)].
+template <typename T>
+V3<T> condensed_moment(const V3<T>& p, const V3<T>& n_s, const V3<T>& h, const T& L, const V3<T>& I,
+                       const PointConstants& c, const Vec3& moment_point, double u) {
+  const V3<T> cp = moment_point.cast<T>();
+  const V3<T> A = (I - cp * u) * L;
+  return h - (p - cp).cross(n_s) - c.l.cast<T>() * (u * L) - A.cross(c.f.cast<T>());
+}
+
+template <typename T>
+void condensed_loaded_field(const Eigen::Matrix<T, 24, 1>& z, const PointConstants& c,
+                            const Vec3& moment_point, double u, T* r) {
+  const T L = z[20];
+  const V3<T> n = z.template segment<3>(14) - c.f.cast<T>() * (u * L);
+  const V3<T> m = condensed_moment<T>(z.template segment<3>(11), n, z.template segment<3>(17), L,
+                                      z.template segment<3>(21), c, moment_point, u);
+  constitutive_rows<T>(z.template segment<4>(0), z.template segment<4>(4) / L, z.template segment<3>(8) / L,
+                       n, m, c, r);
+}
+
 /// Mixed form field equations at a point: n_d' + f (3), m_d' + p_d' x n_d + l (3), then the two
 /// constitutive equations (6).
 /// z = [q (4), q_u (4), p_u (3), n (3), n_u (3), m (3), m_u (3), L (1)].

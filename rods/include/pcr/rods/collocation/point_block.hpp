@@ -43,11 +43,15 @@ struct DirectBlock {
   int size;
 };
 
-/// Basis values at a point: B[d][i] = d-th u-derivative of the i-th active function (first + i).
+/// LocalGroup::derivative of a group that reads integral_0^u of the component (the basis integrals).
+constexpr int kIntegral = 3;
+
+/// Basis values at a point: B[i][d] = d-th u-derivative (d = kIntegral: integral from 0 to u) of the
+/// function first + i, i < count.
 struct PointBasis {
   int first = 0;
   int count = 0;
-  std::array<std::array<double, 10>, 3> B{};
+  std::vector<std::array<double, 4>> B;
 };
 
 /// depends[row * NL + k]: dr_row / dz_k is not identically zero.
@@ -101,7 +105,7 @@ class PointBlock final : public ResidualBlock {
   bool structural_nonzero(int k, int row, int column) const override {
     if (k >= basis_.count) return depends(row, direct_[k - basis_.count].local + column);
     for (const LocalGroup& g : groups_)
-      if (column >= g.component && column < g.component + g.dim && basis_.B[g.derivative][k] != 0.0 &&
+      if (column >= g.component && column < g.component + g.dim && basis_.B[k][g.derivative] != 0.0 &&
           depends(row, g.local + column - g.component))
         return true;
     return false;
@@ -127,7 +131,7 @@ class PointBlock final : public ResidualBlock {
       if (J == nullptr) continue;
       std::fill(J, J + NR * cp_size_, 0.0);
       for (const LocalGroup& g : groups_) {
-        const double b = basis_.B[g.derivative][i];
+        const double b = basis_.B[i][g.derivative];
         if (b == 0.0) continue;
         for (int row = 0; row < NR; ++row)
           for (int c = 0; c < g.dim; ++c) J[row * cp_size_ + g.component + c] += r[row].v[g.local + c] * b;
@@ -144,14 +148,15 @@ class PointBlock final : public ResidualBlock {
 
  private:
   // z from the control points: first the values and derivatives of all components,
-  // sums[d][c] = sum_i B[d][i] c_i[c] (contiguous loops over the components), then the groups' slices.
+  // sums[d][c] = sum_i B[i][d] c_i[c] (contiguous loops over the components), then the groups' slices.
   void gather(const double* const* values, Eigen::Matrix<double, NL, 1>& z) const {
-    constexpr int kMaxComponents = 13, kMaxDerivatives = 3;
+    constexpr int kMaxComponents = 13, kMaxDerivatives = 4;
     double sums[kMaxDerivatives][kMaxComponents] = {};
     for (int i = 0; i < basis_.count; ++i) {
       const double* c = values[i];
       for (int d = 0; d <= max_derivative_; ++d) {
-        const double b = basis_.B[d][i];
+        const double b = basis_.B[i][d];
+        if (b == 0.0) continue;
         for (int k = 0; k < cp_size_; ++k) sums[d][k] += b * c[k];
       }
     }
