@@ -171,9 +171,7 @@ void collocation_setting(const Scenes& sc, const References& ref, const AllConfi
       "p=" + std::to_string(degree) + ";E=" + std::to_string(elements) +
       (tolerance_exponent == 10 ? "" : ";tol=1e-" + std::to_string(tolerance_exponent));
   const std::string form = std::string("collocation-") + to_string(formulation) + "-";
-  // R5a's rods carry gravity, which the condensed form does not take (CollocationRod refuses them).
-  const bool r5a = formulation != RodFormulation::Condensed;
-  if (r5a && config.selected("R5a_fk_cold")) {
+  if (config.selected("R5a_fk_cold")) {
     RobotSolution s;
     const Timing t = time_repeated(
         [&] {
@@ -185,7 +183,7 @@ void collocation_setting(const Scenes& sc, const References& ref, const AllConfi
     out.record("R5a_fk_cold", form + to_string(solver), settings, error, t, s.summary.iterations,
                to_string(s.summary.status));
   }
-  if (r5a && ik && config.selected("R5a_ik_cold")) {
+  if (ik && config.selected("R5a_ik_cold")) {
     RobotSolution s;
     const Timing t = time_repeated(
         [&] {
@@ -226,13 +224,13 @@ void collocation_sweep(const Scenes& sc, const References& ref, const AllConfig&
       for (int t : tolerance_exponents)
         collocation_setting(sc, ref, config, RodFormulation::Mixed, SolverKind::Newton, p, e, true, e >= 8,
                             out, cold_repeats(config), t);
-  // Condensed form (R5b only: rods without distributed loads), the same meshes and tolerances.
+  // Condensed form (the default for these rods; with R5a's gravity n, m read the integral of p), the
+  // same meshes and tolerances.
   for (int p : mixed_degrees)
     for (int e : mixed_elements)
-      if (e >= 8)
-        for (int t : tolerance_exponents)
-          collocation_setting(sc, ref, config, RodFormulation::Condensed, SolverKind::Newton, p, e, false,
-                              true, out, cold_repeats(config), t);
+      for (int t : tolerance_exponents)
+        collocation_setting(sc, ref, config, RodFormulation::Condensed, SolverKind::Newton, p, e, true,
+                            e >= 8, out, cold_repeats(config), t);
   // Ipopt path: FK only (IK chooses its solver itself), fewer sizes: 10-60x slower than Newton on rods.
   for (int e : quick ? std::vector<int>{8} : std::vector<int>{4, 8, 16})
     collocation_setting(sc, ref, config, RodFormulation::Mixed, SolverKind::Ipopt, 5, e, false, false, out,

@@ -111,24 +111,27 @@ void NewtonSolver::Impl::prepare() {
 
 // Free-column copy of J's pattern (J must hold the problem's pattern) and its symbolic analysis.
 void NewtonSolver::Impl::build_free_pattern() {
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(J.nonZeros());
-  for (int i = 0; i < J.outerSize(); ++i) {
-    for (SparseRowMajor::InnerIterator it(J, i); it; ++it) {
-      if (reduced_column[it.col()] >= 0) entries.emplace_back(i, reduced_column[it.col()], 0.0);
-    }
+  // J_free in CSC straight from the row-major J: count the entries per free column, then place them
+  // row by row, so each column's rows come out sorted and value_map is the position written.
+  const int n = static_cast<int>(J.rows());
+  std::vector<int> starts(n + 1, 0);
+  for (int p = 0; p < J.nonZeros(); ++p) {
+    const int col = reduced_column[J.innerIndexPtr()[p]];
+    if (col >= 0) ++starts[col + 1];
   }
-  J_free.resize(J.rows(), J.rows());
-  J_free.setFromTriplets(entries.begin(), entries.end());
-  J_free.makeCompressed();
+  for (int c = 0; c < n; ++c) starts[c + 1] += starts[c];
+  J_free.resize(n, n);
+  J_free.resizeNonZeros(starts[n]);
+  std::copy(starts.begin(), starts.end(), J_free.outerIndexPtr());
   value_map.assign(J.nonZeros(), -1);
   for (int i = 0; i < J.outerSize(); ++i) {
     for (int p = J.outerIndexPtr()[i]; p < J.outerIndexPtr()[i + 1]; ++p) {
       const int col = reduced_column[J.innerIndexPtr()[p]];
       if (col < 0) continue;
-      const int* begin = J_free.innerIndexPtr() + J_free.outerIndexPtr()[col];
-      const int* end = J_free.innerIndexPtr() + J_free.outerIndexPtr()[col + 1];
-      value_map[p] = static_cast<int>(std::lower_bound(begin, end, i) - J_free.innerIndexPtr());
+      const int q = starts[col]++;
+      J_free.innerIndexPtr()[q] = i;
+      J_free.valuePtr()[q] = 0.0;
+      value_map[p] = q;
     }
   }
   // The sparse LU's analysis waits until it is needed (factorize).
