@@ -45,16 +45,21 @@ double centerline_difference(const RodModel& m, const RodDiscretization& d) {
 // 1e-8 L: the agreement requirement; the measured differences (header comment) are smaller.
 constexpr double kAgreement = 1e-8;
 
-}  // namespace
-
-BOOST_AUTO_TEST_CASE(gravity_loaded_steel_cantilever) {
-  // Horizontal steel wire (E 200 GPa, G 80 GPa, 8000 kg/m^3, radius 1 mm, L = 1 m) clamped with
-  // d3 = e_x, sagging under its weight: w L^3 / EI = 1.57, a large deflection.
+// Horizontal steel wire (E 200 GPa, G 80 GPa, 8000 kg/m^3, radius 1 mm, L = 1 m) clamped with d3 = e_x,
+// sagging under its weight: w L^3 / EI = 1.57, a large deflection.
+RodModel steel_cantilever() {
   RodModel m = test::cantilever(1.0, Vec3::Ones(), Vec3::Ones());
   m.name = "steel cantilever";
   m.set_material_and_section(Material{200e9, 80e9, 8000}, CrossSection::circle(1e-3));
   m.base.orientation = quat_from_rotation(rotation_y(M_PI / 2));
   m.loads.gravity = Vec3(0, 0, -9.81);
+  return m;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(gravity_loaded_steel_cantilever) {
+  const RodModel m = steel_cantilever();
   // Mixed, and condensed (n, m from the closed-form balance with the integral of p): both against
   // shooting.
   for (RodFormulation f : {RodFormulation::Mixed, RodFormulation::Condensed}) {
@@ -85,11 +90,7 @@ BOOST_AUTO_TEST_CASE(condensed_and_mixed_discretisation_errors_under_gravity) {
   // closed-form balance, not a spline): its discretisation error against shooting, coarse meshes of the
   // steel cantilever above. Measured ratios condensed / mixed 0.97-1.006 (p = 4..6, E = 2..8) and 0.49
   // at p = 6, E = 8; asserted: no worse than 1.1x the mixed error (10 % above the largest ratio).
-  RodModel m = test::cantilever(1.0, Vec3::Ones(), Vec3::Ones());
-  m.name = "steel cantilever";
-  m.set_material_and_section(Material{200e9, 80e9, 8000}, CrossSection::circle(1e-3));
-  m.base.orientation = quat_from_rotation(rotation_y(M_PI / 2));
-  m.loads.gravity = Vec3(0, 0, -9.81);
+  const RodModel m = steel_cantilever();
   for (int p : {4, 5, 6})
     for (int e : {2, 4, 8}) {
       const double dm = centerline_difference(m, {RodFormulation::Mixed, p, e});

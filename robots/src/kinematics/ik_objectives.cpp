@@ -14,6 +14,15 @@ namespace {
 
 constexpr int kQ = 3, kN = 7, kM = 10;  // offsets in a mixed control point [P, Q, N, M]
 
+/// dphi/dq_k of phi(R^T n, R^T m) through R(q) alone: sum_ab (n g_n^T + m g_m^T)_ab (dR/dq_k)_ab.
+Quat quaternion_gradient(const Vec3& n, const Vec3& m, const Vec3& g_n, const Vec3& g_m,
+                         const QuatRotationJacobian& dR) {
+  const Mat3 D = n * g_n.transpose() + m * g_m.transpose();
+  Quat dq;
+  for (int k = 0; k < 4; ++k) dq[k] = D.cwiseProduct(dR[k]).sum();
+  return dq;
+}
+
 /// phi(n_b, m_b) with its partials g_n = dphi/dn_b, g_m = dphi/dm_b (body frame).
 using BodyFunctional = std::function<double(const Vec3& n_b, const Vec3& m_b, Vec3& g_n, Vec3& g_m)>;
 
@@ -42,9 +51,7 @@ double point_functional(const CollocationRod& rod, const RodVariables& v, const 
     const double value = phi(R.transpose() * n, R.transpose() * m, g_n, g_m);
     if (gradient) {
       const Vec3 dn = R * g_n, dm = R * g_m;
-      const Mat3 D = n * g_n.transpose() + m * g_m.transpose();
-      Quat dq;
-      for (int k = 0; k < 4; ++k) dq[k] = D.cwiseProduct(dR[k]).sum();
+      const Quat dq = quaternion_gradient(n, m, g_n, g_m, dR);
       for (int j = 0; j <= degree; ++j) {
         const int o = v.control_point_offset + (b.first + j) * cp;
         const double w = weight * b.values(0, j);
@@ -86,9 +93,7 @@ double point_functional(const CollocationRod& rod, const RodVariables& v, const 
     const double value = phi(R.transpose() * n, R.transpose() * m, g_n, g_m);
     if (gradient) {
       const Vec3 dm = R * g_m, dn = R * g_n + arm.cross(dm), dp = dm.cross(n), dI = L * dm.cross(f);
-      const Mat3 D = n * g_n.transpose() + m * g_m.transpose();
-      Quat dq;
-      for (int k = 0; k < 4; ++k) dq[k] = D.cwiseProduct(dR[k]).sum();
+      const Quat dq = quaternion_gradient(n, m, g_n, g_m, dR);
       for (int j = 0; j <= degree; ++j) {
         const int o = v.control_point_offset + (b.first + j) * cp;
         const double w = weight * b.values(0, j);
