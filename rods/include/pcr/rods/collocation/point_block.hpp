@@ -2,7 +2,8 @@
 // A residual block at one collocation point of one rod (shared by rods and robot couplings).
 //
 // The equations at a point depend on a small local vector z (values and u-derivatives of p, q, n, m
-// at the point, and the rod length L). z is gathered from the p+1 active control points with the basis
+// at the point, and the rod length L). z is gathered from the p+1 active control points (and, for the
+// integral of p in the condensed form under loads, every control point before them) with the basis
 // values cached at construction: z_g = sum_i B_d(u)[i] c_i[component]. The kernel is evaluated with
 // Dual<NL> numbers, which gives dr/dz exactly; the chain rule dz/dc_i = B_d(u)[i] scatters it into one
 // dense Jacobian per control point (and dr/dz directly into the direct blocks, e.g. the length).
@@ -14,7 +15,9 @@
 // zero with probability one. Only for kernels whose constants enter additively or as nonzero factors
 // (material stiffness), so that a zero constant (e.g. no load yet) cannot hide a dependency; then the
 // pattern does not depend on the constants either, and one detection serves every point of a rod that
-// uses the same kernel function. The problem's Jacobian check compares every left-out entry with finite
+// uses the same kernel function. Constants that are the same at every point of the rod (the distributed
+// loads of the condensed form) may multiply: a zero load then drops those dependencies for every point of
+// that problem alike (a load step at load factor 0 builds its own problem). The problem's Jacobian check compares every left-out entry with finite
 // differences.
 #include <algorithm>
 #include <array>
