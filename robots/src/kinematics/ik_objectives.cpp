@@ -7,6 +7,7 @@
 #include "pcr/core/error.hpp"
 #include "pcr/math/gauss_legendre.hpp"
 #include "pcr/math/quaternion.hpp"
+#include "pcr/rods/collocation/equations.hpp"
 #include "pcr/splines/basis.hpp"
 
 namespace pcr::kinematics {
@@ -85,8 +86,11 @@ double point_functional(const CollocationRod& rod, const RodVariables& v, const 
     }
     for (int j = 0; j < J.size(); ++j) I += J[j] * x.segment<3>(v.control_point_offset + j * cp);
     const Vec3 arm = p - c, n = x.segment<3>(v.wrench_offset) - f * (u * L);
-    const Vec3 m =
-        x.segment<3>(v.wrench_offset + 3) - arm.cross(n) - l * (u * L) - (L * (I - c * u)).cross(f);
+    collocation::PointConstants distributed;
+    distributed.f = f;
+    distributed.l = l;
+    const Vec3 m = collocation::condensed_moment<double>(p, n, x.segment<3>(v.wrench_offset + 3), L, I,
+                                                         distributed, c, u);
     Mat3 R;
     QuatRotationJacobian dR;
     rotation_matrix_derivatives(q, R, dR);

@@ -457,24 +457,23 @@ RodState CollocationRod::state_with_basis(const VecX& x, const RodVariables& var
     st.force = value.segment<3>(kN);
     st.moment = value.segment<3>(kM);
   } else if (discretization_.formulation == RodFormulation::Condensed) {
-    const Vec3 n0 = x.segment<3>(vars.wrench_offset), h = x.segment<3>(vars.wrench_offset + 3);
-    if (loaded_condensed_) {  // condensed_loaded_field at u = s / L (model loads, load factor 1)
+    // condensed_loaded_field at u = s / L with the model's loads (zero for a load-free rod, where the
+    // integral I of p is not needed).
+    Vec3 I = Vec3::Zero();
+    if (loaded_condensed_) {
       require(d.integrals.size() == num_control_points(), "rod '", model_.name,
               "': sample basis without the basis integrals the condensed form with loads needs");
-      const double u = s / L;
-      Vec3 I = Vec3::Zero();
       for (int j = 0; j < num_control_points(); ++j)
         if (d.integrals[j] != 0.0)
           I += d.integrals[j] * x.segment<3>(vars.control_point_offset + j * cp + kP);
-      PointConstants c;
-      c.f = model_.distributed_force();
-      c.l = model_.loads.moment_per_length;
-      st.force = n0 - c.f * (u * L);
-      st.moment = condensed_moment<double>(st.position, st.force, h, L, I, c, moment_point(), u);
-    } else {
-      st.force = n0;
-      st.moment = h - (st.position - moment_point()).cross(st.force);
     }
+    PointConstants loads;
+    loads.f = model_.distributed_force();
+    loads.l = model_.loads.moment_per_length;
+    const double u = s / L;
+    st.force = x.segment<3>(vars.wrench_offset) - loads.f * (u * L);
+    st.moment = condensed_moment<double>(st.position, st.force, x.segment<3>(vars.wrench_offset + 3), L, I,
+                                         loads, moment_point(), u);
   } else {
     Vec3 eps0, kappa0;
     model_.intrinsic.at(s, eps0, kappa0);

@@ -73,7 +73,11 @@ void RodEndEvaluator::evaluate(const double* const* values, RodEndVector& y,
     const Vec3 a = point.head<3>() - moment_point_, n = wrench.head<3>() - f_ * L;
     y.head<7>() = point;
     y.segment<3>(7) = n;
-    y.segment<3>(10) = wrench.tail<3>() - a.cross(n) - l_ * L - (L * (I - moment_point_)).cross(f_);
+    PointConstants loads;
+    loads.f = f_;
+    loads.l = l_;
+    y.segment<3>(10) =
+        condensed_moment<double>(point.head<3>(), n, wrench.tail<3>(), L, I, loads, moment_point_, 1.0);
     if (jacobians) {
       jacobians->assign(count_ + 2, MatX());
       const Mat3 hat_f = hat(f_);
