@@ -80,6 +80,23 @@ VecX moved_inputs(const RobotModel& m, double fraction) {
   return u;
 }
 
+/// Warm-started IK along the first 10 steps of the R5b teleoperation path with two option sets: both
+/// converge at every step and their inputs agree to `tolerance` m.
+void check_warm_teleop_ik_agrees(const std::shared_ptr<const RobotModel>& teleop, const KinematicsOptions& a,
+                                 const KinematicsOptions& b, double tolerance) {
+  LinkTarget target;
+  target.link = "platform";
+  InverseKinematics ia(teleop, {target}, a), ib(teleop, {target}, b);
+  for (int i = 0; i < 10; ++i) {
+    Pose pose;
+    pose.position = Vec3(0.0, 0.02 + 0.001 * i, 0.48 + 0.001 * i);
+    const RobotSolution sa = ia.solve({pose}), sb = ib.solve({pose});
+    BOOST_TEST_REQUIRE(sa.summary.converged(), sa.summary.brief_report());
+    BOOST_TEST_REQUIRE(sb.summary.converged(), sb.summary.brief_report());
+    BOOST_TEST((sa.inputs - sb.inputs).lpNorm<Eigen::Infinity>() < tolerance, "step " << i);
+  }
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(every_coupling_balance_and_target_block_matches_finite_differences) {
@@ -291,19 +308,9 @@ BOOST_AUTO_TEST_CASE(structured_and_sparse_lu_give_the_same_kinematics) {
   }
   // R5b: warm-started IK along a few steps of the teleoperation path (Newton with factorisation reuse).
   const auto teleop = load("stewart_gough_teleop");
-  LinkTarget target;
-  target.link = "platform";
   KinematicsOptions structured = tight(), sparse = tight();
   sparse.linear_solver = NewtonLinearSolver::Sparse;
-  InverseKinematics a(teleop, {target}, structured), b(teleop, {target}, sparse);
-  for (int i = 0; i < 10; ++i) {
-    Pose pose;
-    pose.position = Vec3(0.0, 0.02 + 0.001 * i, 0.48 + 0.001 * i);
-    const RobotSolution sa = a.solve({pose}), sb = b.solve({pose});
-    BOOST_TEST_REQUIRE(sa.summary.converged(), sa.summary.brief_report());
-    BOOST_TEST_REQUIRE(sb.summary.converged(), sb.summary.brief_report());
-    BOOST_TEST((sa.inputs - sb.inputs).lpNorm<Eigen::Infinity>() < 1e-9, "step " << i);
-  }
+  check_warm_teleop_ik_agrees(teleop, structured, sparse, 1e-9);
 }
 
 BOOST_AUTO_TEST_CASE(condensed_and_mixed_rods_give_the_same_kinematics) {
@@ -330,17 +337,7 @@ BOOST_AUTO_TEST_CASE(condensed_and_mixed_rods_give_the_same_kinematics) {
     for (size_t k = 0; k < a.centerline.size(); ++k)
       BOOST_TEST((a.centerline[k] - b.centerline[k]).norm() < 1e-9, "rod " << r << " point " << k);
   }
-  LinkTarget target;
-  target.link = "platform";
-  InverseKinematics ic(teleop, {target}, condensed), im(teleop, {target}, mixed);
-  for (int i = 0; i < 10; ++i) {
-    Pose pose;
-    pose.position = Vec3(0.0, 0.02 + 0.001 * i, 0.48 + 0.001 * i);
-    const RobotSolution a = ic.solve({pose}), b = im.solve({pose});
-    BOOST_TEST_REQUIRE(a.summary.converged(), a.summary.brief_report());
-    BOOST_TEST_REQUIRE(b.summary.converged(), b.summary.brief_report());
-    BOOST_TEST((a.inputs - b.inputs).lpNorm<Eigen::Infinity>() < 1e-9, "step " << i);
-  }
+  check_warm_teleop_ik_agrees(teleop, condensed, mixed, 1e-9);
 }
 
 BOOST_AUTO_TEST_CASE(condensed_and_mixed_rods_agree_under_gravity) {
