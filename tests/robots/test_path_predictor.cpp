@@ -1,6 +1,6 @@
 // Start points along a path (robots/src/kinematics/path_predictor.hpp): polynomial extrapolation is exact
 // for solutions that are polynomials of the arc length of the same degree (two points: linear, three:
-// quadratic), falls back to the last solution where the path turns or reverses.
+// quadratic, four: cubic), falls back to the last solution where the path turns or reverses.
 #define BOOST_TEST_MODULE path_predictor
 #include <boost/test/unit_test.hpp>
 #include <cmath>
@@ -12,15 +12,16 @@ using pcr::kinematics::PathPredictor;
 
 namespace {
 
-/// A straight path z(s) = z0 + s d (|d| = 1) and a solution x(s) = c0 + c1 s + c2 s^2.
+/// A straight path z(s) = z0 + s d (|d| = 1) and a solution x(s) = c0 + c1 s + c2 s^2 + c3 s^3.
 struct Path {
   VecX z0 = (VecX(3) << 0.1, -0.2, 0.3).finished();
   VecX d = (VecX(3) << 2.0, 1.0, 2.0).finished() / 3.0;
   VecX c0 = (VecX(2) << 1.0, -1.0).finished();
   VecX c1 = (VecX(2) << 0.5, 2.0).finished();
   VecX c2 = (VecX(2) << -3.0, 0.7).finished();
+  VecX c3 = VecX::Zero(2);
   VecX z(double s) const { return z0 + s * d; }
-  VecX x(double s) const { return c0 + s * c1 + s * s * c2; }
+  VecX x(double s) const { return c0 + s * c1 + s * s * c2 + s * s * s * c3; }
 };
 
 double error_at(const Path& p, const PathPredictor& predictor, double s_last, double s_new) {
@@ -36,6 +37,31 @@ BOOST_AUTO_TEST_CASE(three_points_extrapolate_a_quadratic_exactly_on_uneven_step
   for (double si : s) predictor.accept(p.x(si), p.z(si));
   // Exact up to round-off of the weights (values of order 1; 1e-12 leaves a margin of ~1e3 eps).
   BOOST_TEST(error_at(p, predictor, 0.45, 0.65) < 1e-12);
+}
+
+BOOST_AUTO_TEST_CASE(four_points_extrapolate_a_cubic_exactly_three_points_do_not) {
+  Path p;
+  p.c3 = (VecX(2) << 2.0, -1.5).finished();
+  PathPredictor quadratic, cubic;
+  const double s[] = {0.0, 0.3, 0.45, 0.7};  // steps 0.3, 0.15 and 0.25, next step 0.2
+  for (int k = 1; k < 4; ++k) quadratic.accept(p.x(s[k]), p.z(s[k]));
+  for (double si : s) cubic.accept(p.x(si), p.z(si));
+  BOOST_TEST(error_at(p, cubic, 0.7, 0.9) < 1e-12);  // round-off of weights of order 10 on values of order 1
+  // The quadratic through s = 0.3, 0.45, 0.7 misses c3 (s - 0.3)(s - 0.45)(s - 0.7) at s = 0.9:
+  // |c3|max * 0.6 * 0.45 * 0.2 = 0.108.
+  BOOST_TEST(std::abs(error_at(p, quadratic, 0.7, 0.9) - 0.108) < 1e-12);
+}
+
+BOOST_AUTO_TEST_CASE(only_the_last_four_points_are_used) {
+  // A cubic on the last four points, preceded by points of another curve: the prediction stays exact.
+  Path p;
+  p.c3 = (VecX(2) << 2.0, -1.5).finished();
+  Path other = p;
+  other.c2 *= -5.0;
+  PathPredictor predictor;
+  for (double si : {-0.4, -0.2}) predictor.accept(other.x(si), other.z(si));
+  for (double si : {0.0, 0.3, 0.45, 0.7}) predictor.accept(p.x(si), p.z(si));
+  BOOST_TEST(error_at(p, predictor, 0.7, 0.9) < 1e-12);
 }
 
 BOOST_AUTO_TEST_CASE(two_points_extrapolate_a_line_exactly_but_not_a_parabola) {
@@ -66,7 +92,7 @@ BOOST_AUTO_TEST_CASE(a_reversal_or_a_turn_starts_from_the_last_solution) {
   BOOST_TEST((predictor.predict(last, p.z(0.45 + 0.31)) - last).norm() == 0.0);
 }
 
-BOOST_AUTO_TEST_CASE(after_a_turn_the_quadratic_waits_for_three_points_on_the_new_line) {
+BOOST_AUTO_TEST_CASE(after_a_turn_higher_orders_wait_for_points_on_the_new_line) {
   // The older step is at right angles to the last: only the linear extrapolation is used.
   Path p;
   PathPredictor predictor;
@@ -76,4 +102,8 @@ BOOST_AUTO_TEST_CASE(after_a_turn_the_quadratic_waits_for_three_points_on_the_ne
   predictor.accept(p.x(0.3), p.z(0.3));
   const double linear_error = 0.3;  // as in the test above
   BOOST_TEST(std::abs(error_at(p, predictor, 0.3, 0.5) - linear_error) < 1e-12);
+  // One more point on the line: the quadratic through the three points on it (exact for this x), and
+  // the point before the turn is still left out (with it, the cubic would miss).
+  predictor.accept(p.x(0.5), p.z(0.5));
+  BOOST_TEST(error_at(p, predictor, 0.5, 0.7) < 1e-12);
 }

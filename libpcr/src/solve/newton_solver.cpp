@@ -43,10 +43,13 @@ struct NewtonSolver::Impl {
   bool sparse_analyzed = false;
   enum class Factored { None, Sparse, Blocks } factored = Factored::None;  // what holds J0 (for reuse)
   VecX c, r, r_trial, x_trial, dx_free, dx, linear_check;
-  // Quasi-Newton steps on the last factorisation J0 (free columns): steps[0 .. num_steps), see solve().
+  // Quasi-Newton steps on the last factorisation J0 (free columns): steps[0 .. num_steps), see solve();
+  // starts[j]: steps[j] is the first step of a sequence (of a solve, or after a fresh Jacobian).
   std::vector<VecX> steps;
+  std::vector<char> starts;
   int num_steps = 0;
-  static constexpr int kMaxSteps = 16;  // then a fresh Jacobian (bounds the update work and storage)
+  static constexpr int kMaxSteps = 16;     // then a fresh Jacobian (bounds the update work and storage)
+  static constexpr int kCarriedSteps = 6;  // steps of earlier solves kept for the next one (see solve())
 
   Impl(const Problem& p, NewtonOptions o) : problem(p), options(o) {}
   void prepare();
@@ -59,6 +62,28 @@ struct NewtonSolver::Impl {
       blocks.solve(b, x);
     else
       lu.solve(b, x);
+  }
+  /// x = H b, H = prod_j (I + s_{j+1} s_j^T / |s_j|^2) J0^-1: the quasi-Newton inverse after the
+  /// Broyden updates of steps[0 .. num_steps), one per pair of consecutive steps of a sequence.
+  void quasi_newton_solve(const VecX& b, VecX& x) const {
+    linear_solve(b, x);
+    for (int j = 0; j + 1 < num_steps; ++j)
+      if (!starts[j + 1]) x += steps[j + 1] * (steps[j].dot(x) / steps[j].squaredNorm());
+  }
+  /// Before a new sequence: keeps the last sequences of at most kCarriedSteps steps in all.
+  void drop_old_steps() {
+    int first = num_steps;
+    for (int j = 0; j < num_steps; ++j) {
+      if (starts[j] && num_steps - j <= kCarriedSteps) {
+        first = j;
+        break;
+      }
+    }
+    for (int j = first; j < num_steps; ++j) {
+      steps[j - first].swap(steps[j]);
+      starts[j - first] = starts[j];
+    }
+    num_steps -= first;
   }
 };
 
@@ -100,6 +125,7 @@ void NewtonSolver::Impl::prepare() {
   linear_check.resize(m);
   dx_free.resize(m);
   steps.assign(kMaxSteps, VecX::Zero(m));
+  starts.assign(kMaxSteps, 1);
   num_steps = 0;
   dx = VecX::Zero(n);
   x_trial.resize(n);
@@ -238,6 +264,11 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
   // The step is kept while theta <= chord_contraction (affine-invariant contraction; |alpha| <= theta
   // keeps 1 - alpha >= 1/2), else the iteration is redone from x_k with a fresh Jacobian. Convergence is
   // superlinear, against linear for the plain simplified Newton step.
+  // The updates outlive the solve: the first step of the next solve is s = -H r with H after all kept
+  // updates (Broyden's good update holds for any step s = -H r, so a new sequence simply starts there,
+  // and the recursion skips the pair that would join two sequences). Along a path the Jacobian drifts
+  // mostly in the directions of the recent steps, which the kept updates follow; the last
+  // kCarriedSteps steps are kept (whole sequences), a fresh Jacobian drops them all.
   bool refresh = !(o.reuse_factorization && w.factored != Impl::Factored::None);
   bool have_correction = false;  // w.steps[w.num_steps - 1] is the next step from x
   auto take_step_from = [&](const VecX& x0, const VecX& step) {
@@ -250,15 +281,14 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
   // step and returns true if it contracts, false if a fresh Jacobian is needed.
   auto broyden_next = [&](const VecX& r_new) {
     if (w.num_steps >= Impl::kMaxSteps) return false;
-    w.linear_solve(r_new, w.dx_free);
+    w.quasi_newton_solve(r_new, w.dx_free);
     w.dx_free = -w.dx_free;
-    for (int j = 0; j + 1 < w.num_steps; ++j)
-      w.dx_free += w.steps[j + 1] * (w.steps[j].dot(w.dx_free) / w.steps[j].squaredNorm());
     const VecX& s_k = w.steps[w.num_steps - 1];
     const double s2 = s_k.squaredNorm();
     if (!w.dx_free.allFinite() || !(s2 > 0.0) || !(w.dx_free.norm() <= o.chord_contraction * std::sqrt(s2)))
       return false;
     const double alpha = s_k.dot(w.dx_free) / s2;
+    w.starts[w.num_steps] = 0;
     w.steps[w.num_steps++] = w.dx_free / (1.0 - alpha);
     return true;
   };
@@ -276,10 +306,12 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
     const double r_norm = w.r.norm();
 
     if (!refresh) {
-      if (!have_correction) {  // a new sequence on J0: the simplified Newton step
-        w.linear_solve(w.r, w.steps[0]);
-        w.steps[0] = -w.steps[0];
-        w.num_steps = 1;
+      if (!have_correction) {  // a new sequence: the quasi-Newton step with the kept updates
+        w.drop_old_steps();
+        VecX& s0 = w.steps[w.num_steps];
+        w.quasi_newton_solve(w.r, s0);
+        s0 = -s0;
+        w.starts[w.num_steps++] = 1;
       }
       take_step_from(x, w.steps[w.num_steps - 1]);
       problem.evaluate_residuals(w.x_trial, w.c);
@@ -385,6 +417,7 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
     have_correction = false;
     if (o.reuse_factorization && alpha == 1.0 && w.r_trial.allFinite()) {
       w.steps[0] = w.dx_free;
+      w.starts[0] = 1;
       w.num_steps = 1;
       have_correction = broyden_next(w.r_trial);
       refresh = !have_correction;

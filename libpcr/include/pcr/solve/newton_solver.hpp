@@ -34,8 +34,9 @@ struct NewtonOptions {
   double linear_residual_limit = 1e-6;
   /// Quasi-Newton across iterations and solves: reuse the last LU factorisation J0 with Broyden
   /// rank-one updates (Deuflhard's QNERR) while the steps contract, |s_{k+1}| (1 - alpha) <=
-  /// chord_contraction |s_k| (affine-invariant measure); otherwise take a fresh Newton step. Pays off
-  /// for warm-started sequences (FK/IK along a path), where the Jacobian barely changes.
+  /// chord_contraction |s_k| (affine-invariant measure); otherwise take a fresh Newton step. The last
+  /// updates are kept for the next solve, whose first step uses them. Pays off for warm-started
+  /// sequences (FK/IK along a path), where the Jacobian barely changes.
   bool reuse_factorization = false;
   double chord_contraction = 0.5;
   /// With BorderedBlocks (or Auto choosing it), a factorisation whose block or Schur complement is
