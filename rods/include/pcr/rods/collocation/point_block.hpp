@@ -17,14 +17,15 @@
 // pattern does not depend on the constants either, and one detection serves every point of a rod that
 // uses the same kernel function. Constants that are the same at every point of the rod (the distributed
 // loads of the condensed form) may multiply: a zero load then drops those dependencies for every point of
-// that problem alike (a load step at load factor 0 builds its own problem). The problem's Jacobian check compares every left-out entry with finite
-// differences.
+// that problem alike (a load step at load factor 0 builds its own problem). The problem's Jacobian check
+// compares every left-out entry with finite differences.
 #include <algorithm>
 #include <array>
 #include <cstdint>
 #include <utility>
 #include <vector>
 
+#include "pcr/core/error.hpp"
 #include "pcr/math/dual.hpp"
 #include "pcr/solve/residual_block.hpp"
 
@@ -98,12 +99,15 @@ class PointBlock final : public ResidualBlock {
              const KernelPattern<NL, NR>& depends = dense_kernel_pattern<NL, NR>())
       : ResidualBlock(std::move(kind), std::move(name), NR, std::move(variables)),
         cp_size_(control_point_size),
-        max_derivative_(max_derivative_of(groups)),
+        read_(read_ranges(groups)),
         depends_(depends),
         basis_(basis),
         groups_(std::move(groups)),
         direct_(std::move(direct)),
-        kernel_(std::move(kernel)) {}
+        kernel_(std::move(kernel)) {
+    require(basis_.count >= 1 && static_cast<int>(basis_.B.size()) == basis_.count, "PointBlock '",
+            this->name(), "': ", basis_.count, " basis functions, ", basis_.B.size(), " rows");
+  }
 
   bool structural_nonzero(int k, int row, int column) const override {
     if (k >= basis_.count) return depends(row, direct_[k - basis_.count].local + column);
@@ -150,36 +154,67 @@ class PointBlock final : public ResidualBlock {
   }
 
  private:
-  // z from the control points: first the values and derivatives of all components,
-  // sums[d][c] = sum_i B[i][d] c_i[c] (contiguous loops over the components), then the groups' slices.
+  // z from the control points: first the values and derivatives of the components the groups read,
+  // sums[d][c] = sum_i B[i][d] c_i[c] for c in read_[d] (contiguous loops), then the groups' slices.
   void gather(const double* const* values, Eigen::Matrix<double, NL, 1>& z) const {
-    constexpr int kMaxComponents = 13, kMaxDerivatives = 4;
-    double sums[kMaxDerivatives][kMaxComponents] = {};
-    for (int i = 0; i < basis_.count; ++i) {
+    double sums[kDerivativeSlots][kMaxComponents];
+    for (const ReadRange& r : read_) {  // the first function assigns (no zeroing), the others add
+      const double b0 = basis_.B[0][r.derivative];
+      double* sum = sums[r.derivative];
+      for (int k = r.begin; k < r.end; ++k) sum[k] = b0 * values[0][k];
+    }
+    for (int i = 1; i < basis_.count; ++i) {
       const double* c = values[i];
-      for (int d = 0; d <= max_derivative_; ++d) {
-        const double b = basis_.B[i][d];
+      for (const ReadRange& r : read_) {
+        const double b = basis_.B[i][r.derivative];
         if (b == 0.0) continue;
-        for (int k = 0; k < cp_size_; ++k) sums[d][k] += b * c[k];
+        double* sum = sums[r.derivative];
+        for (int k = r.begin; k < r.end; ++k) sum[k] += b * c[k];
       }
     }
     z.setZero();
-    for (const LocalGroup& g : groups_)
-      for (int c = 0; c < g.dim; ++c) z[g.local + c] = sums[g.derivative][g.component + c];
+    for (const LocalGroup& g : groups_) copy_small(sums[g.derivative] + g.component, g.dim, &z[g.local]);
     for (size_t j = 0; j < direct_.size(); ++j)
-      for (int c = 0; c < direct_[j].size; ++c) z[direct_[j].local + c] = values[basis_.count + j][c];
+      copy_small(values[basis_.count + j], direct_[j].size, &z[direct_[j].local]);
+  }
+  // to[0 .. n) = from[0 .. n) for the short slices of gather (3- and 4-vectors inline, not a library call).
+  static void copy_small(const double* from, int n, double* to) {
+    if (n == 3) {
+      to[0] = from[0], to[1] = from[1], to[2] = from[2];
+    } else if (n == 4) {
+      to[0] = from[0], to[1] = from[1], to[2] = from[2], to[3] = from[3];
+    } else {
+      std::copy(from, from + n, to);
+    }
   }
 
   bool depends(int row, int local) const { return depends_[row * NL + local]; }
 
-  static int max_derivative_of(const std::vector<LocalGroup>& groups) {
-    int d = 0;
-    for (const LocalGroup& g : groups) d = std::max(d, g.derivative);
-    return d;
+  static constexpr int kMaxComponents = 13, kDerivativeSlots = kIntegral + 1;
+  /// Components [begin, end) of the control points read with basis row `derivative`.
+  struct ReadRange {
+    int derivative, begin, end;
+  };
+  static std::vector<ReadRange> read_ranges(const std::vector<LocalGroup>& groups) {
+    std::vector<ReadRange> ranges;
+    for (int d = 0; d < kDerivativeSlots; ++d) {
+      ReadRange r{d, kMaxComponents, 0};
+      for (const LocalGroup& g : groups) {
+        require(g.component >= 0 && g.component + g.dim <= kMaxComponents && g.derivative >= 0 &&
+                    g.derivative < kDerivativeSlots,
+                "PointBlock: local group reads components [", g.component, ", ", g.component + g.dim,
+                ") of derivative ", g.derivative, " (at most ", kMaxComponents, " components)");
+        if (g.derivative != d) continue;
+        r.begin = std::min(r.begin, g.component);
+        r.end = std::max(r.end, g.component + g.dim);
+      }
+      if (r.begin < r.end) ranges.push_back(r);
+    }
+    return ranges;
   }
 
   int cp_size_;
-  int max_derivative_;
+  std::vector<ReadRange> read_;
   KernelPattern<NL, NR> depends_;
   PointBasis basis_;
   std::vector<LocalGroup> groups_;
