@@ -308,6 +308,33 @@ BOOST_AUTO_TEST_CASE(refinement_carries_the_solution_as_initial_guess) {
   BOOST_TEST(warm_c.summary.iterations < cold_c.summary.iterations);
 }
 
+BOOST_AUTO_TEST_CASE(centerline_sampling_gives_the_positions_and_stretches_of_the_full_states) {
+  // sample_centerline (robot results) against sample() (full states) on a bent, stretched rod in every
+  // formulation: the same sums of the same basis values, so equal to round-off (values of order 1 m
+  // and 1: 1e-14).
+  RodModel m = test::cantilever(0.5, Vec3(1e2, 1e2, 2e2), Vec3(0.5, 0.5, 0.4));
+  m.tip.force = Vec3(3.0, -1.0, 20.0);
+  m.tip.moment = Vec3(0.0, 0.2, 0.1);
+  for (RodFormulation f : {RodFormulation::Primal, RodFormulation::Mixed, RodFormulation::Condensed}) {
+    RodSolveOptions o;
+    o.discretization = {f, 4, 6};
+    const RodSolution sol = solve_rod(m, o);
+    BOOST_REQUIRE_MESSAGE(sol.summary.converged(), sol.summary.brief_report());
+    const std::vector<BasisDerivatives> bases = sol.rod->sample_basis(11);
+    const std::vector<RodState> states = sol.rod->sample(sol.x, sol.variables, bases);
+    std::vector<Vec3> positions;
+    std::vector<double> stretches;
+    sol.rod->sample_centerline(sol.x, sol.variables, bases, positions, stretches);
+    BOOST_REQUIRE(positions.size() == states.size() && stretches.size() == states.size());
+    for (size_t k = 0; k < states.size(); ++k) {
+      BOOST_TEST((positions[k] - states[k].position).norm() < 1e-14, to_string(f) << " point " << k);
+      BOOST_TEST(std::abs(stretches[k] - axial_stretch(states[k])) < 1e-14, to_string(f) << " point " << k);
+    }
+    // The tip load stretches the rod (v3 = 1 + N / EA): the comparison is not of ones.
+    BOOST_TEST(std::abs(stretches.back() - 1.0) > 1e-3);
+  }
+}
+
 BOOST_AUTO_TEST_CASE(post_processing_rejects_s_outside_the_rod) {
   RodSolveOptions o;
   const RodSolution sol = solve_rod(test::cantilever(1.0, Vec3(1e3, 1e3, 1e3), Vec3(1, 1, 1)), o);

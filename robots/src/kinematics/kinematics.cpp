@@ -121,20 +121,20 @@ RobotSolution read_solution(const RobotAssembly& a, const VecX& x,
     RodResult r;
     r.name = rod.model().name;
     r.length = rod.length(x, v);
-    const std::vector<RodState> states = rod.sample(x, v, sample_bases[i]);  // s = 0 .. L, ends included
-    const RodState &b = states.front(), &t = states.back();
+    // Full states at the ends, the centerline and the axial stretch at every sample point (s = 0 .. L).
+    const std::vector<BasisDerivatives>& bases = sample_bases[i];
+    const RodState b = rod.state_with_basis(x, v, 0.0, bases.front());
+    const RodState t = rod.state_with_basis(x, v, r.length, bases.back());
     r.base_force = b.force;
     r.base_moment = b.moment;
     r.tip_force = t.force;
     r.tip_moment = t.moment;
     r.axial_force = b.force.dot(b.rotation.col(2));
-    r.min_axial_stretch = std::numeric_limits<double>::infinity();
-    r.centerline.reserve(states.size());
-    for (const RodState& st : states) {
-      r.centerline.push_back(st.position);
-      r.min_axial_stretch = std::min(r.min_axial_stretch, axial_stretch(st));
-    }
-    s.rods.push_back(r);
+    std::vector<double> stretches;
+    rod.sample_centerline(x, v, bases, r.centerline, stretches);
+    r.min_axial_stretch =
+        std::min({axial_stretch(b), axial_stretch(t), *std::min_element(stretches.begin(), stretches.end())});
+    s.rods.push_back(std::move(r));
   }
   return s;
 }

@@ -512,4 +512,30 @@ std::vector<RodState> CollocationRod::sample(const VecX& x, const RodVariables& 
   return out;
 }
 
+void CollocationRod::sample_centerline(const VecX& x, const RodVariables& vars,
+                                       const std::vector<BasisDerivatives>& basis,
+                                       std::vector<Vec3>& positions,
+                                       std::vector<double>& axial_stretches) const {
+  const double L = length(x, vars);
+  require(std::isfinite(L) && L > 0.0, "rod '", model_.name, "': length ", L, " is not positive");
+  const int cp = control_point_size();
+  positions.resize(basis.size());
+  axial_stretches.resize(basis.size());
+  for (size_t k = 0; k < basis.size(); ++k) {
+    const BasisDerivatives& d = basis[k];
+    // p, q and dp/du from the p + 1 active control points ([p (3), q (4), ...] in every formulation)
+    Vec3 p = Vec3::Zero(), p_u = Vec3::Zero();
+    Quat q = Quat::Zero();
+    for (int i = 0; i <= discretization_.degree; ++i) {
+      const double* c = x.data() + vars.control_point_offset + (d.first + i) * cp;
+      p += d.values(0, i) * Eigen::Map<const Vec3>(c + kP);
+      p_u += d.values(1, i) * Eigen::Map<const Vec3>(c + kP);
+      q += d.values(0, i) * Eigen::Map<const Quat>(c + kQ);
+    }
+    positions[k] = p;
+    // v3 = 1 + (R^T p_s - e3)_3 = d3 . p_s (state_with_basis and axial_stretch)
+    axial_stretches[k] = rotation_matrix(q).col(2).dot(p_u / L);
+  }
+}
+
 }  // namespace pcr

@@ -141,6 +141,10 @@ class CollocationRod {
   /// sample() with the bases of sample_basis(num_points).
   std::vector<RodState> sample(const VecX& x, const RodVariables& vars,
                                const std::vector<BasisDerivatives>& basis) const;
+  /// The centerline part of sample(): positions p and axial stretches v3 = d3 . p_s at the points of
+  /// `basis` (the same values as sample() gives, without rotations, curvatures and wrenches).
+  void sample_centerline(const VecX& x, const RodVariables& vars, const std::vector<BasisDerivatives>& basis,
+                         std::vector<Vec3>& positions, std::vector<double>& axial_stretches) const;
   /// Rod length in x.
   double length(const VecX& x, const RodVariables& vars) const;
 
@@ -150,11 +154,11 @@ class CollocationRod {
   double force_scale() const { return force_scale_; }
   double moment_scale() const { return moment_scale_; }
 
- private:
-  /// state_at with the basis at u = s / L.
+  /// state_at with the basis at u = s / L given (e.g. an entry of sample_basis).
   RodState state_with_basis(const VecX& x, const RodVariables& vars, double s,
                             const BasisDerivatives& d) const;
 
+ private:
   RodModel model_;
   RodDiscretization discretization_;
   std::shared_ptr<const KnotVector> knots_;
