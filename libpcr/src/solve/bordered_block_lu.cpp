@@ -123,7 +123,7 @@ bool BorderedBlockLu::analyze_pattern(const Eigen::SparseMatrix<double>& A,
     const int ng = static_cast<int>(group.rows.size());
     group.band.resize(ng, kl, ku);
     group.B = MatX::Zero(ng, nb);
-    group.C = MatX::Zero(nb, ng);
+    group.Ct = MatX::Zero(ng, nb);
     group.W = MatX::Zero(ng, nb);
     group.z = VecX::Zero(ng);
     for (int c : columns[g]) group_of_column[c] = static_cast<int>(groups_.size());
@@ -133,6 +133,9 @@ bool BorderedBlockLu::analyze_pattern(const Eigen::SparseMatrix<double>& A,
   // Where each nonzero goes.
   slots_.reserve(A.nonZeros());
   std::vector<std::vector<bool>> coupled(groups_.size(), std::vector<bool>(nb, false));
+  std::vector<std::vector<Group::RowSpan>> spans(groups_.size());  // per group and border row
+  for (size_t g = 0; g < groups_.size(); ++g)
+    for (int k = 0; k < nb; ++k) spans[g].push_back({k, n, -1});
   for (int c = 0; c < n; ++c) {
     const int gc = group_of_column[c];
     for (Eigen::SparseMatrix<double>::InnerIterator it(A, c); it; ++it) {
@@ -145,7 +148,11 @@ bool BorderedBlockLu::analyze_pattern(const Eigen::SparseMatrix<double>& A,
         s = {kB, gr, local_row[r] + local_column[c] * static_cast<int>(groups_[gr].rows.size())};
         coupled[gr][local_column[c]] = true;
       } else if (gr < 0 && gc >= 0) {
-        s = {kC, gc, local_row[r] + local_column[c] * nb};
+        const int ng = static_cast<int>(groups_[gc].rows.size());
+        s = {kC, gc, local_column[c] + local_row[r] * ng};
+        Group::RowSpan& span = spans[gc][local_row[r]];
+        span.begin = std::min(span.begin, local_column[c]);
+        span.end = std::max(span.end, local_column[c] + 1);
       } else if (gr < 0 && gc < 0) {
         s = {kD, -1, local_row[r] + local_column[c] * nb};
       } else {  // a group row in another group's column: cannot happen by the row rule above
@@ -155,9 +162,12 @@ bool BorderedBlockLu::analyze_pattern(const Eigen::SparseMatrix<double>& A,
       slots_.push_back(s);
     }
   }
-  for (size_t g = 0; g < groups_.size(); ++g)
-    for (int k = 0; k < nb; ++k)
+  for (size_t g = 0; g < groups_.size(); ++g) {
+    for (int k = 0; k < nb; ++k) {
       if (coupled[g][k]) groups_[g].coupled_border.push_back(k);
+      if (spans[g][k].begin < spans[g][k].end) groups_[g].coupled_rows.push_back(spans[g][k]);
+    }
+  }
   S_ = MatX::Zero(nb, nb);
   border_rhs_ = VecX::Zero(nb);
   border_solution_ = VecX::Zero(nb);
@@ -181,7 +191,7 @@ bool BorderedBlockLu::factorize(const Eigen::SparseMatrix<double>& A) {
     switch (s.target) {
       case kBand: groups_[s.group].band.data()[s.index] = values[p]; break;
       case kB: groups_[s.group].B.data()[s.index] = values[p]; break;
-      case kC: groups_[s.group].C.data()[s.index] = values[p]; break;
+      case kC: groups_[s.group].Ct.data()[s.index] = values[p]; break;
       default: S_.data()[s.index] = values[p]; break;
     }
   }
@@ -195,7 +205,7 @@ bool BorderedBlockLu::factorize(const Eigen::SparseMatrix<double>& A) {
       group.W.col(k) = group.B.col(k);
       group.band.solve_in_place(group.W.col(k).data());
     }
-    if (!group.coupled_border.empty()) S_.noalias() -= group.C * group.W;
+    if (!group.coupled_border.empty()) S_.noalias() -= group.Ct.transpose() * group.W;
   }
   if (S_.size() > 0) {
     schur_.compute(S_);
@@ -214,14 +224,18 @@ void BorderedBlockLu::solve(const VecX& b, VecX& x) const {
   x.resize(b.size());
   const int nb = static_cast<int>(border_columns_.size());
   for (int k = 0; k < nb; ++k) border_rhs_[k] = b[border_rows_[k]];
+  // Only the nonzero spans of C_g and the coupled columns of W_g (the others are zero).
   for (const Group& g : groups_) {
     for (size_t k = 0; k < g.rows.size(); ++k) g.z[k] = b[g.rows[k]];
     g.band.solve_in_place(g.z.data());
-    if (nb > 0) border_rhs_.noalias() -= g.C * g.z;
+    for (const Group::RowSpan& r : g.coupled_rows) {
+      const int length = r.end - r.begin;
+      border_rhs_[r.row] -= g.Ct.col(r.row).segment(r.begin, length).dot(g.z.segment(r.begin, length));
+    }
   }
   if (nb > 0) border_solution_ = schur_.solve(border_rhs_);
   for (const Group& g : groups_) {
-    if (nb > 0 && !g.coupled_border.empty()) g.z.noalias() -= g.W * border_solution_;
+    for (int k : g.coupled_border) g.z -= g.W.col(k) * border_solution_[k];
     for (size_t k = 0; k < g.columns.size(); ++k) x[g.columns[k]] = g.z[k];
   }
   for (int k = 0; k < nb; ++k) x[border_columns_[k]] = border_solution_[k];
@@ -229,7 +243,7 @@ void BorderedBlockLu::solve(const VecX& b, VecX& x) const {
 
 long BorderedBlockLu::factor_nonzeros() const {
   long count = static_cast<long>(S_.size());
-  for (const Group& g : groups_) count += g.band.factor_nonzeros() + g.C.size() + g.W.size();
+  for (const Group& g : groups_) count += g.band.factor_nonzeros() + g.Ct.size() + g.W.size();
   return count;
 }
 

@@ -56,8 +56,13 @@ class BorderedBlockLu {
   struct Group {
     std::vector<int> rows, columns;  // global indices, in local order
     BandLu band;
-    MatX B, C, W;                     // n_g x nb, nb x n_g, n_g x nb
+    MatX B, Ct, W;                    // n_g x nb each (Ct = C_g^T: border row k of C_g is column k)
     std::vector<int> coupled_border;  // border columns with a nonzero in B
+    // Border rows k with a nonzero in C_g and the span [begin, end) of their nonzero group columns.
+    struct RowSpan {
+      int row, begin, end;
+    };
+    std::vector<RowSpan> coupled_rows;
     mutable VecX z;
   };
   enum Target { kBand, kB, kC, kD };

@@ -38,7 +38,7 @@ struct NewtonOptions {
   /// updates are kept for the next solve, whose first step uses them. Pays off for warm-started
   /// sequences (FK/IK along a path), where the Jacobian barely changes.
   bool reuse_factorization = false;
-  double chord_contraction = 0.5;
+  double chord_contraction = 0.7;
   /// With BorderedBlocks (or Auto choosing it), a factorisation whose block or Schur complement is
   /// singular, or whose Newton step fails the linear residual check, is redone with the sparse LU.
   NewtonLinearSolver linear_solver = NewtonLinearSolver::Auto;
