@@ -155,21 +155,18 @@ class PointBlock final : public ResidualBlock {
 
  private:
   // z from the control points: first the values and derivatives of the components the groups read,
-  // sums[d][c] = sum_i B[i][d] c_i[c] for c in read_[d] (contiguous loops), then the groups' slices.
+  // sums[d][c] = sum_i B[i][d] c_i[c] for c in read_[d] (fixed-size loops for the usual widths), then
+  // the groups' slices.
   void gather(const double* const* values, Eigen::Matrix<double, NL, 1>& z) const {
     double sums[kDerivativeSlots][kMaxComponents];
-    for (const ReadRange& r : read_) {  // the first function assigns (no zeroing), the others add
-      const double b0 = basis_.B[0][r.derivative];
-      double* sum = sums[r.derivative];
-      for (int k = r.begin; k < r.end; ++k) sum[k] = b0 * values[0][k];
-    }
-    for (int i = 1; i < basis_.count; ++i) {
-      const double* c = values[i];
-      for (const ReadRange& r : read_) {
-        const double b = basis_.B[i][r.derivative];
-        if (b == 0.0) continue;
-        double* sum = sums[r.derivative];
-        for (int k = r.begin; k < r.end; ++k) sum[k] += b * c[k];
+    for (const ReadRange& r : read_) {
+      double* sum = sums[r.derivative] + r.begin;
+      switch (r.end - r.begin) {
+        case 3: accumulate<3>(values, r, sum); break;
+        case 4: accumulate<4>(values, r, sum); break;
+        case 7: accumulate<7>(values, r, sum); break;
+        case 13: accumulate<13>(values, r, sum); break;
+        default: accumulate<Eigen::Dynamic>(values, r, sum); break;
       }
     }
     z.setZero();
@@ -211,6 +208,17 @@ class PointBlock final : public ResidualBlock {
       if (r.begin < r.end) ranges.push_back(r);
     }
     return ranges;
+  }
+
+  // sum[0 .. width) = sum_i B[i][r.derivative] c_i[r.begin .. r.end), width = r.end - r.begin (N or dynamic).
+  template <int N>
+  void accumulate(const double* const* values, const ReadRange& r, double* sum) const {
+    using Slice = Eigen::Matrix<double, N, 1>;
+    const int width = r.end - r.begin;
+    Eigen::Map<Slice> out(sum, width);
+    out = basis_.B[0][r.derivative] * Eigen::Map<const Slice>(values[0] + r.begin, width);
+    for (int i = 1; i < basis_.count; ++i)
+      out += basis_.B[i][r.derivative] * Eigen::Map<const Slice>(values[i] + r.begin, width);
   }
 
   int cp_size_;
