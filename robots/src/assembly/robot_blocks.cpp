@@ -23,8 +23,12 @@ using RowMap = Eigen::Map<RowMajorMatX>;
 // ---------------------------------------------------------------------------------------------------
 CouplingBlock::CouplingBlock(const std::string& name, RodEndEvaluator end, LinkFrame frame, RodEndKind kind,
                              const PointConstants& scales)
-    : ResidualBlock(std::string("coupling.") + to_string(kind), name, 7, concat(end.variables(), frame.variables)),
-      end_(std::move(end)), frame_(std::move(frame)), kind_(kind), scales_(scales),
+    : ResidualBlock(std::string("coupling.") + to_string(kind), name, 7,
+                    concat(end.variables(), frame.variables)),
+      end_(std::move(end)),
+      frame_(std::move(frame)),
+      kind_(kind),
+      scales_(scales),
       end_blocks_(static_cast<int>(end_.variables().size())) {}
 
 namespace {
@@ -73,7 +77,8 @@ void CouplingBlock::evaluate(const double* const* values, double* residual, doub
   int column = 0;
   for (size_t k = 0; k < frame_.variables.size(); ++k) {
     const int size = frame_.kind == LinkFrame::Kind::Platform ? 7 : 1;
-    if (jacobians[end_blocks_ + k]) RowMap(jacobians[end_blocks_ + k], 7, size) = dr.rightCols<7>() * dz.middleCols(column, size);
+    if (jacobians[end_blocks_ + k])
+      RowMap(jacobians[end_blocks_ + k], 7, size) = dr.rightCols<7>() * dz.middleCols(column, size);
     column += size;
   }
 }
@@ -87,14 +92,21 @@ std::vector<VariableId> balance_variables(VariableId platform, const std::vector
 }
 }  // namespace
 
-PlatformBalanceBlock::PlatformBalanceBlock(const std::string& name, VariableId platform, std::vector<PlatformRodEnd> ends,
-                                           std::vector<PlatformLoad> loads, double mass, const Vec3& center_of_mass,
-                                           const Vec3& gravity, double force_scale, double moment_scale)
-    : ResidualBlock("platform.balance", name, 7, balance_variables(platform, ends)), ends_(std::move(ends)),
-      loads_(std::move(loads)), mass_(mass), com_(center_of_mass), gravity_(gravity), force_scale_(force_scale),
+PlatformBalanceBlock::PlatformBalanceBlock(const std::string& name, VariableId platform,
+                                           std::vector<PlatformRodEnd> ends, std::vector<PlatformLoad> loads,
+                                           double mass, const Vec3& center_of_mass, const Vec3& gravity,
+                                           double force_scale, double moment_scale)
+    : ResidualBlock("platform.balance", name, 7, balance_variables(platform, ends)),
+      ends_(std::move(ends)),
+      loads_(std::move(loads)),
+      mass_(mass),
+      com_(center_of_mass),
+      gravity_(gravity),
+      force_scale_(force_scale),
       moment_scale_(moment_scale) {}
 
-void PlatformBalanceBlock::evaluate(const double* const* values, double* residual, double* const* jacobians) const {
+void PlatformBalanceBlock::evaluate(const double* const* values, double* residual,
+                                    double* const* jacobians) const {
   const Eigen::Map<const Vec7> pose(values[0]);
   const Vec3 x = pose.head<3>();
   const Quat Q = pose.tail<4>();
@@ -147,37 +159,62 @@ void PlatformBalanceBlock::evaluate(const double* const* values, double* residua
 
 // ---------------------------------------------------------------------------------------------------
 namespace {
-int target_rows(const PoseComponents& c) { return static_cast<int>(std::count(c.begin(), c.end(), true)); }
+int target_rows(const PoseComponents& c) {
+  return static_cast<int>(std::count(c.begin(), c.end(), true));
+}
 }  // namespace
 
-PoseTargetBlock::PoseTargetBlock(const std::string& name, VariableId platform, VariableId target, const Pose& offset,
-                                 const PoseComponents& components, double length_scale)
-    : ResidualBlock("target.pose", name, target_rows(components), {platform, target}), offset_(offset),
-      components_(components), length_scale_(length_scale) {}
+PoseTargetBlock::PoseTargetBlock(const std::string& name, VariableId platform, VariableId target,
+                                 const Pose& offset, const PoseComponents& components, double length_scale)
+    : ResidualBlock("target.pose", name, target_rows(components), {platform, target}),
+      offset_(offset),
+      components_(components),
+      length_scale_(length_scale) {}
 
-void PoseTargetBlock::evaluate(const double* const* values, double* residual, double* const* jacobians) const {
+namespace {
+
+// All six target rows from z = [x (3), Q (4): platform pose; xt (3), Qt (4): target pose].
+template <typename T>
+void pose_target_residual(const Eigen::Matrix<T, 14, 1>& z, const Pose& offset, double length_scale, T* all) {
+  const V3<T> x = z.template segment<3>(0), xt = z.template segment<3>(7);
+  const V4<T> Q = z.template segment<4>(3), Qt = z.template segment<4>(10);
+  const V3<T> xf = x + rotation(Q) * offset.position.cast<T>();
+  const V4<T> Qf = quat_product<T>(Q, offset.orientation.cast<T>());
+  const V3<T> e = conj_product_vec<T>(Qt, Qf) * 2.0;
+  for (int i = 0; i < 3; ++i) {
+    all[i] = (xf[i] - xt[i]) / length_scale;
+    all[3 + i] = e[i];
+  }
+}
+
+}  // namespace
+
+void PoseTargetBlock::evaluate(const double* const* values, double* residual,
+                               double* const* jacobians) const {
+  if (!jacobians) {
+    Eigen::Matrix<double, 14, 1> z;
+    z << Eigen::Map<const Vec7>(values[0]), Eigen::Map<const Vec7>(values[1]);
+    double all[6];
+    pose_target_residual<double>(z, offset_, length_scale_, all);
+    int row = 0;
+    for (int i = 0; i < 6; ++i)
+      if (components_[i]) residual[row++] = all[i];
+    return;
+  }
   using D = Dual<14>;
   Eigen::Matrix<D, 14, 1> z;
   for (int k = 0; k < 7; ++k) {
     z[k] = D::variable(values[0][k], k);
     z[7 + k] = D::variable(values[1][k], 7 + k);
   }
-  const V3<D> x = z.segment<3>(0), xt = z.segment<3>(7);
-  const V4<D> Q = z.segment<4>(3), Qt = z.segment<4>(10);
-  const V3<D> xf = x + rotation(Q) * offset_.position.cast<D>();
-  const V4<D> Qf = quat_product<D>(Q, offset_.orientation.cast<D>());
-  const V3<D> e = conj_product_vec<D>(Qt, Qf) * 2.0;
   D all[6];
-  for (int i = 0; i < 3; ++i) {
-    all[i] = (xf[i] - xt[i]) / length_scale_;
-    all[3 + i] = e[i];
-  }
+  pose_target_residual<D>(z, offset_, length_scale_, all);
   int row = 0;
   for (int i = 0; i < 6; ++i) {
     if (!components_[i]) continue;
     residual[row] = all[i].a;
     for (int b = 0; b < 2; ++b)
-      if (jacobians && jacobians[b])
+      if (jacobians[b])
         for (int k = 0; k < 7; ++k) jacobians[b][row * 7 + k] = all[i].v[7 * b + k];
     ++row;
   }
