@@ -46,6 +46,7 @@ struct NewtonSolver::Impl {
   // Quasi-Newton steps on the last factorisation J0 (free columns): steps[0 .. num_steps), see solve();
   // starts[j]: steps[j] is the first step of a sequence (of a solve, or after a fresh Jacobian).
   std::vector<VecX> steps;
+  std::vector<double> step_norms2;  // |steps[j]|^2
   std::vector<char> starts;
   int num_steps = 0;
   static constexpr int kMaxSteps = 16;     // then a fresh Jacobian (bounds the update work and storage)
@@ -68,7 +69,7 @@ struct NewtonSolver::Impl {
   void quasi_newton_solve(const VecX& b, VecX& x) const {
     linear_solve(b, x);
     for (int j = 0; j + 1 < num_steps; ++j)
-      if (!starts[j + 1]) x += steps[j + 1] * (steps[j].dot(x) / steps[j].squaredNorm());
+      if (!starts[j + 1]) x += steps[j + 1] * (steps[j].dot(x) / step_norms2[j]);
   }
   /// Before a new sequence: keeps the last sequences of at most kCarriedSteps steps in all.
   void drop_old_steps() {
@@ -81,6 +82,7 @@ struct NewtonSolver::Impl {
     }
     for (int j = first; j < num_steps; ++j) {
       steps[j - first].swap(steps[j]);
+      step_norms2[j - first] = step_norms2[j];
       starts[j - first] = starts[j];
     }
     num_steps -= first;
@@ -126,6 +128,7 @@ void NewtonSolver::Impl::prepare() {
   dx_free.resize(m);
   steps.assign(kMaxSteps, VecX::Zero(m));
   starts.assign(kMaxSteps, 1);
+  step_norms2.assign(kMaxSteps, 0.0);
   num_steps = 0;
   dx = VecX::Zero(n);
   x_trial.resize(n);
@@ -286,12 +289,14 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
     w.quasi_newton_solve(r_new, w.dx_free);
     w.dx_free = -w.dx_free;
     const VecX& s_k = w.steps[w.num_steps - 1];
-    const double s2 = s_k.squaredNorm();
+    const double s2 = w.step_norms2[w.num_steps - 1];
     if (!w.dx_free.allFinite() || !(s2 > 0.0) || !(w.dx_free.norm() <= o.chord_contraction * std::sqrt(s2)))
       return false;
     const double alpha = s_k.dot(w.dx_free) / s2;
     w.starts[w.num_steps] = 0;
-    w.steps[w.num_steps++] = w.dx_free / (1.0 - alpha);
+    w.steps[w.num_steps] = w.dx_free / (1.0 - alpha);
+    w.step_norms2[w.num_steps] = w.steps[w.num_steps].squaredNorm();
+    ++w.num_steps;
     return true;
   };
   for (int iteration = 0;; ++iteration) {
@@ -313,6 +318,7 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
         VecX& s0 = w.steps[w.num_steps];
         w.quasi_newton_solve(w.r, s0);
         s0 = -s0;
+        w.step_norms2[w.num_steps] = s0.squaredNorm();
         w.starts[w.num_steps++] = 1;
       }
       take_step_from(x, w.steps[w.num_steps - 1]);
@@ -419,6 +425,7 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
     have_correction = false;
     if (o.reuse_factorization && alpha == 1.0 && w.r_trial.allFinite()) {
       w.steps[0] = w.dx_free;
+      w.step_norms2[0] = w.dx_free.squaredNorm();
       w.starts[0] = 1;
       w.num_steps = 1;
       have_correction = broyden_next(w.r_trial);
