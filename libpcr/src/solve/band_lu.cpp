@@ -48,11 +48,13 @@ bool BandLu::factorize() {
     }
     const double inverse = 1.0 / col[0];
     for (int k = 1; k <= km; ++k) col[k] *= inverse;
+    int rows = km;  // the multipliers' extent: the band below the diagonal is often not full
+    while (rows > 0 && col[rows] == 0.0) --rows;
     for (int c = j + 1; c <= ju; ++c) {
       double* target = a + c * ld_ + kv + j - c;  // target[0] = A(j, c), target[k] = A(j + k, c)
       const double u = target[0];
       if (u == 0.0) continue;
-      for (int k = 1; k <= km; ++k) target[k] -= u * col[k];
+      for (int k = 1; k <= rows; ++k) target[k] -= u * col[k];
     }
   }
   // Actual extents of the factors' columns, for the solves.
