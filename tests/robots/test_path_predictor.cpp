@@ -80,16 +80,32 @@ BOOST_AUTO_TEST_CASE(two_points_extrapolate_a_line_exactly_but_not_a_parabola) {
   BOOST_TEST(std::abs(error_at(parabola, linear_only, 0.3, 0.5) - 0.3) < 1e-12);
 }
 
-BOOST_AUTO_TEST_CASE(a_reversal_or_a_turn_starts_from_the_last_solution) {
+BOOST_AUTO_TEST_CASE(a_turn_or_a_jump_starts_from_the_last_solution) {
   Path p;
   PathPredictor predictor;
   for (double si : {0.0, 0.3, 0.45}) predictor.accept(p.x(si), p.z(si));
   const VecX last = p.x(0.45);
-  BOOST_TEST((predictor.predict(last, p.z(0.3)) - last).norm() == 0.0);  // back along the path
   const VecX sideways = p.z(0.45) + 0.1 * (VecX(3) << 1.0, -2.0, 0.0).finished() / std::sqrt(5.0);
   BOOST_TEST((predictor.predict(last, sideways) - last).norm() == 0.0);  // at right angles (d . e = 0)
-  // A step more than twice the last one is not extrapolated either.
+  // A step more than twice the last one is not extrapolated either, forward or back.
   BOOST_TEST((predictor.predict(last, p.z(0.45 + 0.31)) - last).norm() == 0.0);
+  BOOST_TEST((predictor.predict(last, p.z(0.45 - 0.31)) - last).norm() == 0.0);
+}
+
+BOOST_AUTO_TEST_CASE(going_back_along_the_path_interpolates_the_stored_solutions) {
+  // Reversal on a cubic: back to s = 0.3 (a stored point, exact), then to 0.2 (inside the stored span:
+  // the cubic through 0.0, 0.3, 0.45 and 0.7, exact); 1e-12 as in the tests above.
+  Path p;
+  p.c3 = (VecX(2) << 2.0, -1.5).finished();
+  PathPredictor predictor;
+  for (double si : {0.0, 0.3, 0.45, 0.7}) predictor.accept(p.x(si), p.z(si));
+  BOOST_TEST(error_at(p, predictor, 0.7, 0.45) < 1e-12);
+  BOOST_TEST(error_at(p, predictor, 0.7, 0.6) < 1e-12);
+  // After the turn back the revisited point is one node (the newest solution there): the four stored
+  // points are 0.45 (new), 0.7, 0.45 (old, left out) and 0.3, so the quadratic through 0.3, 0.45 and
+  // 0.7 at 0.2, which misses c3 (s - 0.3)(s - 0.45)(s - 0.7): |c3|max * 0.1 * 0.25 * 0.5 = 0.025.
+  predictor.accept(p.x(0.45), p.z(0.45));
+  BOOST_TEST(std::abs(error_at(p, predictor, 0.45, 0.2) - 0.025) < 1e-12);
 }
 
 BOOST_AUTO_TEST_CASE(after_a_turn_higher_orders_wait_for_points_on_the_new_line) {

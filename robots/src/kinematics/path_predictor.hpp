@@ -1,14 +1,17 @@
 #pragma once
 // Start point for the next solve along a path of parameters z (FK: inputs; IK: target poses), from the
-// last converged solutions (x_j, z_j), by polynomial extrapolation in the arc length s along the path:
-//   dz = z_new - z_k, a = |z_k - z_{k-1}|, theta = (dz . (z_k - z_{k-1})) / a^2, s_new = theta a,
-//   nodes s_k = 0, s_{k-1} = -a, s_{k-j-1} = s_{k-j} - |z_{k-j} - z_{k-j-1}|;
-//   x_pred = sum_j L_j(s_new) x_{k-j}, L_j the Lagrange weights over the nodes used.
+// last converged solutions (x_j, z_j), by polynomial interpolation or extrapolation in the arc length
+// along the line of the last step:
+//   d = (z_k - z_{k-1}) / a, a = |z_k - z_{k-1}|, node s_j = (z_j - z_k) . d of each stored solution,
+//   s_new = (z_new - z_k) . d,  x_pred = sum_j L_j(s_new) x_j, L_j the Lagrange weights over the nodes.
 // The polynomial through m points has error O(|dz|^m): two points give the line x_k + theta (x_k -
-// x_{k-1}), three a quadratic, four (kMaxPoints) a cubic. Used only when the new step continues the old
-// one (angle between dz and the last step below ~25 deg and 0 < theta <= 2); otherwise the start is x_k.
-// Older points join only while each step continues the one after it, so after a turn the order grows
-// again one point at a time. Saves simplified-Newton iterations on smooth paths (teleoperation,
+// x_{k-1}), three a quadratic, four (kMaxPoints) a cubic. A stored point is used only if the stored
+// steps from it to z_k all run along the line (each within ~25 deg of the next, either direction) and
+// its node is not within a / 10 of one already used (a path that turns back revisits its points: the
+// newest solution there is kept). The new point must lie on
+// the line too, in either direction, at most 2 a from z_k; otherwise (a turn, a jump, a first step)
+// the start is x_k. Going back along the path interpolates between stored solutions (exact where the
+// target was solved before). Saves simplified-Newton iterations on smooth paths (teleoperation,
 // trajectories): on the R5b path (p = 6, E = 8, tolerance 1e-6) the cubic starts within a residual of
 // about 1e-6 (the quadratic about 2e-5, the last solution about 1e-3; README, Robots).
 // The higher orders amplify the convergence errors of the stored solutions (the cubic's weights on an
@@ -27,25 +30,36 @@ class PathPredictor {
   /// Start point for parameters z_new (x_last if there is no usable history).
   VecX predict(const VecX& x_last, const VecX& z_new) const {
     if (count_ < 2 || z_new.size() != z(0).size() || x_last.size() != x(1).size()) return x_last;
-    const VecX dz = z_new - z(0), dz_old = z(0) - z(1);
-    const double old2 = dz_old.squaredNorm(), new2 = dz.squaredNorm();
-    if (!(old2 > 0.0) || !(new2 > 0.0)) return x_last;
-    const double dot = dz.dot(dz_old);
-    const double theta = dot / old2;
-    if (!continues(dot, old2, new2) || !(theta > 0.0 && theta <= 2.0)) return x_last;
+    const VecX step = z(0) - z(1), dz = z_new - z(0);
+    const double a = step.norm();
+    if (!(a > 0.0) || !(dz.squaredNorm() > 0.0)) return x_last;
+    const VecX d = step / a;
+    const double s_new = dz.dot(d);
+    if (!on_line(s_new, dz) || !(std::abs(s_new) <= 2.0 * a)) return x_last;
     std::array<double, kMaxPoints> nodes{};
-    nodes[1] = -std::sqrt(old2);
+    std::array<int, kMaxPoints> points{};  // which stored solution each node is
+    nodes[1] = -a;
+    points[1] = 1;
     int used = 2;
-    while (used < count_) {  // z(used - 1) - z(used) must continue z(used - 2) - z(used - 1)
-      const VecX step = z(used - 1) - z(used), later = z(used - 2) - z(used - 1);
-      const double step2 = step.squaredNorm();
-      if (!(step2 > 0.0) || !continues(step.dot(later), step2, later.squaredNorm())) break;
-      nodes[used] = nodes[used - 1] - std::sqrt(step2);
+    for (int j = 2; j < count_; ++j) {
+      // The path back to z_j must run along the same line: each stored step parallel or antiparallel
+      // to the one after it (a turn ends the segment), and z_j itself near the line.
+      const VecX older = z(j - 1) - z(j), later = z(j - 2) - z(j - 1);
+      const double older2 = older.squaredNorm(), later2 = later.squaredNorm();
+      if (older2 > 0.0 && later2 > 0.0 && !(std::abs(older.dot(later)) >= 0.9 * std::sqrt(older2 * later2)))
+        break;
+      const VecX e = z(j) - z(0);
+      const double s = e.dot(d);
+      if (!on_line(s, e)) break;
+      bool distinct = true;
+      for (int i = 0; i < used; ++i) distinct = distinct && std::abs(s - nodes[i]) >= 0.1 * a;
+      if (!distinct) continue;  // a revisited point: the newer solution is already a node
+      nodes[used] = s;
+      points[used] = j;
       ++used;
     }
-    const double s = theta * std::sqrt(old2);
-    VecX out = lagrange_weight(nodes, used, 0, s) * x_last;
-    for (int j = 1; j < used; ++j) out += lagrange_weight(nodes, used, j, s) * x(j);
+    VecX out = lagrange_weight(nodes, used, 0, s_new) * x_last;
+    for (int i = 1; i < used; ++i) out += lagrange_weight(nodes, used, i, s_new) * x(points[i]);
     return out;
   }
   /// Records a converged solution x for parameters z.
@@ -58,10 +72,9 @@ class PathPredictor {
   void reset() { count_ = 0; }
 
  private:
-  /// Two steps with dot product `dot` and squared lengths continue each other: angle below ~25 deg.
-  static bool continues(double dot, double length2_a, double length2_b) {
-    return dot >= 0.9 * std::sqrt(length2_a * length2_b);
-  }
+  /// The vector e from z_k lies on the line of the last step (angle below ~25 deg, either direction),
+  /// s = e . d its coordinate along it.
+  static bool on_line(double s, const VecX& e) { return std::abs(s) >= 0.9 * e.norm(); }
   /// L_j(s) = prod_{i != j} (s - s_i) / (s_j - s_i) over the first `used` nodes.
   static double lagrange_weight(const std::array<double, kMaxPoints>& nodes, int used, int j, double s) {
     double w = 1.0;
