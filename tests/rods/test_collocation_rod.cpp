@@ -84,6 +84,23 @@ BOOST_AUTO_TEST_CASE(every_block_jacobian_matches_finite_differences) {
                                  << " (" << to_string(d.mixed_points) << ") base " << to_string(m.base.kind)
                                  << " tip " << to_string(m.tip.kind) << ": " << r.to_string());
         BOOST_TEST(r.entries_checked > 0);
+        // The pattern comes from structural_mask (whole blocks at once): it must answer as
+        // structural_nonzero entry by entry (which the check above tests against finite differences).
+        int mismatches = 0;
+        for (ResidualId b = 0; b < problem.num_residual_blocks(); ++b) {
+          const ResidualBlock& block = problem.residual(b);
+          for (size_t k = 0; k < block.variables().size(); ++k) {
+            const int size = problem.variable(block.variables()[k]).size;
+            std::vector<char> mask(static_cast<size_t>(block.num_rows()) * size, 2);
+            block.structural_mask(static_cast<int>(k), size, mask.data());
+            for (int row = 0; row < block.num_rows(); ++row)
+              for (int c = 0; c < size; ++c)
+                if ((mask[row * size + c] != 0) != block.structural_nonzero(static_cast<int>(k), row, c) ||
+                    mask[row * size + c] == 2)
+                  ++mismatches;
+          }
+        }
+        BOOST_TEST(mismatches == 0);
       }
     }
   }

@@ -132,11 +132,14 @@ void Problem::Impl::ensure_structure() {
     std::iota(order.begin(), order.end(), 0);
     std::sort(order.begin(), order.end(),
               [&](int a, int c) { return variables[ids[a]].offset < variables[ids[c]].offset; });
+    std::vector<char> mask(dense_start[nk - 1] + rows * variables[ids[nk - 1]].size);
+    for (int k = 0; k < nk; ++k)
+      block.structural_mask(k, variables[ids[k]].size, mask.data() + dense_start[k]);
     for (int r = 0; r < rows; ++r)
       for (int k : order) {
         const VariableBlock& v = variables[ids[k]];
         for (int j = 0; j < v.size; ++j) {
-          if (!block.structural_nonzero(k, r, j)) continue;
+          if (!mask[dense_start[k] + r * v.size + j]) continue;
           entries[b].push_back({dense_start[k] + r * v.size + j, row_offset[b] + r, v.offset + j});
           ++outer[row_offset[b] + r + 1];
         }

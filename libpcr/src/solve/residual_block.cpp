@@ -30,6 +30,11 @@ void ResidualBlock::set_row_bounds(const VecX& lower, const VecX& upper) {
   row_upper_ = upper;
 }
 
+void ResidualBlock::structural_mask(int k, int size, char* mask) const {
+  for (int r = 0; r < num_rows_; ++r)
+    for (int j = 0; j < size; ++j) mask[r * size + j] = structural_nonzero(k, r, j) ? 1 : 0;
+}
+
 void ResidualBlock::evaluate_hessian(const double* const*, const double*, double*) const {
   throw std::logic_error("residual block '" + name_ + "' does not provide a Hessian");
 }

@@ -43,6 +43,10 @@ class ResidualBlock {
     (void)k, (void)row, (void)column;
     return true;
   }
+  /// structural_nonzero for all entries of touched block k at once: mask[row * size + column], size =
+  /// the size of variables()[k]. The default asks structural_nonzero entry by entry; blocks with many
+  /// entries may answer faster (the answers must be the same).
+  virtual void structural_mask(int k, int size, char* mask) const;
 
   /// Optional second derivatives (used by Ipopt for exact Hessians when EVERY active block and objective
   /// term provides them, else limited-memory BFGS). Default: not provided.

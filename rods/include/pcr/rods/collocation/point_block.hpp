@@ -118,6 +118,22 @@ class PointBlock final : public ResidualBlock {
     return false;
   }
 
+  void structural_mask(int k, int size, char* mask) const override {
+    if (k >= basis_.count) {
+      const DirectBlock& d = direct_[k - basis_.count];
+      for (int row = 0; row < NR; ++row)
+        for (int c = 0; c < size; ++c) mask[row * size + c] = depends(row, d.local + c) ? 1 : 0;
+      return;
+    }
+    std::fill(mask, mask + NR * size, char{0});
+    for (const LocalGroup& g : groups_) {
+      if (basis_.B[k][g.derivative] == 0.0) continue;
+      for (int row = 0; row < NR; ++row)
+        for (int c = 0; c < g.dim; ++c)
+          if (depends(row, g.local + c)) mask[row * size + g.component + c] = 1;
+    }
+  }
+
   void evaluate(const double* const* values, double* residual, double* const* jacobians) const override {
     if (jacobians == nullptr) {
       Eigen::Matrix<double, NL, 1> z;
