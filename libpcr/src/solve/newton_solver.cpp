@@ -18,6 +18,24 @@ namespace {
 using SparseRowMajor = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 using SparseColMajor = Eigen::SparseMatrix<double>;
 
+// One pass over v: whether every entry is finite, the largest |entry| and the 2-norm (the quantities the
+// iteration tests on each residual and step).
+struct VectorStats {
+  bool finite;
+  double max_abs, norm;
+};
+VectorStats stats_of(const VecX& v) {
+  bool finite = true;
+  double max_abs = 0.0, sum = 0.0;
+  for (const double e : v) {
+    const double a = std::abs(e);
+    finite = finite && a <= std::numeric_limits<double>::max();  // false for inf and nan
+    max_abs = std::max(max_abs, a);
+    sum += a * a;
+  }
+  return {finite, max_abs, std::sqrt(sum)};
+}
+
 std::string format(const char* fmt, double a, double b = 0.0) {
   char buffer[200];
   std::snprintf(buffer, sizeof buffer, fmt, a, b);
@@ -290,7 +308,8 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
     w.dx_free = -w.dx_free;
     const VecX& s_k = w.steps[w.num_steps - 1];
     const double s2 = w.step_norms2[w.num_steps - 1];
-    if (!w.dx_free.allFinite() || !(s2 > 0.0) || !(w.dx_free.norm() <= o.chord_contraction * std::sqrt(s2)))
+    const VectorStats w_stats = stats_of(w.dx_free);
+    if (!w_stats.finite || !(s2 > 0.0) || !(w_stats.norm <= o.chord_contraction * std::sqrt(s2)))
       return false;
     const double alpha = s_k.dot(w.dx_free) / s2;
     w.starts[w.num_steps] = 0;
@@ -301,8 +320,9 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
   };
   for (int iteration = 0;; ++iteration) {
     summary.iterations = iteration;
-    if (!w.r.allFinite()) return finish(SolveStatus::Diverged, "non-finite residual");
-    const double r_max = w.r.lpNorm<Eigen::Infinity>();
+    const VectorStats r_stats = stats_of(w.r);
+    if (!r_stats.finite) return finish(SolveStatus::Diverged, "non-finite residual");
+    const double r_max = r_stats.max_abs;
     if (r_max <= o.tolerance)
       return finish(SolveStatus::Converged,
                     o.reuse_factorization ? std::to_string(jacobian_evaluations) + " Jacobian evaluations"
@@ -310,7 +330,7 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
     if (iteration >= max_iterations)
       return finish(SolveStatus::MaxIterations,
                     format("no convergence in %.0f iterations (|r|max = %.3g)", max_iterations, r_max));
-    const double r_norm = w.r.norm();
+    const double r_norm = r_stats.norm;
 
     if (!refresh) {
       if (!have_correction) {  // a new sequence: the quasi-Newton step with the kept updates
@@ -324,11 +344,12 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
       take_step_from(x, w.steps[w.num_steps - 1]);
       problem.evaluate_residuals(w.x_trial, w.c);
       w.r_trial = w.c - w.target;
-      const bool finite = w.r_trial.allFinite();
+      const VectorStats trial = stats_of(w.r_trial);
+      const bool finite = trial.finite;
       // A step that lands within the tolerance is kept whatever the contraction test would say: near the
       // solution the corrections are dominated by round-off (|J0^-1| times the residual's noise), and a
       // fresh Jacobian there would be wasted.
-      if (finite && w.r_trial.lpNorm<Eigen::Infinity>() <= o.tolerance) {
+      if (finite && trial.max_abs <= o.tolerance) {
         x.swap(w.x_trial);
         w.r.swap(w.r_trial);
         have_correction = false;
@@ -343,7 +364,7 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
       // Too slow or diverging: a fresh Jacobian, at the trial point if the step still reduced |r|.
       refresh = true;
       have_correction = false;
-      if (finite && w.r_trial.norm() < r_norm) {
+      if (finite && trial.norm < r_norm) {
         x.swap(w.x_trial);
         w.r.swap(w.r_trial);
         continue;  // convergence test and Newton step from the new point
