@@ -4,7 +4,9 @@
 // rods lean alternately left and right and hold the platform in every direction; at the default
 // lengths the rods are straight and stress-free (the initial guess). Times, per model: cold = a fresh
 // ForwardKinematics (assembly built outside the timing) solving the inputs shortened by 1 %, warm =
-// solves alternating between two input sets 1 mm apart, warm-started (8 per repeat); medians over the
+// solves cycling through three input sets about 1 mm apart that do not lie on a line, warm-started (9 per
+// repeat; off a line the path predictor starts each from the last solution, whereas between two
+// alternating sets it would interpolate the stored solutions exactly); medians over the
 // repeats of the process CPU time. A warm solve either runs on the factorisation kept from the last
 // solve (quasi-Newton steps) or takes a fresh Jacobian and factorisation (SolveSummary::
 // jacobian_evaluations > 0), which costs about a cold solve's share; the two kinds are reported apart
@@ -86,8 +88,13 @@ int main(int argc, char** argv) {
         pcr::parse_robot_model(ring_pcr_urdf(rods), "ring" + std::to_string(rods)));
     const pcr::VecX u0 = model->default_input_values();
     const pcr::VecX u_cold = 0.99 * u0;
-    pcr::VecX u_warm[2] = {u_cold, u_cold};
-    for (int i = 0; i < u0.size(); ++i) u_warm[1][i] += (i % 2 == 0 ? 1e-3 : -1e-3);
+    // u_cold; +-1 mm alternating (the platform twists); +1 mm on every rod (it rises): a triangle in
+    // input space whose sides meet at 45-90 deg
+    pcr::VecX u_warm[3] = {u_cold, u_cold, u_cold};
+    for (int i = 0; i < u0.size(); ++i) {
+      u_warm[1][i] += (i % 2 == 0 ? 1e-3 : -1e-3);
+      u_warm[2][i] += 1e-3;
+    }
     std::vector<double> cold, warm, warm_kept, warm_fresh;
     int cold_iterations = 0, warm_iterations = 0, unknowns = 0;
     for (int r = 0; r < repeats; ++r) {
@@ -102,9 +109,9 @@ int main(int argc, char** argv) {
                     s.summary.message.c_str());
         return 1;
       }
-      for (int k = 0; k < 8; ++k) {
+      for (int k = 0; k < 9; ++k) {
         t = cpu_ms();
-        const pcr::RobotSolution w = fk.solve(u_warm[(k + 1) % 2]);
+        const pcr::RobotSolution w = fk.solve(u_warm[(k + 1) % 3]);
         warm.push_back(cpu_ms() - t);
         (w.summary.jacobian_evaluations > 0 ? warm_fresh : warm_kept).push_back(warm.back());
         warm_iterations = w.summary.iterations;

@@ -222,3 +222,36 @@ BOOST_AUTO_TEST_CASE(factorisation_reuse_along_a_path_matches_fresh_newton) {
   }
   BOOST_TEST(jacobian_evaluations < steps / 2);
 }
+
+// The same path with the Broyden updates carried from solve to solve (NewtonSolver::continue_path, as
+// the kinematics do when the path predictor extrapolated the start): the same roots (1e-8 as above),
+// the solver's own iteration counts reported per solve.
+BOOST_AUTO_TEST_CASE(updates_carried_along_a_path_reach_the_same_roots) {
+  const int n = 200;
+  Problem base = broyden_problem(n);
+  NewtonSolver start_solver(base);
+  VecX x = base.initial_values();
+  BOOST_REQUIRE(start_solver.solve(x).converged());
+  base.set_residual_active(0, false);
+  base.fix_variable(0, x.head(1));
+  Problem carried = base, plain = base;
+  NewtonOptions reuse;
+  reuse.reuse_factorization = true;
+  NewtonSolver with_path(carried, reuse), without(plain, reuse);
+  VecX xc = x, xp = x;
+  int iterations_carried = 0, iterations_plain = 0;
+  for (int k = 1; k <= 20; ++k) {
+    const VecX x0 = VecX::Constant(1, x[0] + 0.005 * k);
+    carried.fix_variable(0, x0);
+    plain.fix_variable(0, x0);
+    with_path.continue_path();
+    const SolveSummary sc = with_path.solve(xc), sp = without.solve(xp);
+    BOOST_TEST_REQUIRE(sc.converged(), sc.brief_report());
+    BOOST_TEST_REQUIRE(sp.converged(), sp.brief_report());
+    BOOST_TEST((xc - xp).lpNorm<Eigen::Infinity>() <= 1e-8);
+    iterations_carried += sc.iterations;
+    iterations_plain += sp.iterations;
+  }
+  BOOST_TEST_MESSAGE("quasi-Newton iterations along the path: carried " << iterations_carried << ", plain "
+                                                                        << iterations_plain);
+}

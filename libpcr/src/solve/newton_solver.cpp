@@ -67,6 +67,7 @@ struct NewtonSolver::Impl {
   std::vector<double> step_norms2;  // |steps[j]|^2
   std::vector<char> starts;
   int num_steps = 0;
+  bool continue_path = false;  // the next solve starts with the kept steps (NewtonSolver::continue_path)
   static constexpr int kMaxSteps = 16;     // then a fresh Jacobian (bounds the update work and storage)
   static constexpr int kCarriedSteps = 6;  // steps of earlier solves kept for the next one (see solve())
 
@@ -218,6 +219,10 @@ NewtonSolver::NewtonSolver(const Problem& problem, NewtonOptions options)
 }
 
 NewtonSolver::~NewtonSolver() = default;
+void NewtonSolver::continue_path() {
+  impl_->continue_path = true;
+}
+
 const NewtonOptions& NewtonSolver::options() const {
   return impl_->options;
 }
@@ -287,11 +292,14 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
   // The step is kept while theta <= chord_contraction (affine-invariant contraction; |alpha| <= theta
   // keeps 1 - alpha >= 1/2), else the iteration is redone from x_k with a fresh Jacobian. Convergence is
   // superlinear, against linear for the plain simplified Newton step.
-  // The updates outlive the solve: the first step of the next solve is s = -H r with H after all kept
-  // updates (Broyden's good update holds for any step s = -H r, so a new sequence simply starts there,
-  // and the recursion skips the pair that would join two sequences). Along a path the Jacobian drifts
-  // mostly in the directions of the recent steps, which the kept updates follow; the last
-  // kCarriedSteps steps are kept (whole sequences), a fresh Jacobian drops them all.
+  // Along a path (continue_path()) the updates outlive the solve: the first step of the next solve is
+  // s = -H r with H after all kept updates (Broyden's good update holds for any step s = -H r, so a new
+  // sequence simply starts there, and the recursion skips the pair that would join two sequences). The
+  // Jacobian drifts mostly in the directions of the recent steps, which the kept updates follow; the
+  // last kCarriedSteps steps are kept (whole sequences), a fresh Jacobian drops them all. Otherwise the
+  // solve starts from the plain factorisation J0.
+  if (!w.continue_path) w.num_steps = 0;
+  w.continue_path = false;
   bool refresh = !(o.reuse_factorization && w.factored != Impl::Factored::None);
   bool have_correction = false;  // w.steps[w.num_steps - 1] is the next step from x
   auto take_step_from = [&](const VecX& x0, const VecX& step) {

@@ -190,7 +190,9 @@ SolveSummary ForwardKinematics::solve_once(VecX& x, int max_jacobian_evaluations
 RobotSolution ForwardKinematics::solve(const VecX& inputs) {
   const auto start = Clock::now();
   assembly_.fix_inputs(inputs);  // validates size and bounds
-  VecX x = solvers_->predictor.predict(x_, inputs);
+  bool on_path = false;
+  VecX x = solvers_->predictor.predict(x_, inputs, &on_path);
+  if (on_path && solvers_->newton) solvers_->newton->continue_path();
   assembly_.set_inputs(x, inputs);
   SolveSummary summary = solve_once(x, kDirectJacobianEvaluations);
   int iterations = summary.iterations, jacobians = summary.jacobian_evaluations;
@@ -431,7 +433,9 @@ RobotSolution InverseKinematics::solve(const std::vector<Pose>& target_poses, co
   if (newton_first && square_) {
     if (!solvers_->newton)
       solvers_->newton = std::make_unique<NewtonSolver>(solvers_->square, newton_options(options_));
-    x = solvers_->predictor.predict(x_, all_targets);
+    bool on_path = false;
+    x = solvers_->predictor.predict(x_, all_targets, &on_path);
+    if (on_path) solvers_->newton->continue_path();
     summary = solvers_->newton->solve(x);
     iterations += summary.iterations;
     jacobians += summary.jacobian_evaluations;

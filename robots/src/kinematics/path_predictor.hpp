@@ -27,8 +27,10 @@ class PathPredictor {
  public:
   static constexpr int kMaxPoints = 4;
 
-  /// Start point for parameters z_new (x_last if there is no usable history).
-  VecX predict(const VecX& x_last, const VecX& z_new) const {
+  /// Start point for parameters z_new (x_last if there is no usable history); on_path (if given) says
+  /// whether it came from the stored solutions.
+  VecX predict(const VecX& x_last, const VecX& z_new, bool* on_path = nullptr) const {
+    if (on_path) *on_path = false;
     if (count_ < 2 || z_new.size() != z(0).size() || x_last.size() != x(1).size()) return x_last;
     const VecX step = z(0) - z(1), dz = z_new - z(0);
     const double a = step.norm();
@@ -58,6 +60,7 @@ class PathPredictor {
       points[used] = j;
       ++used;
     }
+    if (on_path) *on_path = true;
     VecX out = lagrange_weight(nodes, used, 0, s_new) * x_last;
     for (int i = 1; i < used; ++i) out += lagrange_weight(nodes, used, i, s_new) * x(points[i]);
     return out;

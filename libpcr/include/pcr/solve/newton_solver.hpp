@@ -34,9 +34,9 @@ struct NewtonOptions {
   double linear_residual_limit = 1e-6;
   /// Quasi-Newton across iterations and solves: reuse the last LU factorisation J0 with Broyden
   /// rank-one updates (Deuflhard's QNERR) while the steps contract, |s_{k+1}| (1 - alpha) <=
-  /// chord_contraction |s_k| (affine-invariant measure); otherwise take a fresh Newton step. The last
-  /// updates are kept for the next solve, whose first step uses them. Pays off for warm-started
-  /// sequences (FK/IK along a path), where the Jacobian barely changes.
+  /// chord_contraction |s_k| (affine-invariant measure); otherwise take a fresh Newton step. Pays off
+  /// for warm-started sequences (FK/IK along a path), where the Jacobian barely changes; along a path
+  /// the updates can also carry over to the next solve (NewtonSolver::continue_path).
   bool reuse_factorization = false;
   double chord_contraction = 0.7;
   /// With BorderedBlocks (or Auto choosing it), a factorisation whose block or Schur complement is
@@ -61,6 +61,11 @@ class NewtonSolver {
   SolveSummary solve(VecX& x, int max_iterations,
                      int max_jacobian_evaluations = std::numeric_limits<int>::max());
   const NewtonOptions& options() const;
+  /// The next solve continues the path of the last ones (e.g. its start was extrapolated from them): its
+  /// first quasi-Newton step uses the Broyden updates kept from them (the last few steps), which follow
+  /// the drift of the Jacobian along the path. By default a solve starts from the plain factorisation:
+  /// for starts off the path the kept updates point the wrong way (more fresh Jacobians, measured).
+  void continue_path();
   /// Which LU holds the last factorisation: "bordered blocks", "sparse" or "none".
   const char* factorization_kind() const;
 
