@@ -161,8 +161,10 @@ Eigen::SparseMatrix<double> collocation_matrix(const KnotVector& knots, const st
 VecX basis_integrals(const KnotVector& knots, double u) {
   require(u >= 0.0 && u <= 1.0, "basis_integrals: u = ", u, " is outside [0, 1]");
   const int p = knots.degree();
-  std::vector<double> nodes, weights;
-  gauss_legendre(p / 2 + 1, nodes, weights);  // exact for degree <= p + 1
+  // Gauss-Legendre rule exact for degree <= p + 1, kept per thread for the next call (a rod asks for
+  // the integrals at every collocation and sample point).
+  thread_local std::vector<double> nodes, weights;
+  if (static_cast<int>(nodes.size()) != p / 2 + 1) gauss_legendre(p / 2 + 1, nodes, weights);
   VecX J = VecX::Zero(knots.num_basis());
   MatX values(1, p + 1);
   const std::vector<double>& t = knots.knots();
