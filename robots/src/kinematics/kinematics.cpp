@@ -121,7 +121,8 @@ RobotSolution read_solution(const RobotAssembly& a, const VecX& x,
     RodResult r;
     r.name = rod.model().name;
     r.length = rod.length(x, v);
-    // Full states at the ends, the centerline and the axial stretch at every sample point (s = 0 .. L).
+    // Full states at the ends, the centerline and the axial stretch at every sample point (s = 0 .. L,
+    // ends included).
     const std::vector<BasisDerivatives>& bases = sample_bases[i];
     const RodState b = rod.state_with_basis(x, v, 0.0, bases.front());
     const RodState t = rod.state_with_basis(x, v, r.length, bases.back());
@@ -132,8 +133,7 @@ RobotSolution read_solution(const RobotAssembly& a, const VecX& x,
     r.axial_force = b.force.dot(b.rotation.col(2));
     std::vector<double> stretches;
     rod.sample_centerline(x, v, bases, r.centerline, stretches);
-    r.min_axial_stretch =
-        std::min({axial_stretch(b), axial_stretch(t), *std::min_element(stretches.begin(), stretches.end())});
+    r.min_axial_stretch = *std::min_element(stretches.begin(), stretches.end());
     s.rods.push_back(std::move(r));
   }
   return s;
