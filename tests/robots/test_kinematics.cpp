@@ -97,6 +97,27 @@ void check_warm_teleop_ik_agrees(const std::shared_ptr<const RobotModel>& teleop
   }
 }
 
+/// FK of `model` at inputs u with the default assembly (mixed rods solved condensed) and with the mixed
+/// rods kept, both at tolerance 1e-12 and converged; the options are returned for further solves.
+struct CondensedAndMixed {
+  KinematicsOptions condensed = tight(), mixed = tight();
+  bool condensed_with_loads = false;  // of the first rod in the condensed assembly
+  RobotSolution fk_condensed, fk_mixed;
+};
+CondensedAndMixed condensed_and_mixed_fk(const std::shared_ptr<const RobotModel>& model, const VecX& u) {
+  CondensedAndMixed out;
+  out.mixed.assembly.condense_mixed_rods = false;
+  ForwardKinematics fc(model, out.condensed), fm(model, out.mixed);
+  BOOST_TEST((fc.assembly().rod(0).discretization().formulation == RodFormulation::Condensed));
+  BOOST_TEST((fm.assembly().rod(0).discretization().formulation == RodFormulation::Mixed));
+  out.condensed_with_loads = fc.assembly().rod(0).condensed_with_loads();
+  out.fk_condensed = fc.solve(u);
+  out.fk_mixed = fm.solve(u);
+  BOOST_TEST_REQUIRE(out.fk_condensed.summary.converged(), out.fk_condensed.summary.brief_report());
+  BOOST_TEST_REQUIRE(out.fk_mixed.summary.converged(), out.fk_mixed.summary.brief_report());
+  return out;
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(every_coupling_balance_and_target_block_matches_finite_differences) {
@@ -319,15 +340,8 @@ BOOST_AUTO_TEST_CASE(condensed_and_mixed_rods_give_the_same_kinematics) {
   // IK must agree with the mixed rods up to the solver tolerance: both solve to 1e-12 (dimensionless),
   // which moves positions by ~1e-12 L0 times cond; 1e-9 m, and 1e-6 relative on the rod wrenches.
   const auto teleop = load("stewart_gough_teleop");
-  KinematicsOptions condensed = tight(), mixed = tight();
-  mixed.assembly.condense_mixed_rods = false;
-  ForwardKinematics fc(teleop, condensed), fm(teleop, mixed);
-  BOOST_TEST((fc.assembly().rod(0).discretization().formulation == RodFormulation::Condensed));
-  BOOST_TEST((fm.assembly().rod(0).discretization().formulation == RodFormulation::Mixed));
-  const VecX u = moved_inputs(*teleop, 0.02);
-  const RobotSolution sc = fc.solve(u), sm = fm.solve(u);
-  BOOST_TEST_REQUIRE(sc.summary.converged(), sc.summary.brief_report());
-  BOOST_TEST_REQUIRE(sm.summary.converged(), sm.summary.brief_report());
+  const CondensedAndMixed both = condensed_and_mixed_fk(teleop, moved_inputs(*teleop, 0.02));
+  const RobotSolution &sc = both.fk_condensed, &sm = both.fk_mixed;
   BOOST_TEST((sc.platforms[0].position - sm.platforms[0].position).norm() < 1e-9);
   BOOST_TEST(rotation_angle_between(sc.platforms[0].rotation(), sm.platforms[0].rotation()) < 1e-9);
   for (size_t r = 0; r < sc.rods.size(); ++r) {
@@ -337,7 +351,7 @@ BOOST_AUTO_TEST_CASE(condensed_and_mixed_rods_give_the_same_kinematics) {
     for (size_t k = 0; k < a.centerline.size(); ++k)
       BOOST_TEST((a.centerline[k] - b.centerline[k]).norm() < 1e-9, "rod " << r << " point " << k);
   }
-  check_warm_teleop_ik_agrees(teleop, condensed, mixed, 1e-9);
+  check_warm_teleop_ik_agrees(teleop, both.condensed, both.mixed, 1e-9);
 }
 
 BOOST_AUTO_TEST_CASE(condensed_and_mixed_rods_agree_under_gravity) {
@@ -346,20 +360,14 @@ BOOST_AUTO_TEST_CASE(condensed_and_mixed_rods_agree_under_gravity) {
   // platform) and 1.7e-8 m (IK inputs) from a fine mixed reference (bench_robots, README "Robots"), so
   // they differ by at most twice that: asserted 1e-9 m and 5e-8 m.
   const auto r5a = load("stewart_gough");
-  KinematicsOptions condensed = tight(), mixed = tight();
-  mixed.assembly.condense_mixed_rods = false;
-  ForwardKinematics fc(r5a, condensed), fm(r5a, mixed);
-  BOOST_TEST((fc.assembly().rod(0).discretization().formulation == RodFormulation::Condensed));
-  BOOST_TEST(fc.assembly().rod(0).condensed_with_loads());
-  const RobotSolution sc = fc.solve(r5a->default_input_values()), sm = fm.solve(r5a->default_input_values());
-  BOOST_TEST_REQUIRE(sc.summary.converged(), sc.summary.brief_report());
-  BOOST_TEST_REQUIRE(sm.summary.converged(), sm.summary.brief_report());
-  BOOST_TEST((sc.platforms[0].position - sm.platforms[0].position).norm() < 1e-9);
+  const CondensedAndMixed both = condensed_and_mixed_fk(r5a, r5a->default_input_values());
+  BOOST_TEST(both.condensed_with_loads);
+  BOOST_TEST((both.fk_condensed.platforms[0].position - both.fk_mixed.platforms[0].position).norm() < 1e-9);
   LinkTarget target;
   target.link = "platform";
   target.pose.position = Vec3(0.0, 0.0, 0.4);
   target.pose.orientation = quat_from_rotation_vector(Vec3(0.0, 10.0 * M_PI / 180.0, 0.0));
-  InverseKinematics ic(r5a, {target}, condensed), im(r5a, {target}, mixed);
+  InverseKinematics ic(r5a, {target}, both.condensed), im(r5a, {target}, both.mixed);
   const RobotSolution a = ic.solve({target.pose}), b = im.solve({target.pose});
   BOOST_TEST_REQUIRE(a.summary.converged(), a.summary.brief_report());
   BOOST_TEST_REQUIRE(b.summary.converged(), b.summary.brief_report());
