@@ -249,16 +249,24 @@ int main(int argc, char** argv) {
     std::vector<double> times;
     double error = 0;
     int iterations = 0, failures = 0, jacobians = 0;
+    std::string passes;  // solves/s and fresh Jacobians of each pass (the first starts from a cold solve)
     for (int pass = 0; pass < 5; ++pass) {  // 1,000 solves: the fresh Jacobians (1 in ~50) average out
+      double pass_time = 0.0;
+      const int pass_jacobians = jacobians;
       for (size_t k = 1; k < path.size(); ++k) {
         const auto t0 = Clock::now();
         const RobotSolution s = ik.solve({path[k]});
         times.push_back(seconds_since(t0));
+        pass_time += times.back();
         iterations += s.summary.iterations;
         jacobians += s.summary.jacobian_evaluations;
         if (!s.summary.converged()) ++failures;
         error = std::max(error, (s.inputs - reference[k]).lpNorm<Eigen::Infinity>());
       }
+      char text[64];
+      std::snprintf(text, sizeof text, "%s%.0f/s (%d)", pass == 0 ? "" : ", ", (path.size() - 1) / pass_time,
+                    jacobians - pass_jacobians);
+      passes += text;
     }
     const Timing t = summarise(times);
     if (failures > 0) error = NAN;
@@ -269,6 +277,7 @@ int main(int argc, char** argv) {
         "solves/s), %.2f it/solve, %d fresh Jacobians in %zu solves%s\n",
         settings_of(mesh).c_str(), label_of(mesh), error, t.median * 1e3, t.mean * 1e3, 1.0 / t.mean,
         double(iterations) / times.size(), jacobians, times.size(), failures ? "  FAILURES" : "");
+    std::printf("  per pass: %s (fresh Jacobians)\n", passes.c_str());
   }
   std::cout << "wrote " << csv.path() << "\n";
   return 0;
