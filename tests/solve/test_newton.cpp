@@ -50,11 +50,28 @@ BOOST_AUTO_TEST_CASE(fixed_variable_and_inactive_block) {
   cl.p.set_residual_active(cl.line, false);
   cl.p.fix_variable(cl.x, VecX::Constant(1, 1.0));  // then y = sqrt(4 - 1)
   NewtonSolver newton(cl.p);
-  VecX x = VecX::Constant(2, 0.5);  // the fixed entry is overwritten with its value
+  VecX x = VecX::Constant(2, 0.5);
+  x[0] = 1.0;  // the caller writes the fixed value (Newton uses the entry of x as it is)
   const SolveSummary s = newton.solve(x);
   BOOST_TEST(s.converged(), s.brief_report());
   BOOST_TEST(x[0] == 1.0);
   BOOST_TEST(std::abs(x[1] - std::sqrt(3.0)) <= 1e-9);  // as above: |x - x*| <~ |c| / |J| with |J| ~ 3.5
+}
+
+// A fixed variable takes its value from x as passed in, not from the Problem's stored value: with x
+// fixed in the Problem at 1 but x[0] = 1.2 passed in, the root is y = sqrt(4 - 1.44) = 1.6, and x[0]
+// stays 1.2.
+BOOST_AUTO_TEST_CASE(fixed_variable_keeps_the_value_passed_in) {
+  CircleLine cl(1.0, 1.0);
+  cl.p.set_residual_active(cl.line, false);
+  cl.p.fix_variable(cl.x, VecX::Constant(1, 1.0));
+  NewtonSolver newton(cl.p);
+  VecX x(2);
+  x << 1.2, 1.0;
+  const SolveSummary s = newton.solve(x);
+  BOOST_TEST_REQUIRE(s.converged(), s.brief_report());
+  BOOST_TEST(x[0] == 1.2);
+  BOOST_TEST(std::abs(x[1] - 1.6) <= 1e-9);  // |dy| <~ |c| / |2 y| with |c| <= 1e-10
 }
 
 BOOST_AUTO_TEST_CASE(broyden_tridiagonal_1000) {
@@ -209,6 +226,7 @@ BOOST_AUTO_TEST_CASE(factorisation_reuse_along_a_path_matches_fresh_newton) {
     reused.fix_variable(0, x0);
     carried.fix_variable(0, x0);
     fresh.fix_variable(0, x0);
+    xq[0] = xc[0] = xf[0] = x0[0];  // Newton uses the fixed values as they are in x
     along_path.continue_path();
     const SolveSummary sq = quasi.solve(xq), sc = along_path.solve(xc), sf = newton.solve(xf);
     BOOST_TEST_REQUIRE(sf.converged(), sf.brief_report());
