@@ -27,6 +27,13 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// Counts and time of an earlier attempt added to a solve's summary.
+void add_attempt(SolveSummary& into, const SolveSummary& attempt) {
+  into.iterations += attempt.iterations;
+  into.jacobian_evaluations += attempt.jacobian_evaluations;
+  into.wall_time_seconds += attempt.wall_time_seconds;
+}
+
 NewtonLoopOptions loop_options(const ShootingRobotOptions& o) {
   NewtonLoopOptions l;
   l.tolerance = o.tolerance;
@@ -123,9 +130,7 @@ RobotSolution ShootingRobotSolver::Impl::continuation(const State& start,
     for (int j = 1; j <= n && ok; ++j) {
       move(s, static_cast<double>(j) / n);
       out = solve(s, true);
-      total.iterations += out.summary.iterations;
-      total.jacobian_evaluations += out.summary.jacobian_evaluations;
-      total.wall_time_seconds += out.summary.wall_time_seconds;
+      add_attempt(total, out.summary);
       ok = out.summary.converged();
       if (ok) s = warm;
     }
@@ -219,22 +224,19 @@ RobotSolution ShootingRobotSolver::fk(const VecX& inputs) {
     first = impl_->solve(impl_->shooting.cold_state(u0, m.initial_platform_poses())).summary;
     if (!first.converged()) {
       RobotSolution failed = impl_->solve(impl_->shooting.cold_state(inputs, m.initial_platform_poses()));
-      failed.summary.iterations += first.iterations;
-      failed.summary.wall_time_seconds += first.wall_time_seconds;
+      add_attempt(failed.summary, first);
       return failed;
     }
   }
   State s = impl_->has_warm ? impl_->warm : impl_->shooting.cold_state(inputs, m.initial_platform_poses());
   s.inputs = inputs;
   RobotSolution out = impl_->solve(s, impl_->has_warm);
-  out.summary.iterations += first.iterations;
-  out.summary.wall_time_seconds += first.wall_time_seconds;
+  add_attempt(out.summary, first);
   if (out.summary.converged()) return out;
   // Continuation in the inputs from the last solution (or from a cold solve at the default inputs).
   if (!impl_->has_warm) {
     const RobotSolution at_default = impl_->solve(impl_->shooting.cold_state(u0, m.initial_platform_poses()));
-    out.summary.iterations += at_default.summary.iterations;
-    out.summary.wall_time_seconds += at_default.summary.wall_time_seconds;
+    add_attempt(out.summary, at_default.summary);
     if (!at_default.summary.converged()) return out;
   }
   const State start = impl_->warm;
@@ -265,8 +267,7 @@ RobotSolution ShootingRobotSolver::ik(const std::vector<Pose>& targets) {
     bool have_start = impl_->has_warm;
     if (!have_start) {
       const RobotSolution at_default = fk(m.default_input_values());
-      out.summary.iterations += at_default.summary.iterations;
-      out.summary.wall_time_seconds += at_default.summary.wall_time_seconds;
+      add_attempt(out.summary, at_default.summary);
       have_start = at_default.summary.converged();
       impl_->system.set_mode(true);
     }

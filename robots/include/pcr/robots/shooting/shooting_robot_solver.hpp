@@ -11,10 +11,11 @@
 // spherical: position, m(L) = 0) and each platform's balance (DESIGN.md §3)
 //   F_ext + m g - sum n(L) = 0,
 //   M_ext + (x_c - x) x m g + (r_F - x) x F_ext - sum (m(L) + (p(L) - x) x n(L)) = 0.
-// Newton with the Jacobian from the variational equations (integrate_rod with tangents; d y(L)/dL =
-// f(L, y(L)) for fed lengths) and central differences of the algebraic tip/balance functions, step
-// cap, backtracking line search, Levenberg-Marquardt fallback; with Dormand-Prince the step sequence
-// of every rod is frozen once the residual is small (a smooth map, so Newton converges to round-off).
+// Newton (the shared loop, pcr/solve/newton_loop.hpp) with the Jacobian from the variational
+// equations (integrate_rod with tangents; d y(L)/dL = f(L, y(L)) for fed lengths) and central
+// differences of the algebraic tip/balance functions, step cap, backtracking line search,
+// Levenberg-Marquardt fallback, stall test; with Dormand-Prince the step sequence of every rod is
+// frozen once the residual is small (a smooth map, so Newton converges to round-off).
 // Every solve is warm-started from the previous converged one (for paths), first with chord steps
 // (the previous Jacobian's LU, state-only integrations) while they halve the residual. A cold FK goes
 // through the default inputs (the URDF's initial platform pose is meant for them); a failed solve

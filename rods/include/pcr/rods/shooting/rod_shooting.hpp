@@ -1,9 +1,9 @@
 #pragma once
 // Shooting-method solution of one rod's boundary value problem (DESIGN.md §6): the six unknown base
-// quantities z are found by Newton (Jacobian from the variational equations, backtracking line
-// search), with a Levenberg-Marquardt step when Newton stalls and load stepping (continuation in a load
-// factor with warm starts) when the full load fails. Independent of the collocation code: it shares
-// only pcr::RodModel and the math headers.
+// quantities z are found by Newton (the shared loop pcr/solve/newton_loop.hpp; Jacobian from the
+// variational equations, backtracking line search), with a Levenberg-Marquardt step when Newton stalls and
+// load stepping (continuation in a load factor with warm starts) when the full load fails. Independent of the
+// collocation code: it shares only pcr::RodModel and the math headers.
 //
 // Unknowns by base kind (the base state y(0) is updated by a retraction, never leaving its constraints):
 //   clamped:   n(0), m(0)                                    (p, R given)
