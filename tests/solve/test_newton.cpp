@@ -261,7 +261,7 @@ BOOST_AUTO_TEST_CASE(factorisation_reuse_along_a_path_matches_fresh_newton) {
 namespace {
 
 // r(x) and J(x) given as functions; x moves by x + dx; records max |r| of every point it accepts.
-class FunctionSystem : public DenseNonlinearSystem {
+class FunctionSystem : public DenseNonlinearSystem<Eigen::Dynamic> {
  public:
   using Residual = std::function<VecX(const VecX&)>;
   using Jacobian = std::function<MatX(const VecX&)>;

@@ -16,34 +16,39 @@ double NonlinearSystem::step_size(const VecX& dx) const {
   return dx.lpNorm<Eigen::Infinity>();
 }
 
-bool DenseNonlinearSystem::evaluate_start(bool with_jacobian, VecX& r) {
+template <int N>
+bool DenseNonlinearSystem<N>::evaluate_start(bool with_jacobian, VecX& r) {
   jacobian_current_ = false;
   if (!evaluate_at(nullptr, r, with_jacobian ? &jacobian_ : nullptr)) return false;
   jacobian_current_ = with_jacobian;
   return true;
 }
 
-bool DenseNonlinearSystem::evaluate_trial(const VecX& dx, bool with_jacobian, VecX& r) {
+template <int N>
+bool DenseNonlinearSystem<N>::evaluate_trial(const VecX& dx, bool with_jacobian, VecX& r) {
   trial_has_jacobian_ = false;
   if (!evaluate_at(&dx, r, with_jacobian ? &trial_jacobian_ : nullptr)) return false;
   trial_has_jacobian_ = with_jacobian;
   return true;
 }
 
-void DenseNonlinearSystem::accept_trial() {
+template <int N>
+void DenseNonlinearSystem<N>::accept_trial() {
   accept();
   jacobian_current_ = trial_has_jacobian_;
   if (trial_has_jacobian_) jacobian_.swap(trial_jacobian_);
   trial_has_jacobian_ = false;
 }
 
-bool DenseNonlinearSystem::reevaluate_current(VecX& r) {
+template <int N>
+bool DenseNonlinearSystem<N>::reevaluate_current(VecX& r) {
   if (evaluate_at(nullptr, r, jacobian_current_ ? &jacobian_ : nullptr)) return true;
   jacobian_current_ = false;
   return false;
 }
 
-SystemStatus DenseNonlinearSystem::factorize(VecX& r) {
+template <int N>
+SystemStatus DenseNonlinearSystem<N>::factorize(VecX& r) {
   if (!jacobian_current_) {
     if (!evaluate_at(nullptr, r, &jacobian_))
       return SystemStatus::failed(SolveStatus::Failed,
@@ -63,5 +68,14 @@ SystemStatus DenseNonlinearSystem::factorize(VecX& r) {
   }
   return SystemStatus::success();
 }
+
+template <int N>
+bool DenseNonlinearSystem<N>::dense_jacobian(MatX& J) const {
+  J = jacobian_;
+  return true;
+}
+
+template class DenseNonlinearSystem<Eigen::Dynamic>;
+template class DenseNonlinearSystem<6>;
 
 }  // namespace pcr

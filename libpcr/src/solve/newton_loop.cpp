@@ -64,7 +64,7 @@ void NewtonLoop::resize(int n) {
   dx_.resize(n);
   step_.resize(n);
   work_.resize(n);
-  broyden_.resize(n);
+  if (options_.quasi_newton == QuasiNewtonKind::Broyden) broyden_.resize(n);  // its storage only if used
 }
 
 NewtonLoopResult NewtonLoop::run(NonlinearSystem& system, const NewtonLoopLimits& limits, bool quasi_start) {
@@ -83,6 +83,7 @@ NewtonLoopResult NewtonLoop::run(NonlinearSystem& system, const NewtonLoopLimits
       options_.quasi_newton != QuasiNewtonKind::None && quasi_start && system.has_factorization();
   run.phase = quasi ? Phase::QuasiNewton : Phase::Newton;
   stall_history_.clear();
+  if (options_.stall_window > 0) stall_history_.reserve(limits.max_iterations + 1);
   if (!system.evaluate_start(options_.jacobian_with_trials && !quasi, r_)) {
     run.r_finite = false;
     finish(run, SolveStatus::Failed, "evaluation failed at the start point: " + system.evaluation_failure());
@@ -210,8 +211,8 @@ NewtonLoop::Step NewtonLoop::newton_step(Run& run) {
       return Step::Next;
     }
   }
-  const bool lm = options_.levenberg_marquardt && system.dense_jacobian() &&
-                  (status.ok() || status.failure == SolveStatus::Singular);
+  const bool lm = options_.levenberg_marquardt && (status.ok() || status.failure == SolveStatus::Singular) &&
+                  system.dense_jacobian(jacobian_);
   if (lm && levenberg_marquardt_step(run)) return Step::Next;
   const std::string after_lm = lm ? "; no Levenberg-Marquardt step reduces |r| either" : "";
   if (!status.ok()) return finish(run, status.failure, status.message + after_lm);
@@ -244,7 +245,7 @@ bool NewtonLoop::line_search(Run& run, double* alpha_out) {
 
 bool NewtonLoop::levenberg_marquardt_step(Run& run) {
   NonlinearSystem& system = *run.system;
-  const MatX& J = *system.dense_jacobian();
+  const MatX& J = jacobian_;  // newton_step copied it
   normal_.noalias() = J.transpose() * J;
   gradient_.noalias() = J.transpose() * r_;
   marquardt_ = normal_.diagonal().cwiseMax(1e-12 * std::max(1.0, normal_.diagonal().maxCoeff()));

@@ -13,7 +13,7 @@
 namespace pcr {
 namespace shooting_robot {
 
-class RobotShootingSystem : public DenseNonlinearSystem {
+class RobotShootingSystem : public DenseNonlinearSystem<Eigen::Dynamic> {
  public:
   RobotShootingSystem(RobotShootingModel& model, const ShootingRobotOptions& options);
 

@@ -8,7 +8,7 @@ namespace shooting {
 
 RodShootingSystem::RodShootingSystem(const RodModel& model, const IntegratorOptions& integrator,
                                      const RodStateVector& y0, double freeze_mesh_below)
-    : DenseNonlinearSystem(1e-14),  // below: Levenberg-Marquardt instead of the Newton step
+    : DenseNonlinearSystem<6>(1e-14),  // below: Levenberg-Marquardt instead of the Newton step
       model_(model),
       ode_(model),
       integrator_(integrator),
@@ -52,7 +52,7 @@ void RodShootingSystem::evaluate(const RodStateVector& y0, bool with_jacobian, E
   if (!e.ok) e.message = "non-finite residual";
 }
 
-bool RodShootingSystem::evaluate_at(const VecX* dx, VecX& r, MatX* J) {
+bool RodShootingSystem::evaluate_at(const VecX* dx, VecX& r, Mat6* J) {
   if (dx) {
     trial_y_ = y_;
     retract_base(model_.base, Vec6(*dx), trial_y_);

@@ -38,7 +38,7 @@ struct Evaluation {
   int steps = 0;
 };
 
-class RodShootingSystem : public DenseNonlinearSystem {
+class RodShootingSystem : public DenseNonlinearSystem<6> {
  public:
   RodShootingSystem(const RodModel& model, const IntegratorOptions& integrator, const RodStateVector& y0,
                     double freeze_mesh_below);
@@ -53,7 +53,7 @@ class RodShootingSystem : public DenseNonlinearSystem {
   std::string evaluation_failure() const override { return failure_; }
 
  protected:
-  bool evaluate_at(const VecX* dx, VecX& r, MatX* J) override;
+  bool evaluate_at(const VecX* dx, VecX& r, Mat6* J) override;
   void accept() override;
 
  private:

@@ -50,7 +50,7 @@ struct NewtonLoopOptions {
   /// Levenberg-Marquardt (shooting robots: the variational equations ride along with the state, so an
   /// accepted trial needs no second integration), instead of at the next Newton step.
   bool jacobian_with_trials = false;
-  bool levenberg_marquardt = false;  ///< needs NonlinearSystem::dense_jacobian()
+  bool levenberg_marquardt = false;  ///< needs NonlinearSystem::dense_jacobian
   double lm_initial_damping = 1e-3;  ///< mu of the first Levenberg-Marquardt step (relative to D)
   double lm_damping_increase = 4.0;  ///< mu factor after a rejected step (and to fit max_step)
   int lm_max_tries = 30;             ///< trial evaluations per Levenberg-Marquardt step
@@ -134,7 +134,7 @@ class NewtonLoop {
   // Workspace, sized once per system size.
   VecX r_, r_trial_, dx_, step_, work_;
   std::vector<double> stall_history_;  // |r| per iteration
-  MatX normal_, damped_;               // J^T J and J^T J + mu D
+  MatX jacobian_, normal_, damped_;    // J, J^T J and J^T J + mu D
   VecX gradient_, marquardt_;          // J^T r and D
   Eigen::LDLT<MatX> ldlt_;
 };

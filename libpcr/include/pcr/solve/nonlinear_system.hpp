@@ -52,8 +52,9 @@ class NonlinearSystem {
   virtual SystemStatus newton_direction(const VecX& r, VecX& dx);
   /// Size of a step for the step cap (NewtonLoopOptions::max_step); default max_i |dx_i|.
   virtual double step_size(const VecX& dx) const;
-  /// J0 as a dense matrix, for Levenberg-Marquardt steps; nullptr when the system has none.
-  virtual const MatX* dense_jacobian() const { return nullptr; }
+  /// J at the current point (that of the last factorize()) as a dense matrix, for Levenberg-Marquardt
+  /// steps; false when the system has none.
+  virtual bool dense_jacobian(MatX& /*J*/) const { return false; }
   /// Called with r of the current point before each convergence test, r_max = max |r_i|: e.g. shooting
   /// freezes its integration mesh there and re-evaluates r (then Changed).
   enum class PointUpdate { Unchanged, Changed, Failed };
