@@ -83,7 +83,7 @@ NewtonLoopResult NewtonLoop::run(NonlinearSystem& system, const NewtonLoopLimits
       options_.quasi_newton != QuasiNewtonKind::None && quasi_start && system.has_factorization();
   run.phase = quasi ? Phase::QuasiNewton : Phase::Newton;
   stall_history_.clear();
-  if (options_.stall_window > 0) stall_history_.reserve(limits.max_iterations + 1);
+  if (options_.stall_window > 0) stall_history_.reserve(std::min(limits.max_iterations, 1000) + 1);
   if (!system.evaluate_start(options_.jacobian_with_trials && !quasi, r_)) {
     run.r_finite = false;
     finish(run, SolveStatus::Failed, "evaluation failed at the start point: " + system.evaluation_failure());

@@ -69,7 +69,7 @@ const Coupling& coupling_of(RodEndKind kind) {
 }
 
 Vec6 platform_balance(const RobotShootingModel& m, int k, const Pose& pose) {
-  // F_ext + m g - sum n(L) = 0 and the moments about the platform origin x (DESIGN.md §3).
+  // F_ext + m g - sum n(L) = 0 and the moments about the platform origin x (shooting_robot_solver.hpp).
   const RobotModel& robot = *m.model;
   const Platform& p = robot.platforms()[k];
   const Mat3 R = pose.rotation();
