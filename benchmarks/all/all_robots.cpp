@@ -104,13 +104,13 @@ References shooting_references(const Scenes& sc, const AllConfig& config, Record
   References ref;
   ShootingRobotSolver a(sc.r5a, shooting_reference_options());
   if (config.selected("R5a_fk_cold")) {
-    const ShootingRobotResult fk = a.fk(sc.fk_inputs);
+    const RobotSolution fk = a.fk(sc.fk_inputs);
     out.note("R5a FK reference (shooting, Dormand-Prince 1e-12): " + fk.summary.brief_report());
     if (!fk.summary.converged()) return ref;
     ref.fk_platform = fk.platforms[0].position;
   }
   if (config.selected("R5a_ik_cold")) {
-    const ShootingRobotResult ik = a.ik({sc.target});
+    const RobotSolution ik = a.ik({sc.target});
     out.note("R5a IK reference (shooting, Dormand-Prince 1e-12): " + ik.summary.brief_report());
     if (!ik.summary.converged()) return ref;
     ref.ik_inputs = ik.inputs;
@@ -257,18 +257,19 @@ void shooting_sweep(const Scenes& sc, const References& ref, const AllConfig& co
     ShootingRobotOptions o;
     o.integrator = IntegratorMethod::RK4;
     o.rk4_steps = n;
-    o.residual_tolerance = 1e-11;
+    o.tolerance = 1e-11;
     runs.push_back({"shooting-rk4", "N=" + std::to_string(n), o});
   }
   for (int e : config.quick ? std::vector<int>{6, 10} : std::vector<int>{4, 6, 8, 10, 12}) {
     ShootingRobotOptions o;
-    o.rel_tol = o.abs_tol = std::pow(10.0, -e);
-    o.residual_tolerance = std::clamp(1e-2 * o.rel_tol, 1e-12, 1e-10);  // below the integration error
+    o.integration_relative_tolerance = o.integration_absolute_tolerance = std::pow(10.0, -e);
+    o.tolerance =
+        std::clamp(1e-2 * o.integration_relative_tolerance, 1e-12, 1e-10);  // below the integration error
     runs.push_back({"shooting-dormand_prince", "tol=1e-" + std::to_string(e), o});
   }
   for (const Run& run : runs) {
     if (config.selected("R5a_fk_cold")) {
-      ShootingRobotResult s;
+      RobotSolution s;
       const Timing t = time_repeated(
           [&] {
             ShootingRobotSolver solver(sc.r5a, run.options);
@@ -280,7 +281,7 @@ void shooting_sweep(const Scenes& sc, const References& ref, const AllConfig& co
                  to_string(s.summary.status));
     }
     if (config.selected("R5a_ik_cold")) {
-      ShootingRobotResult s;
+      RobotSolution s;
       const Timing t = time_repeated(
           [&] {
             ShootingRobotSolver solver(sc.r5a, run.options);

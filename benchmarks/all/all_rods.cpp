@@ -39,8 +39,8 @@ std::vector<double> sample_points(double length) {
 /// Tight shooting: the reference of collocation runs where no analytic solution exists.
 bool shooting_reference(const RodScene& scene, std::vector<Vec3>& points, Recorder& out) {
   ShootingOptions o;
-  o.rel_tol = o.abs_tol = 1e-12;
-  o.residual_tolerance = 1e-12;
+  o.integration_relative_tolerance = o.integration_absolute_tolerance = 1e-12;
+  o.tolerance = 1e-12;
   const ShootingSolution sol = solve_rod_shooting(scene.model, o);
   out.note(scene.name + " reference (shooting, Dormand-Prince 1e-12): " + sol.summary.brief_report());
   if (!sol.summary.converged()) return false;
@@ -100,15 +100,16 @@ void shooting_sweep(const RodScene& scene, const ErrorOf& error_of, const AllCon
     ShootingOptions o;
     o.integrator = IntegratorMethod::RK4;
     o.rk4_steps = n;
-    o.residual_tolerance = 1e-12;
+    o.tolerance = 1e-12;
     runs.push_back({"shooting-rk4", "N=" + std::to_string(n), o});
   }
   const std::vector<int> exponents =
       config.quick ? std::vector<int>{3, 6, 9, 12} : std::vector<int>{3, 4, 5, 6, 7, 8, 9, 10, 11, 12};
   for (int e : exponents) {
     ShootingOptions o;
-    o.rel_tol = o.abs_tol = std::pow(10.0, -e);
-    o.residual_tolerance = std::max(1e-12, 1e-2 * o.rel_tol);  // below the integration error (bench_shooting)
+    o.integration_relative_tolerance = o.integration_absolute_tolerance = std::pow(10.0, -e);
+    o.tolerance = std::max(
+        1e-12, 1e-2 * o.integration_relative_tolerance);  // below the integration error (bench_shooting)
     runs.push_back({"shooting-dormand_prince", "tol=1e-" + std::to_string(e), o});
   }
   for (Run& run : runs) {

@@ -52,8 +52,8 @@ LinkTarget platform_target() {
 
 ShootingRobotOptions shooting_reference_options() {
   ShootingRobotOptions o;
-  o.rel_tol = o.abs_tol = 1e-12;
-  o.residual_tolerance = 1e-12;
+  o.integration_relative_tolerance = o.integration_absolute_tolerance = 1e-12;
+  o.tolerance = 1e-12;
   return o;
 }
 

@@ -25,8 +25,8 @@ Pose r5a_target();
 std::vector<Pose> r5b_path(int steps = 100);
 /// Collocation IK target on the link "platform" (full pose).
 LinkTarget platform_target();
-/// Shooting settings of the robot references: Dormand-Prince with rel_tol = abs_tol = 1e-12 and
-/// residual tolerance 1e-12.
+/// Shooting settings of the robot references: Dormand-Prince with integration_relative_tolerance =
+/// integration_absolute_tolerance = 1e-12 and residual tolerance 1e-12.
 ShootingRobotOptions shooting_reference_options();
 
 }  // namespace pcr::bench

@@ -39,9 +39,9 @@ ErrorFn centerline_error(const RodScene& scene) {
 /// R2 with EA = GA = 1e8: error against a tight Dormand-Prince reference (tol 1e-13) of the same model.
 ErrorFn tip_error_against_tight_reference(const RodScene& scene) {
   ShootingOptions tight;
-  tight.rel_tol = 1e-13;
-  tight.abs_tol = 1e-15;
-  tight.residual_tolerance = 1e-13;
+  tight.integration_relative_tolerance = 1e-13;
+  tight.integration_absolute_tolerance = 1e-15;
+  tight.tolerance = 1e-13;
   const ShootingSolution ref = solve_rod_shooting(scene.model, tight);
   if (!ref.summary.converged())
     std::fprintf(stderr, "R2 reference: %s\n", ref.summary.brief_report().c_str());
@@ -69,16 +69,16 @@ int main(int argc, char** argv) {
       ShootingOptions o;
       o.integrator = IntegratorMethod::RK4;
       o.rk4_steps = N;
-      o.residual_tolerance = 1e-12;
+      o.tolerance = 1e-12;
       runs.push_back(o);
       settings.push_back("N=" + std::to_string(N));
     }
     for (int e = 3; e <= 12; ++e) {
       ShootingOptions o;
       o.integrator = IntegratorMethod::DormandPrince;
-      o.rel_tol = o.abs_tol = std::pow(10.0, -e);
+      o.integration_relative_tolerance = o.integration_absolute_tolerance = std::pow(10.0, -e);
       // Newton stops well below the integration error (and above its step-size noise).
-      o.residual_tolerance = std::max(1e-12, 1e-2 * o.rel_tol);
+      o.tolerance = std::max(1e-12, 1e-2 * o.integration_relative_tolerance);
       runs.push_back(o);
       settings.push_back("tol=1e-" + std::to_string(e));
     }

@@ -41,7 +41,7 @@ std::vector<Method> methods() {
   }
   for (double tol : {1e-6, 1e-8, 1e-10}) {
     ShootingRobotOptions o;
-    o.rel_tol = o.abs_tol = tol;
+    o.integration_relative_tolerance = o.integration_absolute_tolerance = tol;
     char s[32];
     std::snprintf(s, sizeof s, "tol=%g", tol);
     out.push_back({"dormand_prince", s, o});
@@ -74,8 +74,8 @@ int main(int argc, char** argv) {
   const VecX u = r5a_moved_inputs(*r5a);
   const Pose target = r5a_target();
   ShootingRobotSolver ref_a(r5a, bench::shooting_reference_options());
-  const ShootingRobotResult fk_ref = ref_a.fk(u);
-  const ShootingRobotResult ik_ref = ref_a.ik({target});
+  const RobotSolution fk_ref = ref_a.fk(u);
+  const RobotSolution ik_ref = ref_a.ik({target});
   if (!fk_ref.summary.converged() || !ik_ref.summary.converged()) {
     std::fprintf(stderr, "R5a reference failed\n");
     return 1;
@@ -97,12 +97,12 @@ int main(int argc, char** argv) {
     }
   };
   cold_rows("R5a_fk_cold", [&](ShootingRobotSolver& solver, int& iterations) {
-    const ShootingRobotResult s = solver.fk(u);
+    const RobotSolution s = solver.fk(u);
     iterations = s.summary.iterations;
     return s.summary.converged() ? (s.platforms[0].position - fk_ref.platforms[0].position).norm() : NAN;
   });
   cold_rows("R5a_ik_cold", [&](ShootingRobotSolver& solver, int& iterations) {
-    const ShootingRobotResult s = solver.ik({target});
+    const RobotSolution s = solver.ik({target});
     iterations = s.summary.iterations;
     return s.summary.converged() ? (s.inputs - ik_ref.inputs).lpNorm<Eigen::Infinity>() : NAN;
   });
@@ -113,7 +113,7 @@ int main(int argc, char** argv) {
   {
     ShootingRobotSolver ref_b(r5b, bench::shooting_reference_options());
     for (const Pose& p : path) {
-      const ShootingRobotResult s = ref_b.ik({p});
+      const RobotSolution s = ref_b.ik({p});
       if (!s.summary.converged()) {
         std::fprintf(stderr, "R5b reference failed at (%g, %g, %g)\n", p.position.x(), p.position.y(),
                      p.position.z());
@@ -130,7 +130,7 @@ int main(int argc, char** argv) {
     double total = 0.0;
     for (size_t i = 0; i < path.size(); ++i) {
       const auto t0 = std::chrono::steady_clock::now();
-      const ShootingRobotResult s = solver.ik({path[i]});
+      const RobotSolution s = solver.ik({path[i]});
       const double dt = seconds_since(t0);
       if (i > 0) {  // warm-started solves only
         t.push_back(dt);

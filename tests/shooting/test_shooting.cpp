@@ -38,9 +38,9 @@ RodModel cantilever(double length, const Vec3& bending_torsion, const Vec3& shea
 // Tight settings for reference solutions: local error 1e-12 per step, residual 1e-12 (scaled).
 ShootingOptions tight_options() {
   ShootingOptions o;
-  o.rel_tol = 1e-12;
-  o.abs_tol = 1e-14;
-  o.residual_tolerance = 1e-12;
+  o.integration_relative_tolerance = 1e-12;
+  o.integration_absolute_tolerance = 1e-14;
+  o.tolerance = 1e-12;
   return o;
 }
 
@@ -52,8 +52,8 @@ bool all_finite(const ShootingState& x) {
   return x.p.allFinite() && x.q.allFinite() && x.n.allFinite() && x.m.allFinite();
 }
 
-// The global error of Dormand-Prince at rel_tol = 1e-12 over the few hundred steps of these rods is
-// bounded by (steps) x 1e-12 < 1e-9 relative to the rod length (measured: ~1e-13).
+// The global error of Dormand-Prince at integration_relative_tolerance = 1e-12 over the few hundred steps of
+// these rods is bounded by (steps) x 1e-12 < 1e-9 relative to the rod length (measured: ~1e-13).
 constexpr double kTightIntegration = 1e-9;
 
 // ---- R2: Bisshopp & Drucker elastica by elliptic integrals (independent of the solver) -----------
@@ -502,9 +502,9 @@ BOOST_AUTO_TEST_CASE(rk4_error_decreases_as_n_to_the_minus_4) {
   rod.loads.force_per_length = Vec3(0.0, -2.0, 0.0);
   rod.tip.force = Vec3(1.5, 0.0, 0.0);
   ShootingOptions ref_options = tight_options();
-  ref_options.rel_tol = 1e-13;
-  ref_options.abs_tol = 1e-15;
-  ref_options.residual_tolerance = 1e-13;
+  ref_options.integration_relative_tolerance = 1e-13;
+  ref_options.integration_absolute_tolerance = 1e-15;
+  ref_options.tolerance = 1e-13;
   const ShootingSolution ref = solve_rod_shooting(rod, ref_options);
   BOOST_TEST_REQUIRE(ref.summary.converged(), ref.summary.brief_report());
   std::vector<double> errors;
@@ -541,8 +541,8 @@ BOOST_AUTO_TEST_CASE(dense_output_matches_stored_steps_and_a_direct_integration)
   const RodOde ode(rod);
   RodStateVector y = sol.base.to_vector();
   IntegratorOptions o;
-  o.rel_tol = 1e-13;
-  o.abs_tol = 1e-15;
+  o.relative_tolerance = 1e-13;
+  o.absolute_tolerance = 1e-15;
   integrate_rod(ode, 0.0, 0.37, y, o);
   BOOST_TEST(max_abs(sol.at(0.37).p - y.head<3>()) < kTightIntegration);
   const auto samples = sol.sample({0.9, 0.1});
@@ -607,10 +607,10 @@ BOOST_AUTO_TEST_CASE(bad_input_throws_input_error) {
   o.rk4_steps = 0;
   BOOST_CHECK_THROW(solve_rod_shooting(bisshopp_drucker(1.0), o), InputError);
   o = ShootingOptions();
-  o.rel_tol = -1.0;
+  o.integration_relative_tolerance = -1.0;
   BOOST_CHECK_THROW(solve_rod_shooting(bisshopp_drucker(1.0), o), InputError);
   o = ShootingOptions();
-  o.residual_tolerance = 0.0;
+  o.tolerance = 0.0;
   BOOST_CHECK_THROW(solve_rod_shooting(bisshopp_drucker(1.0), o), InputError);
   RodStateVector y = ShootingState().to_vector();
   BOOST_CHECK_THROW(integrate_rod(RodOde(bisshopp_drucker(1.0)), 1.0, 0.5, y, IntegratorOptions()),
@@ -626,7 +626,7 @@ BOOST_AUTO_TEST_CASE(non_converging_solve_reports_status_without_nan) {
     BOOST_TEST(!sol.summary.converged(), sol.summary.brief_report());
     BOOST_TEST(!sol.summary.message.empty());
     BOOST_TEST(std::isfinite(sol.summary.residual_max_abs));
-    BOOST_TEST(sol.summary.residual_max_abs > o.residual_tolerance);
+    BOOST_TEST(sol.summary.residual_max_abs > o.tolerance);
     BOOST_TEST(all_finite(sol.base));
     BOOST_TEST(all_finite(sol.tip));
   }
@@ -634,15 +634,15 @@ BOOST_AUTO_TEST_CASE(non_converging_solve_reports_status_without_nan) {
 
 BOOST_AUTO_TEST_CASE(integration_failure_is_reported) {
   ShootingOptions o = tight_options();
-  o.max_integration_steps = 5;  // far too few for rel_tol = 1e-12
+  o.max_integration_steps = 5;  // far too few for integration_relative_tolerance = 1e-12
   const ShootingSolution sol = solve_rod_shooting(bisshopp_drucker(2.0), o);
   BOOST_TEST(!sol.summary.converged());
   BOOST_TEST(sol.summary.message.find("max_steps") != std::string::npos, sol.summary.message);
   BOOST_TEST(all_finite(sol.base));
   BOOST_TEST(all_finite(sol.tip));
-  // Minimum step guard: a step floor of half the rod cannot meet rel_tol = 1e-12 on a bent rod.
+  // Minimum step guard: a step floor of half the rod cannot meet a relative tolerance of 1e-12 on a bent rod.
   IntegratorOptions io;
-  io.rel_tol = 1e-12;
+  io.relative_tolerance = 1e-12;
   io.min_step_fraction = 0.5;
   ShootingState bent;
   bent.m = Vec3(5, 0, 0);
@@ -653,7 +653,7 @@ BOOST_AUTO_TEST_CASE(integration_failure_is_reported) {
   y = ShootingState().to_vector();
   io = IntegratorOptions();
   io.max_steps = 3;
-  io.rel_tol = 1e-12;
+  io.relative_tolerance = 1e-12;
   const IntegrationReport report = integrate_rod(RodOde(bisshopp_drucker(2.0)), 0.0, 1.0, y, io);
   BOOST_TEST(!report.success);
   BOOST_TEST(report.message.find("max_steps") != std::string::npos, report.message);

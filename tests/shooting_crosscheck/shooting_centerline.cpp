@@ -8,8 +8,8 @@ ShootingCenterline shooting_centerline(const RodModel& model, const std::vector<
                                        double tolerance) {
   ShootingOptions o;
   o.integrator = IntegratorMethod::DormandPrince;
-  o.rel_tol = o.abs_tol = tolerance;
-  o.residual_tolerance = 1e-12;
+  o.integration_relative_tolerance = o.integration_absolute_tolerance = tolerance;
+  o.tolerance = 1e-12;
   const ShootingSolution sol = solve_rod_shooting(model, o);
   ShootingCenterline out;
   out.converged = sol.summary.converged();

@@ -15,7 +15,8 @@ struct ShootingCenterline {
   std::vector<Vec3> points;  ///< p(s) at the requested s
 };
 
-/// Dormand-Prince shooting at rel_tol = abs_tol = tolerance, residual tolerance 1e-12.
+/// Dormand-Prince shooting at integration_relative_tolerance = integration_absolute_tolerance = tolerance,
+/// residual tolerance 1e-12.
 ShootingCenterline shooting_centerline(const RodModel& model, const std::vector<double>& s, double tolerance);
 
 }  // namespace pcr::test

@@ -47,9 +47,9 @@ KinematicsOptions tight_collocation() {
 ShootingRobotOptions tight_shooting() {
   ShootingRobotOptions o;
   o.integrator = IntegratorMethod::DormandPrince;
-  o.rel_tol = 1e-12;
-  o.abs_tol = 1e-12;
-  o.residual_tolerance = 1e-12;
+  o.integration_relative_tolerance = 1e-12;
+  o.integration_absolute_tolerance = 1e-12;
+  o.tolerance = 1e-12;
   return o;
 }
 
@@ -69,8 +69,7 @@ double pose_distance(const Pose& a, const Pose& b, double& angle) {
 // Rotations: 1e-7 rad (the platform radius 0.087 m turns it into < 1e-8 m at the rod ends).
 constexpr double kPoseTolerance = 1e-7;
 
-void check_against_collocation(const RobotSolution& c, const ShootingRobotResult& s,
-                               const std::string& what) {
+void check_against_collocation(const RobotSolution& c, const RobotSolution& s, const std::string& what) {
   for (size_t k = 0; k < c.platforms.size(); ++k) {
     double angle = 0.0;
     const double d = pose_distance(c.platforms[k], s.platforms[k], angle);
@@ -102,11 +101,11 @@ void check_against_collocation(const RobotSolution& c, const ShootingRobotResult
 
 /// Balance of the platform computed here from the rods' tip states (DESIGN.md §3, platform mass at
 /// its origin in R5a): m g - sum n(L) = 0 and - sum (m(L) + (p(L) - x) x n(L)) = 0.
-void check_platform_balance(const RobotModel& m, const ShootingRobotResult& s) {
+void check_platform_balance(const RobotModel& m, const RobotSolution& s) {
   Vec3 F = m.platforms()[0].mass * m.gravity(), M = Vec3::Zero();
-  for (const ShootingRodResult& r : s.rods) {
+  for (const RodResult& r : s.rods) {
     F -= r.tip_force;
-    M -= r.tip_moment + (r.tip_position - s.platforms[0].position).cross(r.tip_force);
+    M -= r.tip_moment + (r.centerline.back() - s.platforms[0].position).cross(r.tip_force);
   }
   // Residual tolerance 1e-12 x force scale (~1 N) and moment scale (~0.5 N m), with margin 10.
   BOOST_TEST(F.norm() < 1e-11, "force balance " << F.transpose());
@@ -124,7 +123,7 @@ BOOST_AUTO_TEST_CASE(forward_kinematics_agrees_with_collocation) {
       const VecX u = moved_inputs(*model, move);
       const RobotSolution c = fk.solve(u);
       BOOST_REQUIRE_MESSAGE(c.summary.converged(), name << " collocation FK: " << c.summary.brief_report());
-      const ShootingRobotResult s = shooting.fk(u);
+      const RobotSolution s = shooting.fk(u);
       BOOST_REQUIRE_MESSAGE(s.summary.converged(),
                             name << " shooting FK: " << s.summary.brief_report() << " " << s.summary.message);
       check_against_collocation(c, s, std::string(name) + " FK move " + std::to_string(move));
@@ -157,15 +156,16 @@ BOOST_AUTO_TEST_CASE(mixed_rod_forces_agree_with_shooting_at_every_element_count
     o.assembly.discretization = {RodFormulation::Mixed, degree, elements, points};
     ForwardKinematics fk(model, o);
     const RobotSolution c = fk.solve(VecX(0));
-    BOOST_REQUIRE_MESSAGE(c.summary.converged(), "p = " << degree << ", E = " << elements << ": "
-                                                        << c.summary.brief_report());
+    BOOST_REQUIRE_MESSAGE(c.summary.converged(),
+                          "p = " << degree << ", E = " << elements << ": " << c.summary.brief_report());
     if (moment) *moment = c.rods[0].base_moment;
     return c.rods[0].base_force;
   };
   RodModel rod;
   rod.name = "s_leg";
   rod.length = 0.4884;
-  rod.set_material_and_section(Material::from_poisson_ratio(207e9, 0.305, 8000.0), CrossSection::circle(0.00065));
+  rod.set_material_and_section(Material::from_poisson_ratio(207e9, 0.305, 8000.0),
+                               CrossSection::circle(0.00065));
   rod.base.kind = RodEndKind::Clamped;
   rod.tip.kind = RodEndKind::Clamped;
   rod.tip.position = Vec3(0.05, 0.02, 0.48);
@@ -175,9 +175,9 @@ BOOST_AUTO_TEST_CASE(mixed_rod_forces_agree_with_shooting_at_every_element_count
   ShootingSolution seed;
   seed.base.n = fk_base_force(6, 16, MixedPoints::Midpoints, &seed.base.m);
   ShootingOptions so;
-  so.rel_tol = 1e-12;
-  so.abs_tol = 1e-12;
-  so.residual_tolerance = 1e-12;
+  so.integration_relative_tolerance = 1e-12;
+  so.integration_absolute_tolerance = 1e-12;
+  so.tolerance = 1e-12;
   const ShootingSolution sh = solve_rod_shooting(rod, so, &seed);
   BOOST_REQUIRE_MESSAGE(sh.summary.converged(), "shooting: " << sh.summary.brief_report());
   const Vec3 n0 = sh.base.n;
@@ -192,7 +192,8 @@ BOOST_AUTO_TEST_CASE(mixed_rod_forces_agree_with_shooting_at_every_element_count
   for (int degree : {4, 5, 6})
     for (int elements = 2; elements <= 8; ++elements) {
       const double e = force_error(degree, elements, MixedPoints::Midpoints);
-      BOOST_TEST(e < 0.1, "p = " << degree << ", E = " << elements << ": base force off by " << e * 100 << " %");
+      BOOST_TEST(e < 0.1,
+                 "p = " << degree << ", E = " << elements << ": base force off by " << e * 100 << " %");
     }
   // The defect this guards against, still present in the Greville scheme (kept as a baseline).
   BOOST_TEST(force_error(5, 4, MixedPoints::Greville) > 1.0);
@@ -230,7 +231,7 @@ BOOST_AUTO_TEST_CASE(every_coupling_with_loads_agrees_with_collocation) {
     const VecX u = moved_inputs(*model, move);
     const RobotSolution c = fk.solve(u);
     BOOST_REQUIRE_MESSAGE(c.summary.converged(), "collocation FK: " << c.summary.brief_report());
-    const ShootingRobotResult s = shooting.fk(u);
+    const RobotSolution s = shooting.fk(u);
     BOOST_REQUIRE_MESSAGE(s.summary.converged(),
                           "shooting FK: " << s.summary.brief_report() << " " << s.summary.message);
     check_against_collocation(c, s, "mixed couplings FK move " + std::to_string(move));
@@ -257,14 +258,14 @@ BOOST_AUTO_TEST_CASE(inverse_kinematics_agrees_with_collocation) {
     BOOST_REQUIRE_MESSAGE(col.summary.converged(),
                           c.model << " collocation IK: " << col.summary.brief_report());
     ShootingRobotSolver shooting(model, tight_shooting());
-    const ShootingRobotResult s = shooting.ik({c.target});
+    const RobotSolution s = shooting.ik({c.target});
     BOOST_REQUIRE_MESSAGE(s.summary.converged(), c.model << " shooting IK: " << s.summary.brief_report()
                                                          << " " << s.summary.message);
     check_against_collocation(col, s, std::string(c.model) + " IK");
     check_platform_balance(*model, s);
     // FK by shooting at the IK inputs returns to the target (1e-9: both at residual 1e-12).
     ShootingRobotSolver fk(model, tight_shooting());
-    const ShootingRobotResult back = fk.fk(s.inputs);
+    const RobotSolution back = fk.fk(s.inputs);
     BOOST_REQUIRE(back.summary.converged());
     double angle = 0.0;
     BOOST_TEST(pose_distance(back.platforms[0], c.target, angle) < 1e-9);
@@ -277,7 +278,7 @@ BOOST_AUTO_TEST_CASE(rk4_converges_to_the_dormand_prince_solution) {
   const auto model = load("stewart_gough");
   const VecX u = moved_inputs(*model, 0.005);
   ShootingRobotSolver reference(model, tight_shooting());
-  const ShootingRobotResult ref = reference.fk(u);
+  const RobotSolution ref = reference.fk(u);
   BOOST_REQUIRE(ref.summary.converged());
   double previous = 0.0;
   for (int steps : {10, 20, 40}) {
@@ -285,7 +286,7 @@ BOOST_AUTO_TEST_CASE(rk4_converges_to_the_dormand_prince_solution) {
     o.integrator = IntegratorMethod::RK4;
     o.rk4_steps = steps;
     ShootingRobotSolver rk4(model, o);
-    const ShootingRobotResult s = rk4.fk(u);
+    const RobotSolution s = rk4.fk(u);
     BOOST_REQUIRE_MESSAGE(s.summary.converged(), s.summary.brief_report() << " " << s.summary.message);
     const double e = (s.platforms[0].position - ref.platforms[0].position).norm();
     BOOST_TEST_MESSAGE("RK4 N = " << steps << ": platform position error " << e);
@@ -304,9 +305,9 @@ BOOST_AUTO_TEST_CASE(warm_started_path_matches_cold_solves) {
   for (int step = 0; step < 5; ++step) {
     Pose target;
     target.position = Vec3(0, 0.02 + 0.001 * step, 0.48 + 0.001 * step);
-    const ShootingRobotResult warm = path.ik({target});
+    const RobotSolution warm = path.ik({target});
     ShootingRobotSolver cold(model, tight_shooting());
-    const ShootingRobotResult c = cold.ik({target});
+    const RobotSolution c = cold.ik({target});
     BOOST_REQUIRE(warm.summary.converged());
     BOOST_REQUIRE(c.summary.converged());
     BOOST_TEST((warm.inputs - c.inputs).lpNorm<Eigen::Infinity>() < 1e-9);

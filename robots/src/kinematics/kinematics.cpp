@@ -433,14 +433,21 @@ RobotSolution InverseKinematics::solve(const std::vector<Pose>& target_poses, co
   if (newton_first && square_) {
     if (!solvers_->newton)
       solvers_->newton = std::make_unique<NewtonSolver>(solvers_->square, newton_options(options_));
+    // Newton keeps the fixed variables' values of x: the targets' are this solve's.
+    auto write_targets = [&](VecX& xt) {
+      for (size_t k = 0; k < targets_.size(); ++k)
+        xt.segment(solvers_->square.variable(target_variables_[k]).offset, 7) = all_targets.segment(7 * k, 7);
+    };
     bool on_path = false;
     x = solvers_->predictor.predict(x_, all_targets, &on_path);
+    write_targets(x);
     if (on_path) solvers_->newton->continue_path();
     summary = solvers_->newton->solve(x);
     iterations += summary.iterations;
     jacobians += summary.jacobian_evaluations;
     if (!summary.converged()) {  // the extrapolated start failed: retry from the last solution
       x = x_;
+      write_targets(x);
       summary = solvers_->newton->solve(x);
       iterations += summary.iterations;
       jacobians += summary.jacobian_evaluations;

@@ -106,10 +106,10 @@ void check_integrator_options(const IntegratorOptions& o) {
   if (o.method == IntegratorMethod::RK4) {
     require(o.rk4_steps >= 1, "integrate_rod: rk4_steps must be >= 1, got ", o.rk4_steps);
   } else {
-    require(std::isfinite(o.rel_tol) && o.rel_tol > 0.0, "integrate_rod: rel_tol must be positive, got ",
-            o.rel_tol);
-    require(std::isfinite(o.abs_tol) && o.abs_tol > 0.0, "integrate_rod: abs_tol must be positive, got ",
-            o.abs_tol);
+    require(std::isfinite(o.relative_tolerance) && o.relative_tolerance > 0.0,
+            "integrate_rod: relative_tolerance must be positive, got ", o.relative_tolerance);
+    require(std::isfinite(o.absolute_tolerance) && o.absolute_tolerance > 0.0,
+            "integrate_rod: absolute_tolerance must be positive, got ", o.absolute_tolerance);
     require(o.min_step_fraction > 0.0 && o.min_step_fraction < 1.0,
             "integrate_rod: min_step_fraction must lie in (0, 1), got ", o.min_step_fraction);
     require(o.max_steps >= 1, "integrate_rod: max_steps must be >= 1, got ", o.max_steps);
@@ -161,7 +161,8 @@ IntegrationReport integrate_dormand_prince(const RodOde& ode, double s0, double 
   auto weighted_rms = [&](const RodStateVector& e, const RodStateVector& y_a, const RodStateVector& y_b) {
     double sum = 0.0;
     for (int i = 0; i < kRodStateSize; ++i) {
-      const double sc = o.abs_tol * scale[i] + o.rel_tol * std::max(std::abs(y_a[i]), std::abs(y_b[i]));
+      const double sc = o.absolute_tolerance * scale[i] +
+                        o.relative_tolerance * std::max(std::abs(y_a[i]), std::abs(y_b[i]));
       sum += (e[i] / sc) * (e[i] / sc);
     }
     return std::sqrt(sum / kRodStateSize);

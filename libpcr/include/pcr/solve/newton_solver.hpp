@@ -1,8 +1,10 @@
 #pragma once
 // Damped Newton for square, equality-only problems c(x) = c_l (= c_u), no objective, no bounds on the
-// free variables (DESIGN.md §5 "skip what a scene does not need"). Fixed variables are constants.
+// free variables (DESIGN.md §5 "skip what a scene does not need"). Fixed variables are constants: they
+// keep the values they have in the x passed to solve() (write Problem::fix_variable's values there).
 //   J dx = -(c(x) - c_l)   (LU: pattern analysed once, numeric factorisation per iteration)
-//   x <- x + alpha dx,  alpha = 1, 1/2, ... until |r(x + alpha dx)|_2 <= (1 - armijo alpha) |r(x)|_2.
+//   x <- x + alpha dx,  alpha = 1, 1/2, ... until |r(x + alpha dx)|_2 <= (1 - armijo alpha) |r(x)|_2
+//   or Deuflhard's natural monotonicity test holds (newton_loop.hpp, the loop this solver runs).
 // Converged when max_i |c_i - c_l,i| <= tolerance (unscaled) and x is finite.
 #include <limits>
 #include <memory>
@@ -23,7 +25,7 @@ enum class NewtonLinearSolver {
 };
 
 struct NewtonOptions {
-  double tolerance = 1e-10;  ///< max-abs residual for convergence
+  double tolerance = 1e-10;  ///< on max_i |c_i(x) - c_l,i| over the active rows, as assembled
   int max_iterations = 50;
   double armijo = 1e-4;    ///< sufficient decrease factor of the line search
   double backtrack = 0.5;  ///< step reduction factor
@@ -54,7 +56,8 @@ class NewtonSolver {
   NewtonSolver(const NewtonSolver&) = delete;
   NewtonSolver& operator=(const NewtonSolver&) = delete;
 
-  /// x: start point in, final iterate out (size num_variables(); fixed entries are set to their values).
+  /// x: start point in, final iterate out (size num_variables()). The entries of fixed variables are
+  /// the values used (not overwritten with the Problem's: the caller writes them, e.g. set_inputs).
   SolveSummary solve(VecX& x);
   /// The same with other limits for this solve: iterations (quasi-Newton steps included) and fresh
   /// Jacobians (e.g. a short budget for a continuation step, which fails fast when it is too long).

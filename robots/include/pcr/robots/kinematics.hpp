@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "pcr/robots/robot_assembly.hpp"
+#include "pcr/robots/robot_solution.hpp"
 #include "pcr/rods/rod_solve.hpp"
 #include "pcr/solve/newton_solver.hpp"
 #include "pcr/solve/solve_summary.hpp"
@@ -80,41 +81,6 @@ struct KinematicsOptions {
   /// converged solve (R5b with 8 elements per rod: about 1 + 3.5 ms, printed by bench_robots).
   bool check_stability = false;
   IkOptions ik;  ///< inverse kinematics only
-};
-
-struct RodResult {
-  std::string name;
-  double length = 0.0;
-  /// n(0), m(0): the wrench the rod exerts on its start link (world frame, moment about the end point).
-  Vec3 base_force = Vec3::Zero(), base_moment = Vec3::Zero();
-  /// n(L), m(L): the wrench the end link exerts on the rod.
-  Vec3 tip_force = Vec3::Zero(), tip_moment = Vec3::Zero();
-  /// Axial force at the feed point n(0) . d3(0) (positive in tension): minus the actuator's push.
-  double axial_force = 0.0;
-  std::vector<Vec3> centerline;
-  /// Smallest axial stretch v3 = 1 + eps3 (d3 . p' over the unstretched rate, 1 = unstretched) at the
-  /// ends and the centerline points. A solve whose rods reach v3 <= 1e-6 (a rod compressed to a point
-  /// or inverted, inadmissible however small its residual) is reported as failed.
-  double min_axial_stretch = 1.0;
-};
-
-struct RobotSolution {
-  SolveSummary summary;
-  VecX inputs;                  ///< in the model's input order
-  std::vector<Pose> platforms;  ///< in the model's platform order
-  std::vector<RodResult> rods;
-  /// With KinematicsOptions::check_stability (DESIGN.md §4): sign of det J, J = dR/dx of the FK system
-  /// (inputs fixed at the solution's) over its free unknowns at the solution: +1 or -1; 0 when not
-  /// checked, not converged or singular.
-  int jacobian_sign = 0;
-  /// jacobian_sign differs from that of the previous converged, checked solve of this solver: det J
-  /// vanishes where equilibria pass a fold or a bifurcation (buckling), so an odd number of them lies
-  /// between the two equilibria, and for conservative loads (dead loads, gravity) this one has an odd
-  /// number of unstable modes more or fewer than the previous one. Along a path that starts at a stable
-  /// equilibrium the first change means: unstable (e.g. a rod fed past its buckling length stays straight
-  /// by symmetry). No change does not prove stability (an even number of crossings, or a double mode
-  /// such as a round rod's buckling in both bending planes at once, keeps the sign).
-  bool jacobian_sign_changed = false;
 };
 
 class ForwardKinematics {

@@ -11,10 +11,11 @@
 // spherical: position, m(L) = 0) and each platform's balance (DESIGN.md §3)
 //   F_ext + m g - sum n(L) = 0,
 //   M_ext + (x_c - x) x m g + (r_F - x) x F_ext - sum (m(L) + (p(L) - x) x n(L)) = 0.
-// Newton with the Jacobian from the variational equations (integrate_rod with tangents; d y(L)/dL =
-// f(L, y(L)) for fed lengths) and central differences of the algebraic tip/balance functions, step
-// cap, backtracking line search, Levenberg-Marquardt fallback; with Dormand-Prince the step sequence
-// of every rod is frozen once the residual is small (a smooth map, so Newton converges to round-off).
+// Newton (the shared loop, pcr/solve/newton_loop.hpp) with the Jacobian from the variational
+// equations (integrate_rod with tangents; d y(L)/dL = f(L, y(L)) for fed lengths) and central
+// differences of the algebraic tip/balance functions, step cap, backtracking line search,
+// Levenberg-Marquardt fallback, stall test; with Dormand-Prince the step sequence of every rod is
+// frozen once the residual is small (a smooth map, so Newton converges to round-off).
 // Every solve is warm-started from the previous converged one (for paths), first with chord steps
 // (the previous Jacobian's LU, state-only integrations) while they halve the residual. A cold FK goes
 // through the default inputs (the URDF's initial platform pose is meant for them); a failed solve
@@ -32,19 +33,22 @@
 #include "pcr/core/types.hpp"
 #include "pcr/robots/pose.hpp"
 #include "pcr/robots/robot_model.hpp"
+#include "pcr/robots/robot_solution.hpp"
 #include "pcr/rods/shooting/integrator_method.hpp"
-#include "pcr/rods/shooting/shooting_summary.hpp"
 
 namespace pcr {
 
 struct ShootingRobotOptions {
   IntegratorMethod integrator = IntegratorMethod::DormandPrince;
-  int rk4_steps = 40;      ///< RK4: steps per rod
-  double rel_tol = 1e-10;  ///< Dormand-Prince tolerances (abs_tol per component times L, F_c, M_c)
-  double abs_tol = 1e-12;
+  int rk4_steps = 40;  ///< RK4: steps per rod
+  /// Dormand-Prince: local error tolerances per step; the absolute one per state component times L,
+  /// 1, F_c, M_c of the rod (IntegratorOptions).
+  double integration_relative_tolerance = 1e-10;
+  double integration_absolute_tolerance = 1e-12;
   /// Convergence: max-abs of the residuals divided by L_max (positions), 1 (directions), F_s (forces),
-  /// F_s L_max (moments), F_s = max(max EI / L^2, total applied force).
-  double residual_tolerance = 1e-10;
+  /// F_s L_max (moments), F_s = max(max EI / L^2, total applied force), at most this
+  /// (SolveSummary::residual_scaled_max_abs).
+  double tolerance = 1e-10;
   int max_iterations = 100;
   /// Dormand-Prince: freeze each rod's step sequence once the scaled residual is below this.
   double freeze_mesh_below = 1e-6;
@@ -60,23 +64,6 @@ struct ShootingRobotOptions {
   bool reuse_jacobian = true;
 };
 
-/// One rod at the solution (world frame).
-struct ShootingRodResult {
-  std::string name;
-  double length = 0.0;
-  Vec3 base_force = Vec3::Zero(), base_moment = Vec3::Zero();  ///< n(0), m(0)
-  Vec3 tip_force = Vec3::Zero(), tip_moment = Vec3::Zero();    ///< n(L), m(L)
-  Vec3 tip_position = Vec3::Zero();
-  Mat3 tip_rotation = Mat3::Identity();
-};
-
-struct ShootingRobotResult {
-  ShootingSummary summary;
-  VecX inputs;                  ///< model input order
-  std::vector<Pose> platforms;  ///< model platform order
-  std::vector<ShootingRodResult> rods;
-};
-
 class ShootingRobotSolver {
  public:
   /// Throws InputError for an unsupported model feature (see above) or bad options.
@@ -86,10 +73,13 @@ class ShootingRobotSolver {
   ShootingRobotSolver& operator=(ShootingRobotSolver&&) noexcept;
 
   /// Platform poses for the given inputs (model order); InputError for a wrong size or out of bounds.
-  ShootingRobotResult fk(const VecX& inputs);
+  /// Fills of RobotSolution: summary (with load_steps: continuation steps), inputs, platforms, and per
+  /// rod name, length, base and tip wrenches, axial force, centerline (the integrator's steps) and
+  /// smallest axial stretch at them; not jacobian_sign (collocation only).
+  RobotSolution fk(const VecX& inputs);
   /// Inputs that put every platform at its target pose (platform order). Needs 6 inputs per platform
   /// (square system); InputError otherwise or for a wrong number of targets.
-  ShootingRobotResult ik(const std::vector<Pose>& platform_targets);
+  RobotSolution ik(const std::vector<Pose>& platform_targets);
   /// Forget the warm start (the next solve starts from the cold guess).
   void reset();
 

@@ -17,11 +17,11 @@ namespace pcr {
 
 struct IntegratorOptions {
   IntegratorMethod method = IntegratorMethod::DormandPrince;
-  int rk4_steps = 100;     ///< RK4: number of equal steps over [s0, s1] (the full rod length)
-  double rel_tol = 1e-10;  ///< Dormand-Prince: relative tolerance
-  /// Dormand-Prince: absolute tolerance, multiplied per component by RodOde::state_scale() (L for p,
-  /// 1 for q, F_c for n, M_c for m; see RodOde) so that one number serves all units.
-  double abs_tol = 1e-12;
+  int rk4_steps = 100;                ///< RK4: number of equal steps over [s0, s1] (the full rod length)
+  double relative_tolerance = 1e-10;  ///< Dormand-Prince: relative local error tolerance per step
+  /// Dormand-Prince: absolute local error tolerance, multiplied per component by RodOde::state_scale()
+  /// (L for p, 1 for q, F_c for n, M_c for m; see RodOde) so that one number serves all units.
+  double absolute_tolerance = 1e-12;
   double min_step_fraction = 1e-12;  ///< smallest step = this * |s1 - s0|; below it integration fails
   int max_steps = 1000000;           ///< accepted + rejected steps before integration fails
 };

@@ -1,9 +1,9 @@
 #pragma once
 // Shooting-method solution of one rod's boundary value problem (DESIGN.md §6): the six unknown base
-// quantities z are found by Newton (Jacobian from the variational equations, backtracking line
-// search), with a Levenberg-Marquardt step when Newton stalls and load stepping (continuation in a load
-// factor with warm starts) when the full load fails. Independent of the collocation code: it shares
-// only pcr::RodModel and the math headers.
+// quantities z are found by Newton (the shared loop pcr/solve/newton_loop.hpp; Jacobian from the
+// variational equations, backtracking line search), with a Levenberg-Marquardt step when Newton stalls and
+// load stepping (continuation in a load factor with warm starts) when the full load fails. Independent of the
+// collocation code: it shares only pcr::RodModel and the math headers.
 //
 // Unknowns by base kind (the base state y(0) is updated by a retraction, never leaving its constraints):
 //   clamped:   n(0), m(0)                                    (p, R given)
@@ -39,7 +39,7 @@
 #include "pcr/rods/rod_model.hpp"
 #include "pcr/rods/shooting/rod_integrator.hpp"
 #include "pcr/rods/shooting/rod_ode.hpp"
-#include "pcr/rods/shooting/shooting_summary.hpp"
+#include "pcr/solve/solve_summary.hpp"
 
 namespace pcr {
 
@@ -47,13 +47,15 @@ struct ShootingOptions {
   using Integrator = IntegratorMethod;
   Integrator integrator = Integrator::DormandPrince;
   int rk4_steps = 100;
-  double rel_tol = 1e-10;
-  double abs_tol = 1e-12;  ///< relative to L, F_c, M_c (RodOde::state_scale, IntegratorOptions)
+  /// Dormand-Prince: local error tolerances per step (IntegratorOptions); the absolute one is relative
+  /// to L, 1, F_c, M_c per state component (RodOde::state_scale).
+  double integration_relative_tolerance = 1e-10;
+  double integration_absolute_tolerance = 1e-12;
   double min_step_fraction = 1e-12;
   int max_integration_steps = 100000;
-  /// Convergence: max-abs of the residuals divided by L (positions), 1 (directions), F_c (forces), M_c
-  /// (moments) at most this.
-  double residual_tolerance = 1e-10;
+  /// Convergence: max-abs of the tip residuals divided by L (positions), 1 (directions), F_c (forces),
+  /// M_c (moments) at most this (SolveSummary::residual_scaled_max_abs).
+  double tolerance = 1e-10;
   int max_iterations = 50;  ///< per load step
   /// Dormand-Prince: when the scaled residual falls below this, the step sequence is frozen for the
   /// rest of the Newton solve (a smooth map, so Newton reaches round-off instead of the tolerance-sized
@@ -84,10 +86,10 @@ struct ShootingOptions {
 
 class ShootingSolution {
  public:
-  ShootingSummary summary;
+  SolveSummary summary;               ///< with load_steps and integration_steps
   ShootingState base;                 ///< state at s = 0 (the converged unknowns, or the last iterate)
   ShootingState tip;                  ///< state at s = L
-  std::vector<double> s;         ///< accepted integration steps (if store_trajectory)
+  std::vector<double> s;              ///< accepted integration steps (if store_trajectory)
   std::vector<ShootingState> states;  ///< state at each s
 
   /// State at any s in [0, L]: one step of the solve's integrator from the stored step at or before s
