@@ -1,3 +1,5 @@
+# Installs what a downstream user needs: the libraries, public headers and CMake package (find_package(pcr)),
+# the pcr tool, the models and the documentation (README "A five-minute tour").
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
@@ -18,3 +20,11 @@ write_basic_package_version_file(${PROJECT_BINARY_DIR}/pcrConfigVersion.cmake
                                  COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/pcrConfig.cmake ${PROJECT_BINARY_DIR}/pcrConfigVersion.cmake
         DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/pcr)
+
+# The pcr tool, the shipped models and the documentation (README.md, with docs/ beside it so that its
+# links hold) under the prefix: bin/pcr, share/pcr/models/*.urdf, share/doc/pcr/.
+install(TARGETS pcr RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/models/ DESTINATION ${CMAKE_INSTALL_DATADIR}/pcr/models
+        FILES_MATCHING PATTERN "*.urdf")
+install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/docs)

@@ -1,7 +1,7 @@
 // libFuzzer target for the model loader: any input must either load or throw pcr::InputError.
 // Another exception escapes and libFuzzer reports it as a crash ("deadly signal" after abort), as it
 // does for memory errors (ASan) and undefined behaviour (UBSan, no recovery). Build and run:
-// scripts/fuzz.sh (README "Stress tests").
+// scripts/fuzz.sh (docs/benchmarks.md, "Fuzzing the model loader").
 #include <cstddef>
 #include <cstdint>
 #include <string>

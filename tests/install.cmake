@@ -1,6 +1,6 @@
-# find_package(pcr) from the install tree: a downstream project builds and runs (label install).
-add_test(NAME test_install_downstream
-         COMMAND ${CMAKE_COMMAND} -DBUILD_DIR=${PROJECT_BINARY_DIR} -DWORK=${CMAKE_CURRENT_BINARY_DIR}/downstream
-                 -DDOWNSTREAM=${CMAKE_CURRENT_LIST_DIR}/install/downstream
-                 -DMODEL=${PROJECT_SOURCE_DIR}/models/cantilever.urdf -P ${CMAKE_CURRENT_LIST_DIR}/install/run_downstream.cmake)
-set_tests_properties(test_install_downstream PROPERTIES LABELS install TIMEOUT 600)
+# The README's code blocks, run as written: the tour with the pcr tool, then cmake --install into a
+# prefix and the C++ example built against it and run on an installed model (label install).
+add_test(NAME test_install_readme
+         COMMAND ${CMAKE_COMMAND} -DBUILD_DIR=${PROJECT_BINARY_DIR} -DSOURCE_DIR=${PROJECT_SOURCE_DIR}
+                 -DWORK=${CMAKE_CURRENT_BINARY_DIR}/install_readme -P ${CMAKE_CURRENT_LIST_DIR}/install/run_readme_blocks.cmake)
+set_tests_properties(test_install_readme PROPERTIES LABELS install TIMEOUT 600)

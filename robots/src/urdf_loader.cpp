@@ -6,6 +6,7 @@
 #include <map>
 #include <sstream>
 
+#include "model_text_check.hpp"
 #include "pcr/core/error.hpp"
 #include "rod_element_reader.hpp"
 #include "urdf_part_reader.hpp"
@@ -15,6 +16,8 @@ namespace pcr {
 namespace {
 
 RobotModel parse_document(const std::string& xml, const std::string& source) {
+  // No parser (pcr's TinyXML pass, then urdfdom's) sees text that is not UTF-8 XML characters.
+  check_model_text(xml, source);
   TiXmlDocument document;
   document.Parse(xml.c_str());
   if (document.Error()) {

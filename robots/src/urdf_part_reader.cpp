@@ -5,7 +5,7 @@
 #include <urdf_parser/urdf_parser.h>
 
 #include <algorithm>
-#include <cmath>
+#include <memory>
 
 #include "pcr/core/error.hpp"
 #include "xml_element_reader.hpp"
@@ -23,12 +23,17 @@ JointType parse_joint_type(XmlElementReader& reader) {
   reader.fail("type", type, "is not supported (fixed, prismatic, revolute, continuous or floating)");
 }
 
-Pose to_pose(const urdf::Pose& p) {
-  const urdf::Rotation& r = p.rotation;
-  return Pose{Vec3(p.position.x, p.position.y, p.position.z), Quat(r.w, r.x, r.y, r.z)};
+// The <origin xyz rpy> child of a joint or an <inertial> (URDF: optional, identity when omitted).
+Pose read_origin(const XmlElementReader& parent, const TiXmlElement& element, const std::string& source) {
+  const TiXmlElement* origin = single_child(parent, element, "origin", false);
+  if (origin == nullptr) return Pose::identity();
+  XmlElementReader reader(*origin, source, parent.label() + " <origin>");
+  return Pose::from_xyz_rpy(reader.vec3_or("xyz", Vec3::Zero()), reader.vec3_or("rpy", Vec3::Zero()));
 }
 
-std::shared_ptr<urdf::ModelInterface> parse_with_urdfdom(const std::string& xml, const std::string& source) {
+// urdfdom rejects what it cannot parse only through its log; its verdict comes after pcr's own checks,
+// so that a file ROS tools reject is not accepted here either.
+void require_urdfdom_accepts(const std::string& xml, const std::string& source) {
   std::shared_ptr<urdf::ModelInterface> urdf;
   try {
     urdf = urdf::parseURDF(xml);
@@ -36,26 +41,33 @@ std::shared_ptr<urdf::ModelInterface> parse_with_urdfdom(const std::string& xml,
     throw_input_error(source, ": urdfdom rejected the URDF: ", e.what());
   }
   if (!urdf) throw_input_error(source, ": urdfdom rejected the URDF (its log above gives the reason)");
-  return urdf;
 }
 
-// Joints in file order, with limits read by pcr (urdfdom defaults missing limits to 0 silently).
-std::vector<Joint> read_joints(const UrdfTree& tree, const urdf::ModelInterface& urdf,
-                               const std::string& source) {
+// Joints in file order, every value read by pcr: urdfdom defaults missing limits to 0 silently and
+// reports malformed numbers only in its log.
+std::vector<Joint> read_joints(const UrdfTree& tree, const std::string& source) {
   std::vector<Joint> joints;
   for (std::size_t j = 0; j < tree.joints.size(); ++j) {
     const std::string label = quoted("joint", tree.joint_names[j]);
-    const urdf::JointConstSharedPtr u = urdf.getJoint(tree.joint_names[j]);
-    if (!u) throw_input_error(source, ": ", label, ": not found by urdfdom");
+    XmlElementReader named(*tree.joints[j], source, label);
     Joint joint;
     joint.name = tree.joint_names[j];
     joint.type = tree.joint_type[j];
     joint.parent_link = tree.joint_parent[j];
     joint.child_link = tree.joint_child[j];
-    joint.origin = to_pose(u->parent_to_joint_origin_transform);
-    joint.axis = Vec3(u->axis.x, u->axis.y, u->axis.z);
+    joint.origin = read_origin(named, *tree.joints[j], source);
+    const bool moves = joint.type == JointType::Prismatic || joint.type == JointType::Revolute ||
+                       joint.type == JointType::Continuous;
+    if (moves) {
+      // URDF: the axis defaults to x; urdfdom keeps it as written (pcr normalises it where it is used).
+      joint.axis = Vec3::UnitX();
+      if (const TiXmlElement* axis = single_child(named, *tree.joints[j], "axis", false)) {
+        XmlElementReader reader(*axis, source, label + " <axis>");
+        joint.axis = reader.vec3("xyz");
+        if (!(joint.axis.norm() > 1e-12)) reader.fail("xyz", reader.text("xyz"), "is zero");
+      }
+    }
     if (joint.type == JointType::Prismatic || joint.type == JointType::Revolute) {
-      XmlElementReader named(*tree.joints[j], source, label);
       const TiXmlElement* limit = single_child(named, *tree.joints[j], "limit", true);
       XmlElementReader reader(*limit, source, label + " <limit>");
       joint.lower = reader.number("lower");
@@ -66,15 +78,30 @@ std::vector<Joint> read_joints(const UrdfTree& tree, const urdf::ModelInterface&
       // 0 if allowed, else the nearest limit; pcr_joint overrides it.
       joint.default_value = std::min(std::max(0.0, joint.lower), joint.upper);
     }
-    if ((joint.type == JointType::Prismatic || joint.type == JointType::Revolute ||
-         joint.type == JointType::Continuous) &&
-        !(joint.axis.allFinite() && joint.axis.norm() > 1e-12)) {
-      XmlElementReader named(*tree.joints[j], source, label);
-      named.fail("<axis> is zero");
-    }
     joints.push_back(joint);
   }
   return joints;
+}
+
+// A link's <inertial> (URDF: <origin> optional, <mass value> and the six <inertia> entries required),
+// read by pcr: urdfdom logs a malformed one and drops it, which would lose the mass silently. pcr uses
+// the mass (>= 0) and the centre of mass; the inertia tensor (statics) only has to be finite.
+struct LinkInertial {
+  double mass = 0.0;
+  Vec3 center_of_mass = Vec3::Zero();  ///< link frame
+};
+LinkInertial read_inertial(const TiXmlElement& link, const std::string& source, const std::string& label) {
+  XmlElementReader named(link, source, label);
+  const TiXmlElement* inertial = single_child(named, link, "inertial", false);
+  if (inertial == nullptr) return LinkInertial{};
+  XmlElementReader in(*inertial, source, label + " <inertial>");
+  LinkInertial result;
+  result.center_of_mass = read_origin(in, *inertial, source).position;
+  XmlElementReader mass(*single_child(in, *inertial, "mass", true), source, in.label() + " <mass>");
+  result.mass = mass.non_negative("value");
+  XmlElementReader inertia(*single_child(in, *inertial, "inertia", true), source, in.label() + " <inertia>");
+  for (const char* entry : {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"}) inertia.number(entry);
+  return result;
 }
 
 }  // namespace
@@ -161,42 +188,33 @@ int carrying_floating_link(const UrdfTree& tree, int link) {
 }
 
 UrdfPart read_urdf_part(const std::string& xml, const UrdfTree& tree, const std::string& source) {
-  const std::shared_ptr<urdf::ModelInterface> parsed = parse_with_urdfdom(xml, source);
-  const urdf::ModelInterface& urdf = *parsed;
   UrdfPart part;
   std::vector<Link>& links = part.links;
   links.resize(tree.links.size());
   for (std::size_t i = 0; i < links.size(); ++i) links[i].name = tree.link_names[i];
-  part.joints = read_joints(tree, urdf, source);
+  part.joints = read_joints(tree, source);
 
   // Platforms (children of floating joints, file order) and their mass; mass elsewhere on a platform's
-  // subtree would be ignored silently, so it is rejected.
-  std::vector<Platform>& platforms = part.platforms;
+  // subtree would be ignored silently, so it is rejected. Every <inertial> is checked, also on links
+  // whose mass is unused (fixed to the world: the base carries it).
   for (std::size_t i = 0; i < links.size(); ++i) {
-    const urdf::LinkConstSharedPtr u = urdf.getLink(links[i].name);
-    const double mass = u && u->inertial ? u->inertial->mass : 0.0;
+    const std::string label = quoted("link", links[i].name);
+    const LinkInertial inertial = read_inertial(*tree.links[i], source, label);
     const int carrier = carrying_floating_link(tree, static_cast<int>(i));
     if (carrier == static_cast<int>(i)) {
       Platform platform;
       platform.link = static_cast<int>(i);
-      platform.mass = mass;
-      if (u && u->inertial) {
-        const urdf::Vector3& c = u->inertial->origin.position;
-        platform.center_of_mass = Vec3(c.x, c.y, c.z);
-      }
-      if (!(std::isfinite(mass) && mass >= 0.0)) {
-        throw_input_error(source, ":", tree.links[i]->Row(), ": ", quoted("link", links[i].name),
-                          " <inertial> <mass>: attribute 'value' = ", mass, " must be non-negative");
-      }
-      platforms.push_back(platform);
-    } else if (carrier >= 0 && mass != 0.0) {
-      throw_input_error(source, ":", tree.links[i]->Row(), ": ", quoted("link", links[i].name),
-                        " <inertial> <mass>: attribute 'value' = ", mass, ": only the platform link '",
-                        tree.link_names[carrier],
+      platform.mass = inertial.mass;
+      platform.center_of_mass = inertial.center_of_mass;
+      part.platforms.push_back(platform);
+    } else if (carrier >= 0 && inertial.mass != 0.0) {
+      throw_input_error(source, ":", tree.links[i]->Row(), ": ", label,
+                        " <inertial> <mass>: attribute 'value' = ", inertial.mass,
+                        ": only the platform link '", tree.link_names[carrier],
                         "' may carry mass (move it into the platform's <inertial>)");
     }
   }
-
+  require_urdfdom_accepts(xml, source);
   return part;
 }
 

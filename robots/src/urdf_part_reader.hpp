@@ -1,7 +1,8 @@
 #pragma once
-// Private to pcr_robots: the URDF part of a model file (links, joints, platforms). The tree is checked
-// with element-level messages before urdfdom parses the file (urdfdom only logs its reasons); urdfdom
-// then supplies origins, axes and inertials.
+// Private to pcr_robots: the URDF part of a model file (links, joints, platforms). pcr reads every
+// value it uses itself (tree, joint origins, axes and limits, inertials), with messages that name the
+// file, line, element and value: urdfdom only logs its reasons, and drops a malformed <inertial>
+// silently. urdfdom then parses the file too, so that what ROS tools reject is rejected here as well.
 #include <map>
 #include <string>
 #include <vector>
@@ -35,7 +36,8 @@ struct UrdfPart {
   std::vector<Joint> joints;        ///< limits and defaults filled
   std::vector<Platform> platforms;  ///< link, mass, center_of_mass
 };
-/// Parses the file with urdfdom and converts the tree; rejects mass on links carried by a platform.
+/// Reads joints and inertials of the tree, rejects mass on links carried by a platform, then requires
+/// urdfdom to accept the file.
 UrdfPart read_urdf_part(const std::string& xml, const UrdfTree& tree, const std::string& source);
 
 }  // namespace pcr

@@ -477,11 +477,16 @@ BOOST_AUTO_TEST_CASE(rejects_bad_urdf_trees) {
 )";
   check_rejected(robot("", bad_limits),
                  {"bad.urdf", "joint 'j' <limit>", "'lower'", "\"0.3\"", "upper = 0.1"});
-  // Errors found by urdfdom itself are wrapped with the file name.
+  // Values pcr uses are read by pcr, with the line, element and value.
   const std::string bad_origin = R"(<link name="base"/><link name="a"/>
 <joint name="j" type="fixed"><parent link="base"/><child link="a"/><origin xyz="1 two 3"/></joint>
 )";
-  check_rejected(robot("", bad_origin), {"bad.urdf", "urdfdom"});
+  check_rejected(robot("", bad_origin), {"bad.urdf:4:", "joint 'j' <origin>", "'xyz'", "\"1 two 3\""});
+  // Errors found by urdfdom itself (here in a part pcr does not use) are wrapped with the file name.
+  const std::string bad_dynamics = R"(<link name="base"/><link name="a"/>
+<joint name="j" type="fixed"><parent link="base"/><child link="a"/><dynamics damping="two"/></joint>
+)";
+  check_rejected(robot("", bad_dynamics), {"bad.urdf", "urdfdom"});
   check_rejected("<robot name=\"x\"><link name=\"base\"/>", {"bad.urdf", "XML error"});
   check_rejected("<model name=\"x\"/>", {"bad.urdf", "<robot>"});
 }

@@ -1,6 +1,7 @@
 #pragma once
-// Reads a robot from one URDF file: the link tree through urdfdom, the pcr extension elements
-// (pcr_rod, pcr_gravity, pcr_load, pcr_joint) through TinyXML. The format is documented in
+// Reads a robot from one URDF file: the text must be UTF-8 XML; the link tree and the pcr extension
+// elements (pcr_rod, pcr_gravity, pcr_load, pcr_joint) are read through TinyXML, and urdfdom must
+// accept the URDF as well. The format is documented in
 // docs/model_format.md. Everything is validated before the model is returned; any problem throws
 // pcr::InputError naming the file, the line, the element, the attribute and its value.
 #include <string>

@@ -1,0 +1,81 @@
+# Runs the code blocks of README.md as written (cmake -P script run by CTest, label install):
+#  1. the blocks between "<!-- readme-block: NAME -->" and "<!-- readme-block-end -->" are extracted;
+#  2. in WORK/root, where build/release is BUILD_DIR and models/ the source models, with
+#     HOME = WORK/home: tour.sh runs with bash (the pcr tool on shipped models), example.cpp and
+#     CMakeLists.txt go to example/, and install.sh runs with bash (cmake --install into
+#     $HOME/opt/pcr, then the example is configured against that prefix, built, and run on an
+#     installed model);
+#  3. the installed layout is checked, and the installed pcr tool solves an installed model.
+# Arguments: -DBUILD_DIR -DSOURCE_DIR -DWORK.
+file(REMOVE_RECURSE "${WORK}")
+set(root "${WORK}/root")
+set(home "${WORK}/home")
+file(MAKE_DIRECTORY "${root}/build" "${root}/example" "${home}")
+file(CREATE_LINK "${BUILD_DIR}" "${root}/build/release" SYMBOLIC)
+file(CREATE_LINK "${SOURCE_DIR}/models" "${root}/models" SYMBOLIC)
+
+file(READ "${SOURCE_DIR}/README.md" readme)
+# The body of the fenced block that follows the marker of `name` (its fence lines left out).
+function(readme_block name out)
+  set(begin_marker "<!-- readme-block: ${name} -->\n")
+  string(FIND "${readme}" "${begin_marker}" begin)
+  if(begin EQUAL -1)
+    message(FATAL_ERROR "README.md has no block '${name}'")
+  endif()
+  string(LENGTH "${begin_marker}" marker_length)
+  math(EXPR begin "${begin} + ${marker_length}")
+  string(SUBSTRING "${readme}" ${begin} -1 rest)
+  string(FIND "${rest}" "```\n<!-- readme-block-end -->" end)
+  string(FIND "${rest}" "\n" fence_end)  # the opening fence line, e.g. ```cpp
+  if(end EQUAL -1 OR fence_end EQUAL -1 OR fence_end GREATER end)
+    message(FATAL_ERROR "README.md: block '${name}' is not a fenced block closed before its end marker")
+  endif()
+  math(EXPR body_begin "${fence_end} + 1")
+  math(EXPR body_length "${end} - ${body_begin}")
+  string(SUBSTRING "${rest}" ${body_begin} ${body_length} body)
+  set(${out} "${body}" PARENT_SCOPE)
+endfunction()
+
+foreach(name tour.sh install.sh)
+  readme_block(${name} body)
+  file(WRITE "${WORK}/${name}" "${body}")
+endforeach()
+foreach(name example.cpp CMakeLists.txt)
+  readme_block(${name} body)
+  file(WRITE "${root}/example/${name}" "${body}")
+endforeach()
+
+function(run)
+  execute_process(COMMAND ${ARGN} WORKING_DIRECTORY "${root}" RESULT_VARIABLE result OUTPUT_VARIABLE out
+                  ERROR_VARIABLE err)
+  if(NOT result EQUAL 0)
+    message(FATAL_ERROR "failed (${result}): ${ARGN}\n${out}\n${err}")
+  endif()
+  message(STATUS "${ARGN}:\n${out}")
+endfunction()
+run(${CMAKE_COMMAND} -E env HOME=${home} bash -euo pipefail "${WORK}/tour.sh")
+run(${CMAKE_COMMAND} -E env HOME=${home} bash -euo pipefail "${WORK}/install.sh")
+
+# What the README says the install holds.
+set(prefix "${home}/opt/pcr")
+file(GLOB models RELATIVE "${SOURCE_DIR}/models" "${SOURCE_DIR}/models/*.urdf")
+file(GLOB docs RELATIVE "${SOURCE_DIR}" "${SOURCE_DIR}/docs/*.md" "${SOURCE_DIR}/docs/images/*")
+set(expected bin/pcr include/pcr/core/types.hpp include/pcr/rods/rod_model.hpp
+             include/pcr/robots/kinematics.hpp share/doc/pcr/README.md)
+foreach(model ${models})
+  list(APPEND expected share/pcr/models/${model})
+endforeach()
+foreach(doc ${docs})
+  list(APPEND expected share/doc/pcr/${doc})
+endforeach()
+foreach(file ${expected})
+  if(NOT EXISTS "${prefix}/${file}")
+    message(FATAL_ERROR "not installed: ${prefix}/${file}")
+  endif()
+endforeach()
+file(GLOB_RECURSE package "${prefix}/*/pcrConfig.cmake")
+file(GLOB_RECURSE libraries "${prefix}/*/libpcr_robots.a")
+if(NOT package OR NOT libraries)
+  message(FATAL_ERROR "no pcrConfig.cmake or libpcr_robots.a under ${prefix}")
+endif()
+run("${prefix}/bin/pcr" fk "${prefix}/share/pcr/models/planar_three_rod.urdf" --json)
