@@ -250,12 +250,6 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
   const Problem& problem = w.problem;
   require(x.size() == problem.num_variables(), "NewtonSolver::solve: x has size ", x.size(), ", expected ",
           problem.num_variables());
-  // Fixed values may change between solves without a structure change (Problem::fix_variable).
-  for (VariableId v = 0; v < problem.num_variable_blocks(); ++v) {
-    if (!problem.variable_fixed(v)) continue;
-    const VariableBlock& b = problem.variable(v);
-    x.segment(b.offset, b.size) = b.lower;
-  }
 
   SolveSummary summary;
   summary.solver = "newton";

@@ -54,7 +54,7 @@ class NewtonSolver {
   NewtonSolver(const NewtonSolver&) = delete;
   NewtonSolver& operator=(const NewtonSolver&) = delete;
 
-  /// x: start point in, final iterate out (size num_variables(); fixed entries are set to their values).
+  /// x: start point in, final iterate out (size num_variables(); its fixed entries are the fixed values).
   SolveSummary solve(VecX& x);
   /// The same with other limits for this solve: iterations (quasi-Newton steps included) and fresh
   /// Jacobians (e.g. a short budget for a continuation step, which fails fast when it is too long).
