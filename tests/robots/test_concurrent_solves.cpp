@@ -1,4 +1,5 @@
-// Model/data split of the kinematics (kinematics.hpp "Model and data"): objects that share one assembly
+// One Problem evaluated by two threads at once gives what serial evaluations give. Model/data split of the
+// kinematics (kinematics.hpp "Model and data"): objects that share one assembly
 // (FK, IK) or one IK model (with_fresh_state) solve in two threads at once with results bitwise equal to
 // the same solves run one after the other; moved objects go on solving exactly as unmoved ones.
 // The sanitizer pass of scripts/test.sh runs this test (ASan/UBSan); it also runs under ThreadSanitizer.
@@ -12,6 +13,7 @@
 
 #include "pcr/robots/kinematics.hpp"
 #include "pcr/robots/urdf_loader.hpp"
+#include "solve/test_problems.hpp"
 
 using namespace pcr;
 
@@ -137,6 +139,38 @@ LinkTarget platform_target() {
 }
 
 }  // namespace
+
+BOOST_AUTO_TEST_CASE(one_problem_evaluated_by_two_threads_as_serially) {
+  const Problem p = test::broyden_problem(200);
+  using SparseRowMajor = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+  struct Values {
+    VecX c, c_only;
+    SparseRowMajor J, H;
+  };
+  // Residuals, Jacobian and Hessian at `count` points along x(t) = -1 + phase + 0.01 t sin(i).
+  auto evaluate_along = [&p](double phase, int count) {
+    std::vector<Values> out(count);
+    const VecX lambda = VecX::LinSpaced(p.num_rows(), -1.0, 1.0);
+    for (int k = 0; k < count; ++k) {
+      VecX x(p.num_variables());
+      for (int i = 0; i < x.size(); ++i) x[i] = -1.0 + phase + 0.01 * k * std::sin(i);
+      p.evaluate_residuals(x, out[k].c_only);
+      p.evaluate_residuals_and_jacobian(x, out[k].c, out[k].J);
+      p.evaluate_hessian(x, 1.0, lambda, out[k].H);
+    }
+    return out;
+  };
+  const std::vector<Values> serial_a = evaluate_along(0.1, 30), serial_b = evaluate_along(0.3, 30);
+  std::vector<Values> a, b;
+  in_parallel([&] { a = evaluate_along(0.1, 30); }, [&] { b = evaluate_along(0.3, 30); });
+  for (const auto& [got, expected] : {std::pair{&a, &serial_a}, std::pair{&b, &serial_b}}) {
+    for (size_t k = 0; k < expected->size(); ++k) {
+      const Values &g = (*got)[k], &e = (*expected)[k];
+      BOOST_TEST((g.c == e.c && g.c_only == e.c_only), "point " << k);
+      BOOST_TEST((MatX(g.J) == MatX(e.J) && MatX(g.H) == MatX(e.H)), "point " << k);
+    }
+  }
+}
 
 BOOST_AUTO_TEST_CASE(fk_objects_sharing_an_assembly_solve_in_parallel_as_serially) {
   const auto model = stewart_gough();
