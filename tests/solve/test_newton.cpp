@@ -51,7 +51,7 @@ BOOST_AUTO_TEST_CASE(fixed_variable_and_inactive_block) {
   cl.p.fix_variable(cl.x, VecX::Constant(1, 1.0));  // then y = sqrt(4 - 1)
   NewtonSolver newton(cl.p);
   VecX x = VecX::Constant(2, 0.5);
-  x[0] = 1.0;  // the fixed entry holds its value (a constant of the solve)
+  x[0] = 1.0;  // the caller writes the fixed value (Newton uses the entry of x as it is)
   const SolveSummary s = newton.solve(x);
   BOOST_TEST(s.converged(), s.brief_report());
   BOOST_TEST(x[0] == 1.0);
@@ -210,7 +210,7 @@ BOOST_AUTO_TEST_CASE(factorisation_reuse_along_a_path_matches_fresh_newton) {
     reused.fix_variable(0, x0);
     carried.fix_variable(0, x0);
     fresh.fix_variable(0, x0);
-    xq[0] = xc[0] = xf[0] = x0[0];  // the fixed entry of x holds the fixed value
+    xq[0] = xc[0] = xf[0] = x0[0];  // Newton uses the fixed values as they are in x
     along_path.continue_path();
     const SolveSummary sq = quasi.solve(xq), sc = along_path.solve(xc), sf = newton.solve(xf);
     BOOST_TEST_REQUIRE(sf.converged(), sf.brief_report());

@@ -199,6 +199,17 @@ RobotAssembly::RobotAssembly(std::shared_ptr<const RobotModel> model, const Asse
           " unknowns (with inputs fixed); check the rod couplings");
 }
 
+ResidualId RobotAssembly::platform_balance(int platform) const {
+  require(platform >= 0 && platform < static_cast<int>(platform_balances_.size()),
+          "platform_balance: platform ", platform, " out of range [0, ", platform_balances_.size(), ")");
+  return platform_balances_[platform];
+}
+
+ResidualId RobotAssembly::rod_coupling(int rod, bool at_tip) const {
+  require(rod >= 0 && rod < num_rods(), "rod_coupling: rod ", rod, " out of range [0, ", num_rods(), ")");
+  return rod_couplings_[rod][at_tip ? 1 : 0];
+}
+
 VecX RobotAssembly::initial_guess() const {
   return problem_.initial_values();
 }

@@ -140,10 +140,16 @@ const Problem& InverseKinematics::problem() const {
   return data().model->square;
 }
 VariableId InverseKinematics::target_variable(int target) const {
-  return data().model->target_variables.at(target);
+  const IkModel& m = *data().model;
+  require(target >= 0 && target < static_cast<int>(m.targets.size()), "target_variable: target ", target,
+          " out of range [0, ", m.targets.size(), ")");
+  return m.target_variables[target];
 }
 ResidualId InverseKinematics::target_residual(int target) const {
-  return data().model->target_residuals.at(target);
+  const IkModel& m = *data().model;
+  require(target >= 0 && target < static_cast<int>(m.targets.size()), "target_residual: target ", target,
+          " out of range [0, ", m.targets.size(), ")");
+  return m.target_residuals[target];
 }
 const VecX& InverseKinematics::state() const {
   return data().x;

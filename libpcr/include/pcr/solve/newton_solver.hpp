@@ -54,7 +54,8 @@ class NewtonSolver {
   NewtonSolver(const NewtonSolver&) = delete;
   NewtonSolver& operator=(const NewtonSolver&) = delete;
 
-  /// x: start point in, final iterate out (size num_variables(); its fixed entries are the fixed values).
+  /// x: start point in, final iterate out (size num_variables()). The entries of fixed variables are
+  /// the values used (not overwritten with the Problem's: the caller writes them, e.g. set_inputs).
   SolveSummary solve(VecX& x);
   /// The same with other limits for this solve: iterations (quasi-Newton steps included) and fresh
   /// Jacobians (e.g. a short budget for a continuation step, which fails fast when it is too long).

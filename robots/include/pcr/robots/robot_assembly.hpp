@@ -7,7 +7,7 @@
 //               dead loads; per platform: force and moment balance + |Q|^2 = 1.
 // Actuation inputs (rod lengths, joint values) are variable blocks too, fixed in the assembly's problem
 // (the forward kinematics system: their values are whatever x holds); inverse kinematics builds its own
-// problems from it with the inputs free (robots/src/kinematics/ik_problems.hpp).
+// problems from it with the inputs free (IkModel, robots/src/kinematics/ik_data.hpp).
 // A RobotAssembly is immutable once built: share it (std::shared_ptr<const RobotAssembly>) between
 // kinematics objects and threads; its const functions, the problem's evaluations included, may run in
 // several threads at once.
@@ -78,9 +78,9 @@ class RobotAssembly {
   VariableId input_variable(int input) const { return input_variables_[input]; }
   /// Residual block of a platform's force and moment balance and |Q|^2 = 1 (7 rows: force / force scale,
   /// moment / moment scale, the unit quaternion).
-  ResidualId platform_balance(int platform) const { return platform_balances_.at(platform); }
+  ResidualId platform_balance(int platform) const;
   /// Residual block coupling rod i's end (at_tip: s = L, else s = 0) to its link; -1 for a free end.
-  ResidualId rod_coupling(int rod, bool at_tip) const { return rod_couplings_.at(rod)[at_tip ? 1 : 0]; }
+  ResidualId rod_coupling(int rod, bool at_tip) const;
   /// Representative scales: the longest rod [m], and the largest rod force / moment scale.
   double length_scale() const { return length_scale_; }
   double force_scale() const { return force_scale_; }
