@@ -12,7 +12,7 @@
 //  - Derivatives by the implicit function theorem on the assembled Jacobian.
 // Poses are world-frame; rotations of poses in derivatives are world-frame rotation vectors.
 //
-// Model and data (as in Pinocchio): what a kinematics object solves on - the assembly, the problems built
+// Model and data: what a kinematics object solves on - the assembly, the problems built
 // from it (IK: targets as equations, bounds and objective, the FK system at a solution, the reduced
 // space) and the options - is immutable once constructed and shared: by the objects over one
 // std::shared_ptr<const RobotAssembly>, and by with_fresh_state() copies. What a solve changes - the
