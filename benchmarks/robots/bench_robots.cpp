@@ -81,7 +81,7 @@ KinematicsOptions options(int degree, int elements, double tolerance = 1e-10,
 // the default structured LU (BorderedBlockLu, one group per rod) and the sparse LU (SparseLu, the
 // baseline), on the same matrix. Printed only (no error to put beside it).
 void print_operation_costs(const InverseKinematics& ik) {
-  const Problem& problem = ik.assembly().problem();
+  const Problem& problem = ik.problem();
   const VecX& x = ik.state();
   VecX c(problem.num_rows());
   Eigen::SparseMatrix<double, Eigen::RowMajor> J;
@@ -195,7 +195,7 @@ int main(int argc, char** argv) {
     // size of the square IK system (structural zeros of the blocks left out)
     InverseKinematics ik(r5b, {platform_target()},
                          options(mesh.degree, mesh.elements, 1e-10, mesh.points, false, mesh.formulation));
-    const Problem& problem = ik.assembly().problem();
+    const Problem& problem = ik.problem();
     std::printf("R5b IK %s %s: %d rows, %d Jacobian nonzeros\n", settings_of(mesh).c_str(),
                 to_string(mesh.formulation), problem.num_rows(), problem.jacobian_nonzeros());
     if (ik.solve({path[0]}).summary.converged()) print_operation_costs(ik);

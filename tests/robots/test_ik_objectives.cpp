@@ -262,11 +262,8 @@ BOOST_AUTO_TEST_CASE(reduced_gradients_match_finite_differences_of_fk) {
   // tolerance 2e-5 absolute + relative.
   const auto model = load("stewart_gough");
   InverseKinematics ik(model, {position_target(kTarget)});
-  const Problem& p = ik.assembly().problem();
-  VariableId target = -1;
-  for (int v = 0; v < p.num_variable_blocks(); ++v)
-    if (p.variable(v).name == "target.platform") target = v;
-  BOOST_REQUIRE(target >= 0);
+  const Problem& p = ik.problem();
+  BOOST_REQUIRE(p.variable(ik.target_variable(0)).name == "target.platform");
   KinematicsOptions o;
   o.tolerance = 1e-12;
   ForwardKinematics fk(model, o);
@@ -280,9 +277,9 @@ BOOST_AUTO_TEST_CASE(reduced_gradients_match_finite_differences_of_fk) {
     o.ik.objective = objective;
     o.ik.distance_weight = 0.1;
     o.ik.max_rod_stress = 1e8;
-    kinematics::ReducedIk reduced(ik.assembly(), p, {target}, o);
-    reduced.set_target(0, z);
-    reduced.prepare(x, model->default_input_values());
+    kinematics::ReducedIk reduced(std::make_shared<const kinematics::ReducedIkModel>(
+        ik.assembly_ptr(), p, std::vector{ik.target_residual(0)}, o));
+    reduced.prepare(x, model->default_input_values());  // x holds the target pose z
     JacobianCheckOptions c;
     c.absolute_tolerance = 2e-5;
     c.relative_tolerance = 2e-5;

@@ -148,7 +148,7 @@ BOOST_AUTO_TEST_CASE(every_coupling_balance_and_target_block_matches_finite_diff
   InverseKinematics ik(model, {t});
   VecX x = ik.state();
   for (int i = 0; i < x.size(); ++i) x[i] += 1e-3 * (std::abs(x[i]) + 1e-2) * noise(rng);
-  const JacobianCheckResult r = check_problem_jacobian(ik.assembly().problem(), x);
+  const JacobianCheckResult r = check_problem_jacobian(ik.problem(), x);
   BOOST_TEST(r.passed, "ik problem: " << r.to_string());
 }
 
@@ -457,4 +457,23 @@ BOOST_AUTO_TEST_CASE(bad_inputs_are_rejected_with_names) {
   BOOST_CHECK_THROW(
       InverseKinematics(model, {LinkTarget{"no_such_link", LinkTarget::Mode::Pose, Pose{}, kFull}}),
       InputError);
+}
+
+BOOST_AUTO_TEST_CASE(assembly_hands_out_its_coupling_and_balance_blocks) {
+  // Typed handles instead of searching blocks by kind: each names the block of that rod end or platform.
+  const RobotAssembly sg(load("stewart_gough"));
+  const Problem& p = sg.problem();
+  for (int i = 0; i < sg.num_rods(); ++i) {
+    const std::string rod = sg.rod(i).model().name;
+    BOOST_TEST(p.residual(sg.rod_coupling(i, false)).name() == rod + ".start");
+    BOOST_TEST(p.residual(sg.rod_coupling(i, true)).name() == rod + ".end");
+    BOOST_TEST(p.residual(sg.rod_coupling(i, true)).kind() != p.residual(sg.platform_balance(0)).kind());
+  }
+  BOOST_TEST(p.residual(sg.platform_balance(0)).name() == sg.model().platforms()[0].name);
+  BOOST_TEST(p.residual(sg.platform_balance(0)).num_rows() == 7);
+  // The cantilever's tip is free: no coupling block there.
+  const RobotAssembly cantilever(load("cantilever"));
+  BOOST_TEST(cantilever.rod_coupling(0, false) >= 0);
+  BOOST_TEST(cantilever.rod_coupling(0, true) == -1);
+  BOOST_CHECK_THROW(cantilever.rod_coupling(1, false), InputError);
 }

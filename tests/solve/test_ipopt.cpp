@@ -164,6 +164,23 @@ BOOST_AUTO_TEST_CASE(fixed_variables_are_constants) {
   BOOST_TEST(std::abs(v[0] - std::sqrt(2.0)) <= 1e-7);  // as in circle_and_line_from_an_infeasible_start
 }
 
+BOOST_AUTO_TEST_CASE(fixed_values_are_taken_from_the_start_point) {
+  // The circle with x fixed: its value is what the start point holds (0.5), not the value it was fixed at
+  // (1.0), so y = sqrt(4 - 0.25); x stays exactly 0.5.
+  Problem p;
+  const VariableId x = p.add_variable_block("x", VecX::Constant(1, 0.3));
+  const VariableId y = p.add_variable_block("y", VecX::Constant(1, 1.0));
+  p.add_residual_block(std::make_shared<CircleBlock>(x, y, 2.0));
+  p.fix_variable(x, VecX::Constant(1, 1.0));
+  IpoptSolver ipopt(p);
+  VecX v(2);
+  v << 0.5, 1.0;
+  const SolveSummary s = ipopt.solve(v);
+  BOOST_TEST(s.converged(), s.brief_report());
+  BOOST_TEST(v[0] == 0.5);
+  BOOST_TEST(std::abs(v[1] - std::sqrt(3.75)) <= 1e-8);  // |dy| <~ |c| / |2y| with |c| <= 1e-8
+}
+
 BOOST_AUTO_TEST_CASE(no_real_root_is_reported_infeasible) {
   Problem p;
   const VariableId x = p.add_variable_block("x", VecX::Constant(1, 1.0));

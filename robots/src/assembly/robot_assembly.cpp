@@ -1,6 +1,7 @@
 #include "pcr/robots/robot_assembly.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "link_frame.hpp"
 #include "pcr/core/error.hpp"
@@ -66,31 +67,39 @@ VecX hermite_guess(const CollocationRod& rod, const Pose& start, const Pose* end
 
 }  // namespace
 
-RobotAssembly::RobotAssembly(std::shared_ptr<const RobotModel> model, const AssemblyOptions& options)
-    : model_(std::move(model)) {
-  require(model_ != nullptr, "RobotAssembly: no model");
-  const RobotModel& m = *model_;
-  const VecX q0 = m.default_joint_values();
-  const std::vector<Pose> platform0 = m.initial_platform_poses();
+// Builds a RobotAssembly's problem step by step (the constructor's parts).
+struct RobotAssembly::Builder {
+  RobotAssembly& a;
+  const RobotModel& m;
+  const AssemblyOptions& options;
+  const VecX q0;                      // default joint values
+  const std::vector<Pose> platform0;  // initial platform poses
+  std::vector<std::vector<assembly::PlatformRodEnd>> platform_ends;
 
-  // Platform poses and joint values.
-  for (size_t p = 0; p < m.platforms().size(); ++p) {
-    VecX z(7);
-    z << platform0[p].position, platform0[p].orientation.normalized();
-    platform_variables_.push_back(problem_.add_variable_block("platform." + m.platforms()[p].name, z));
+  Builder(RobotAssembly& assembly, const AssemblyOptions& o)
+      : a(assembly),
+        m(*assembly.model_),
+        options(o),
+        q0(m.default_joint_values()),
+        platform0(m.initial_platform_poses()),
+        platform_ends(m.platforms().size()) {}
+
+  /// Platform poses and joint values.
+  void add_pose_and_joint_variables() {
+    for (size_t p = 0; p < m.platforms().size(); ++p) {
+      VecX z(7);
+      z << platform0[p].position, platform0[p].orientation.normalized();
+      a.platform_variables_.push_back(a.problem_.add_variable_block("platform." + m.platforms()[p].name, z));
+    }
+    a.joint_variables_.assign(m.joint_value_count(), -1);
+    for (const Joint& j : m.joints())
+      if (j.value_index >= 0)
+        a.joint_variables_[j.value_index] =
+            a.problem_.add_variable_block("joint." + j.name, VecX::Constant(1, q0[j.value_index]));
   }
-  joint_variables_.assign(m.joint_value_count(), -1);
-  for (const Joint& j : m.joints())
-    if (j.value_index >= 0)
-      joint_variables_[j.value_index] =
-          problem_.add_variable_block("joint." + j.name, VecX::Constant(1, q0[j.value_index]));
 
-  // Rods with their couplings.
-  std::vector<std::vector<assembly::PlatformRodEnd>> platform_ends(m.platforms().size());
-  length_scale_ = 0.0;
-  force_scale_ = 0.0;
-  moment_scale_ = 0.0;
-  for (size_t i = 0; i < m.rods().size(); ++i) {
+  /// Rod i with its couplings (its ends on platforms noted for their balances).
+  void add_rod(int i) {
     const RodElement& e = m.rods()[i];
     RodModel rm = e.rod;
     rm.base.kind = e.start.coupling;
@@ -108,64 +117,97 @@ RobotAssembly::RobotAssembly(std::shared_ptr<const RobotModel> model, const Asse
     auto rod = std::make_shared<const CollocationRod>(rm, discretization_for(e, options));
     const VecX guess = start_attached ? hermite_guess(*rod, start, end_attached ? &finish : nullptr, false)
                                       : hermite_guess(*rod, finish, nullptr, true);
-    const RodVariables vars = rod->add_to_problem(problem_, {!start_attached, !end_attached}, 1.0,
-                                                  e.length_actuated, static_cast<int>(i), &guess);
+    const RodVariables vars =
+        rod->add_to_problem(a.problem_, {!start_attached, !end_attached}, 1.0, e.length_actuated, i, &guess);
+    a.length_scale_ = std::max(a.length_scale_, rod->length_scale());
+    a.force_scale_ = std::max(a.force_scale_, rod->force_scale());
+    a.moment_scale_ = std::max(a.moment_scale_, rod->moment_scale());
+    a.rod_couplings_.push_back({-1, -1});
+    for (bool at_tip : {false, true})
+      if (attached(at_tip ? e.end : e.start)) add_coupling(e, *rod, vars, at_tip);
+    a.rods_.push_back(rod);
+    a.rod_variables_.push_back(vars);
+  }
+
+  void add_coupling(const RodElement& e, const CollocationRod& rod, const RodVariables& vars, bool at_tip) {
+    const RodAttachment& at = at_tip ? e.end : e.start;
     collocation::PointConstants scales;
-    scales.length_scale = rod->length_scale();
-    scales.force_scale = rod->force_scale();
-    scales.moment_scale = rod->moment_scale();
-    length_scale_ = std::max(length_scale_, rod->length_scale());
-    force_scale_ = std::max(force_scale_, rod->force_scale());
-    moment_scale_ = std::max(moment_scale_, rod->moment_scale());
-    for (bool at_tip : {false, true}) {
-      const RodAttachment& a = at_tip ? e.end : e.start;
-      if (!attached(a)) continue;
-      RodEndEvaluator end(*rod, vars, at_tip);
-      LinkFrame frame = LinkFrame::of(m, a.link, a.frame, platform_variables_, joint_variables_);
-      problem_.add_residual_block(std::make_shared<assembly::CouplingBlock>(
-          e.name + (at_tip ? ".end" : ".start"), end, frame, a.coupling, scales));
-      const int platform = m.carrying_platform(a.link);
-      if (platform >= 0) platform_ends[platform].push_back({end, at_tip ? 1.0 : -1.0});
+    scales.length_scale = rod.length_scale();
+    scales.force_scale = rod.force_scale();
+    scales.moment_scale = rod.moment_scale();
+    RodEndEvaluator end(rod, vars, at_tip);
+    LinkFrame frame = LinkFrame::of(m, at.link, at.frame, a.platform_variables_, a.joint_variables_);
+    a.rod_couplings_.back()[at_tip ? 1 : 0] =
+        a.problem_.add_residual_block(std::make_shared<assembly::CouplingBlock>(
+            e.name + (at_tip ? ".end" : ".start"), end, frame, at.coupling, scales));
+    const int platform = m.carrying_platform(at.link);
+    if (platform >= 0) platform_ends[platform].push_back({end, at_tip ? 1.0 : -1.0});
+  }
+
+  /// Platform balances (loads on platform-carried links are moved to the platform frame).
+  void add_platform_balances() {
+    const std::vector<Pose> identity(m.platforms().size());
+    for (size_t p = 0; p < m.platforms().size(); ++p) {
+      const Platform& pl = m.platforms()[p];
+      std::vector<assembly::PlatformLoad> loads;
+      for (const ExternalLoad& l : m.loads()) {
+        if (m.carrying_platform(l.link) != static_cast<int>(p)) continue;
+        const Pose link_in_platform = m.link_pose(l.link, q0, identity);
+        loads.push_back({link_in_platform.transform_point(l.point), l.force, l.torque});
+      }
+      const Vec3 com = m.link_pose(pl.link, q0, identity).transform_point(pl.center_of_mass);
+      require(!platform_ends[p].empty(), "platform '", pl.name, "': no rod is attached to it");
+      a.platform_balances_.push_back(
+          a.problem_.add_residual_block(std::make_shared<assembly::PlatformBalanceBlock>(
+              pl.name, a.platform_variables_[p], platform_ends[p], loads, pl.mass, com, m.gravity(),
+              a.force_scale_, a.moment_scale_)));
     }
-    rods_.push_back(rod);
-    rod_variables_.push_back(vars);
   }
 
-  // Platform balances (loads on platform-carried links are moved to the platform frame).
-  for (size_t p = 0; p < m.platforms().size(); ++p) {
-    const Platform& pl = m.platforms()[p];
-    std::vector<Pose> identity(m.platforms().size());
-    std::vector<assembly::PlatformLoad> loads;
-    for (const ExternalLoad& l : m.loads()) {
-      if (m.carrying_platform(l.link) != static_cast<int>(p)) continue;
-      const Pose link_in_platform = m.link_pose(l.link, q0, identity);
-      loads.push_back({link_in_platform.transform_point(l.point), l.force, l.torque});
+  /// Inputs (rod lengths and joint values) fixed, initial values their defaults; the other joints fixed
+  /// at their defaults.
+  void fix_inputs_and_joints() {
+    for (const ActuationInput& in : m.inputs()) {
+      a.input_variables_.push_back(in.kind == ActuationInput::Kind::RodLength
+                                       ? a.rod_variables_[in.index].length
+                                       : a.joint_variables_[m.joints()[in.index].value_index]);
     }
-    const Vec3 com = m.link_pose(pl.link, q0, identity).transform_point(pl.center_of_mass);
-    require(!platform_ends[p].empty(), "platform '", pl.name, "': no rod is attached to it");
-    problem_.add_residual_block(std::make_shared<assembly::PlatformBalanceBlock>(
-        pl.name, platform_variables_[p], platform_ends[p], loads, pl.mass, com, m.gravity(), force_scale_,
-        moment_scale_));
+    const VecX u0 = m.default_input_values();
+    a.check_inputs(u0);
+    for (size_t i = 0; i < a.input_variables_.size(); ++i)
+      a.problem_.fix_variable(a.input_variables_[i], VecX::Constant(1, u0[i]));
+    for (const Joint& j : m.joints())
+      if (j.value_index >= 0 && !a.problem_.variable_fixed(a.joint_variables_[j.value_index]))
+        a.problem_.fix_variable(a.joint_variables_[j.value_index], VecX::Constant(1, q0[j.value_index]));
   }
+};
 
-  // Inputs: rod lengths and joint values; fixed at their defaults until told otherwise.
-  for (const ActuationInput& in : m.inputs()) {
-    input_variables_.push_back(in.kind == ActuationInput::Kind::RodLength
-                                   ? rod_variables_[in.index].length
-                                   : joint_variables_[m.joints()[in.index].value_index]);
-  }
-  fix_inputs(m.default_input_values());
-  // Joints that are not inputs stay at their defaults.
-  for (const Joint& j : m.joints())
-    if (j.value_index >= 0 && !problem_.variable_fixed(joint_variables_[j.value_index]))
-      problem_.fix_variable(joint_variables_[j.value_index], VecX::Constant(1, q0[j.value_index]));
-
+RobotAssembly::RobotAssembly(std::shared_ptr<const RobotModel> model, const AssemblyOptions& options)
+    : model_(std::move(model)) {
+  require(model_ != nullptr, "RobotAssembly: no model");
+  Builder build(*this, options);
+  build.add_pose_and_joint_variables();
+  length_scale_ = force_scale_ = moment_scale_ = 0.0;
+  for (size_t i = 0; i < model_->rods().size(); ++i) build.add_rod(static_cast<int>(i));
+  build.add_platform_balances();
+  build.fix_inputs_and_joints();
   int free_unknowns = 0;
   for (int v = 0; v < problem_.num_variable_blocks(); ++v)
     if (!problem_.variable_fixed(v)) free_unknowns += problem_.variable(v).size;
-  require(free_unknowns == problem_.num_rows(), "robot '", m.name(), "': the assembly has ",
+  require(free_unknowns == problem_.num_rows(), "robot '", model_->name(), "': the assembly has ",
           problem_.num_rows(), " equations for ", free_unknowns,
           " unknowns (with inputs fixed); check the rod couplings");
+}
+
+ResidualId RobotAssembly::platform_balance(int platform) const {
+  require(platform >= 0 && platform < static_cast<int>(platform_balances_.size()),
+          "platform_balance: platform ", platform, " out of range [0, ", platform_balances_.size(), ")");
+  return platform_balances_[platform];
+}
+
+ResidualId RobotAssembly::rod_coupling(int rod, bool at_tip) const {
+  require(rod >= 0 && rod < num_rods(), "rod_coupling: rod ", rod, " out of range [0, ", num_rods(), ")");
+  return rod_couplings_[rod][at_tip ? 1 : 0];
 }
 
 VecX RobotAssembly::initial_guess() const {
@@ -194,7 +236,7 @@ Pose RobotAssembly::platform_pose(const VecX& x, int platform) const {
   return pose;
 }
 
-void RobotAssembly::fix_inputs(const VecX& inputs) {
+void RobotAssembly::check_inputs(const VecX& inputs) const {
   require(inputs.size() == static_cast<int>(input_variables_.size()), "robot '", model_->name(),
           "': ", inputs.size(), " input values given, the model has ", input_variables_.size());
   for (size_t i = 0; i < input_variables_.size(); ++i) {
@@ -202,15 +244,6 @@ void RobotAssembly::fix_inputs(const VecX& inputs) {
     require(std::isfinite(inputs[i]), "input '", in.name, "': value is not finite");
     require(inputs[i] >= in.lower && inputs[i] <= in.upper, "input '", in.name, "' = ", inputs[i],
             " is outside its bounds [", in.lower, ", ", in.upper, "]");
-    problem_.fix_variable(input_variables_[i], VecX::Constant(1, inputs[i]));
-  }
-}
-
-void RobotAssembly::free_inputs() {
-  for (size_t i = 0; i < input_variables_.size(); ++i) {
-    const ActuationInput& in = model_->inputs()[i];
-    problem_.set_variable_bounds(input_variables_[i], VecX::Constant(1, in.lower),
-                                 VecX::Constant(1, in.upper));
   }
 }
 

@@ -27,94 +27,101 @@ Quat quaternion_gradient(const Vec3& n, const Vec3& m, const Vec3& g_n, const Ve
 /// phi(n_b, m_b) with its partials g_n = dphi/dn_b, g_m = dphi/dm_b (body frame).
 using BodyFunctional = std::function<double(const Vec3& n_b, const Vec3& m_b, Vec3& g_n, Vec3& g_m)>;
 
-/// phi at parameter u of a rod; when gradient is given, adds weight * dphi/dx to it. work: a copy of x
-/// (primal rods perturb it and restore it).
-double point_functional(const CollocationRod& rod, const RodVariables& v, const VecX& x, VecX& work, double u,
-                        const BodyFunctional& phi, double weight, VecX* gradient) {
+/// phi at parameter u of a mixed rod; when gradient is given, adds weight * dphi/dx to it.
+double mixed_point_functional(const CollocationRod& rod, const RodVariables& v, const VecX& x, double u,
+                              const BodyFunctional& phi, double weight, VecX* gradient) {
   Vec3 g_n, g_m;
-  if (rod.discretization().formulation == RodFormulation::Mixed) {
-    // n = sum b_i N_i, m = sum b_i M_i, q = sum b_i Q_i; dphi/dn = R g_n, dphi/dm = R g_m,
-    // dphi/dq_k = sum_ab (n g_n^T + m g_m^T)_ab (dR/dq_k)_ab.
-    const BasisDerivatives b = basis_derivatives(rod.knots(), u, 0);
-    const int cp = rod.control_point_size();
-    const int degree = rod.discretization().degree;
-    Quat q = Quat::Zero();
-    Vec3 n = Vec3::Zero(), m = Vec3::Zero();
+  // n = sum b_i N_i, m = sum b_i M_i, q = sum b_i Q_i; dphi/dn = R g_n, dphi/dm = R g_m,
+  // dphi/dq_k = sum_ab (n g_n^T + m g_m^T)_ab (dR/dq_k)_ab.
+  const BasisDerivatives b = basis_derivatives(rod.knots(), u, 0);
+  const int cp = rod.control_point_size();
+  const int degree = rod.discretization().degree;
+  Quat q = Quat::Zero();
+  Vec3 n = Vec3::Zero(), m = Vec3::Zero();
+  for (int j = 0; j <= degree; ++j) {
+    const int o = v.control_point_offset + (b.first + j) * cp;
+    q += b.values(0, j) * x.segment<4>(o + kQ);
+    n += b.values(0, j) * x.segment<3>(o + kN);
+    m += b.values(0, j) * x.segment<3>(o + kM);
+  }
+  Mat3 R;
+  QuatRotationJacobian dR;
+  rotation_matrix_derivatives(q, R, dR);
+  const double value = phi(R.transpose() * n, R.transpose() * m, g_n, g_m);
+  if (gradient) {
+    const Vec3 dn = R * g_n, dm = R * g_m;
+    const Quat dq = quaternion_gradient(n, m, g_n, g_m, dR);
     for (int j = 0; j <= degree; ++j) {
       const int o = v.control_point_offset + (b.first + j) * cp;
-      q += b.values(0, j) * x.segment<4>(o + kQ);
-      n += b.values(0, j) * x.segment<3>(o + kN);
-      m += b.values(0, j) * x.segment<3>(o + kM);
+      const double w = weight * b.values(0, j);
+      gradient->segment<4>(o + kQ) += w * dq;
+      gradient->segment<3>(o + kN) += w * dn;
+      gradient->segment<3>(o + kM) += w * dm;
     }
-    Mat3 R;
-    QuatRotationJacobian dR;
-    rotation_matrix_derivatives(q, R, dR);
-    const double value = phi(R.transpose() * n, R.transpose() * m, g_n, g_m);
-    if (gradient) {
-      const Vec3 dn = R * g_n, dm = R * g_m;
-      const Quat dq = quaternion_gradient(n, m, g_n, g_m, dR);
-      for (int j = 0; j <= degree; ++j) {
-        const int o = v.control_point_offset + (b.first + j) * cp;
-        const double w = weight * b.values(0, j);
-        gradient->segment<4>(o + kQ) += w * dq;
-        gradient->segment<3>(o + kN) += w * dn;
-        gradient->segment<3>(o + kM) += w * dm;
-      }
-    }
-    return value;
   }
-  if (rod.discretization().formulation == RodFormulation::Condensed) {
-    // n = N - f s, m = H - a x n - l s - L (I - c u) x f with s = u L, a = p - c, p = sum b_i P_i,
-    // I = sum_j J_j P_j (J_j = integral_0^u N_j; f = l = 0 without distributed loads), q = sum b_i Q_i:
-    // with dm = R g_m: dphi/dH = dm, dphi/dN = R g_n + a x dm, dphi/dP_i = b_i (dm x n) + L J_i (dm x f),
-    // dphi/dL = R g_n . (-f u) + dm . (u a x f - l u - (I - c u) x f), dphi/dq as above.
-    const BasisDerivatives b = basis_derivatives(rod.knots(), u, 0);
-    const int cp = rod.control_point_size();
-    const int degree = rod.discretization().degree;
-    const bool loads = rod.condensed_with_loads();
-    const VecX J = loads ? basis_integrals(rod.knots(), u) : VecX();
-    const Vec3 f = loads ? rod.model().distributed_force() : Vec3::Zero();
-    const Vec3 l = loads ? Vec3(rod.model().loads.moment_per_length) : Vec3::Zero();
-    const Vec3 c = rod.moment_point();
-    const double L = rod.length(x, v);
-    Quat q = Quat::Zero();
-    Vec3 p = Vec3::Zero(), I = Vec3::Zero();
+  return value;
+}
+
+/// phi at parameter u of a condensed rod; when gradient is given, adds weight * dphi/dx to it.
+double condensed_point_functional(const CollocationRod& rod, const RodVariables& v, const VecX& x, double u,
+                                  const BodyFunctional& phi, double weight, VecX* gradient) {
+  Vec3 g_n, g_m;
+  // n = N - f s, m = H - a x n - l s - L (I - c u) x f with s = u L, a = p - c, p = sum b_i P_i,
+  // I = sum_j J_j P_j (J_j = integral_0^u N_j; f = l = 0 without distributed loads), q = sum b_i Q_i:
+  // with dm = R g_m: dphi/dH = dm, dphi/dN = R g_n + a x dm, dphi/dP_i = b_i (dm x n) + L J_i (dm x f),
+  // dphi/dL = R g_n . (-f u) + dm . (u a x f - l u - (I - c u) x f), dphi/dq as above.
+  const BasisDerivatives b = basis_derivatives(rod.knots(), u, 0);
+  const int cp = rod.control_point_size();
+  const int degree = rod.discretization().degree;
+  const bool loads = rod.condensed_with_loads();
+  const VecX J = loads ? basis_integrals(rod.knots(), u) : VecX();
+  const Vec3 f = loads ? rod.model().distributed_force() : Vec3::Zero();
+  const Vec3 l = loads ? Vec3(rod.model().loads.moment_per_length) : Vec3::Zero();
+  const Vec3 c = rod.moment_point();
+  const double L = rod.length(x, v);
+  Quat q = Quat::Zero();
+  Vec3 p = Vec3::Zero(), I = Vec3::Zero();
+  for (int j = 0; j <= degree; ++j) {
+    const int o = v.control_point_offset + (b.first + j) * cp;
+    q += b.values(0, j) * x.segment<4>(o + kQ);
+    p += b.values(0, j) * x.segment<3>(o);
+  }
+  for (int j = 0; j < J.size(); ++j) I += J[j] * x.segment<3>(v.control_point_offset + j * cp);
+  const Vec3 arm = p - c, n = x.segment<3>(v.wrench_offset) - f * (u * L);
+  collocation::PointConstants distributed;
+  distributed.f = f;
+  distributed.l = l;
+  const Vec3 m =
+      collocation::condensed_moment<double>(p, n, x.segment<3>(v.wrench_offset + 3), L, I, distributed, c, u);
+  Mat3 R;
+  QuatRotationJacobian dR;
+  rotation_matrix_derivatives(q, R, dR);
+  const double value = phi(R.transpose() * n, R.transpose() * m, g_n, g_m);
+  if (gradient) {
+    const Vec3 dm = R * g_m, dn = R * g_n + arm.cross(dm), dp = dm.cross(n), dI = L * dm.cross(f);
+    const Quat dq = quaternion_gradient(n, m, g_n, g_m, dR);
     for (int j = 0; j <= degree; ++j) {
       const int o = v.control_point_offset + (b.first + j) * cp;
-      q += b.values(0, j) * x.segment<4>(o + kQ);
-      p += b.values(0, j) * x.segment<3>(o);
+      const double w = weight * b.values(0, j);
+      gradient->segment<3>(o) += w * dp;
+      gradient->segment<4>(o + kQ) += w * dq;
     }
-    for (int j = 0; j < J.size(); ++j) I += J[j] * x.segment<3>(v.control_point_offset + j * cp);
-    const Vec3 arm = p - c, n = x.segment<3>(v.wrench_offset) - f * (u * L);
-    collocation::PointConstants distributed;
-    distributed.f = f;
-    distributed.l = l;
-    const Vec3 m = collocation::condensed_moment<double>(p, n, x.segment<3>(v.wrench_offset + 3), L, I,
-                                                         distributed, c, u);
-    Mat3 R;
-    QuatRotationJacobian dR;
-    rotation_matrix_derivatives(q, R, dR);
-    const double value = phi(R.transpose() * n, R.transpose() * m, g_n, g_m);
-    if (gradient) {
-      const Vec3 dm = R * g_m, dn = R * g_n + arm.cross(dm), dp = dm.cross(n), dI = L * dm.cross(f);
-      const Quat dq = quaternion_gradient(n, m, g_n, g_m, dR);
-      for (int j = 0; j <= degree; ++j) {
-        const int o = v.control_point_offset + (b.first + j) * cp;
-        const double w = weight * b.values(0, j);
-        gradient->segment<3>(o) += w * dp;
-        gradient->segment<4>(o + kQ) += w * dq;
-      }
-      for (int j = 0; j < J.size(); ++j)
-        if (J[j] != 0.0) gradient->segment<3>(v.control_point_offset + j * cp) += (weight * J[j]) * dI;
-      gradient->segment<3>(v.wrench_offset) += weight * dn;
-      gradient->segment<3>(v.wrench_offset + 3) += weight * dm;
-      if (loads) {
-        const Vec3 dm_dL = u * arm.cross(f) - l * u - (I - c * u).cross(f);
-        (*gradient)[v.length_offset] += weight * ((R * g_n).dot(-f * u) + dm.dot(dm_dL));
-      }
+    for (int j = 0; j < J.size(); ++j)
+      if (J[j] != 0.0) gradient->segment<3>(v.control_point_offset + j * cp) += (weight * J[j]) * dI;
+    gradient->segment<3>(v.wrench_offset) += weight * dn;
+    gradient->segment<3>(v.wrench_offset + 3) += weight * dm;
+    if (loads) {
+      const Vec3 dm_dL = u * arm.cross(f) - l * u - (I - c * u).cross(f);
+      (*gradient)[v.length_offset] += weight * ((R * g_n).dot(-f * u) + dm.dot(dm_dL));
     }
-    return value;
   }
+  return value;
+}
+
+/// phi at parameter u of a primal rod; when gradient is given, adds weight * dphi/dx to it. work: a copy
+/// of x (perturbed and restored).
+double primal_point_functional(const CollocationRod& rod, const RodVariables& v, const VecX& x, VecX& work,
+                               double u, const BodyFunctional& phi, double weight, VecX* gradient) {
   // Primal: n, m from state_at; central differences over the p + 1 control points whose basis
   // functions do not vanish at u, and the length. Step 1e-6 (1 + |x_e|): truncation ~1e-12,
   // round-off ~1e-10 relative.
@@ -142,6 +149,17 @@ double point_functional(const CollocationRod& rod, const RodVariables& v, const 
     }
   }
   return value;
+}
+
+/// phi at parameter u of a rod; when gradient is given, adds weight * dphi/dx to it. work: a copy of x
+/// (primal rods perturb it and restore it).
+double point_functional(const CollocationRod& rod, const RodVariables& v, const VecX& x, VecX& work, double u,
+                        const BodyFunctional& phi, double weight, VecX* gradient) {
+  switch (rod.discretization().formulation) {
+    case RodFormulation::Mixed: return mixed_point_functional(rod, v, x, u, phi, weight, gradient);
+    case RodFormulation::Condensed: return condensed_point_functional(rod, v, x, u, phi, weight, gradient);
+    default: return primal_point_functional(rod, v, x, work, u, phi, weight, gradient);
+  }
 }
 
 /// Rods fed by an input (their length is actuated).

@@ -13,31 +13,13 @@
 
 namespace pcr::kinematics {
 
-Problem forward_problem_of(const Problem& ik_problem, const RobotAssembly& assembly) {
-  Problem fk = ik_problem;
-  for (int b = 0; b < ik_problem.num_residual_blocks(); ++b)
-    if (ik_problem.residual(b).kind() == "target.pose") fk.set_residual_active(b, false);
-  for (size_t i = 0; i < assembly.model().inputs().size(); ++i) {
-    const VariableId v = assembly.input_variable(static_cast<int>(i));
-    fk.fix_variable(v, ik_problem.variable(v).initial);
-  }
-  return fk;
-}
-
-bool uses_reduced_space(const IkOptions& o) {
-  return o.objective != IkObjective::InputDistance || o.max_rod_stress.has_value();
-}
-
 /// x(u), its sensitivity S = dx/du and the reduced functions, cached for the last u.
 struct ReducedIk::Evaluator {
+  const std::shared_ptr<const ReducedIkModel> model;  // first: outlives the solver that refers into it
   const RobotAssembly& assembly;
-  KinematicsOptions options;
-  Problem fk;       // FK: target rows off, inputs fixed (square)
-  Problem targets;  // only the target rows on
-  std::unique_ptr<NewtonSolver> newton;
-  std::vector<int> input_offsets;
-  VecX input_scales, reference;
-  std::vector<StressPoint> stress_at;
+  const KinematicsOptions& options;
+  std::unique_ptr<NewtonSolver> newton;  // on model->forward
+  VecX reference;
   SparseLu lu;  // of the free FK Jacobian (implicit function theorem)
   bool pattern_analysed = false;
   // Cache.
@@ -48,43 +30,17 @@ struct ReducedIk::Evaluator {
   MatX S_tangent;
   int fk_solves = 0, newton_iterations = 0, fk_jacobians = 0;
 
-  Evaluator(const RobotAssembly& a, const Problem& ik_problem, const KinematicsOptions& o)
-      : assembly(a), options(o), fk(forward_problem_of(ik_problem, a)), targets(ik_problem) {
-    const RobotModel& m = a.model();
-    const int n_in = static_cast<int>(m.inputs().size());
-    input_scales.resize(n_in);
-    for (int i = 0; i < n_in; ++i) {
-      const VariableId v = a.input_variable(i);
-      input_offsets.push_back(ik_problem.variable(v).offset);
-      input_scales[i] = m.inputs()[i].kind == ActuationInput::Kind::RodLength ? a.length_scale() : 1.0;
-    }
-    int target_rows = 0;
-    for (int b = 0; b < ik_problem.num_residual_blocks(); ++b) {
-      const bool is_target = ik_problem.residual(b).kind() == "target.pose";
-      targets.set_residual_active(b, is_target);
-      if (is_target) target_rows += ik_problem.residual(b).num_rows();
-    }
-    require(target_rows > 0, "reduced IK: the problem has no target rows");
+  explicit Evaluator(std::shared_ptr<const ReducedIkModel> m)
+      : model(std::move(m)), assembly(*model->assembly), options(model->options) {
     NewtonOptions n;
-    n.tolerance = o.tolerance;
-    n.max_iterations = o.max_iterations;
-    n.reuse_factorization = o.reuse_factorization;
-    n.linear_solver = o.linear_solver;
-    newton = std::make_unique<NewtonSolver>(fk, n);
-    if (o.ik.max_rod_stress) {
-      check_stress_data(a);
-      int points = o.ik.stress_points_per_rod;
-      if (points == 0) {
-        int max_elements = 1;
-        for (int r = 0; r < a.num_rods(); ++r)
-          max_elements = std::max(max_elements, a.rod(r).discretization().elements);
-        points = 2 * max_elements + 1;
-      }
-      stress_at = stress_points(a, points);
-    }
+    n.tolerance = options.tolerance;
+    n.max_iterations = options.max_iterations;
+    n.reuse_factorization = options.reuse_factorization;
+    n.linear_solver = options.linear_solver;
+    newton = std::make_unique<NewtonSolver>(model->forward, n);
   }
 
-  int num_inputs() const { return static_cast<int>(input_offsets.size()); }
+  int num_inputs() const { return model->num_inputs(); }
 
   /// FK at u (cached); with derivatives also S. False when the FK solve failed.
   bool at(const VecX& u, bool derivatives) {
@@ -92,8 +48,6 @@ struct ReducedIk::Evaluator {
       valid = true;
       have_sensitivity = false;
       u_cached = u;
-      for (int i = 0; i < num_inputs(); ++i)
-        fk.fix_variable(assembly.input_variable(i), VecX::Constant(1, u[i]));
       ok = false;
       // Start points in turn: the first-order predictor x_t + S_t (u - u_t) from the last point with
       // a sensitivity, the last converged state, the solve's start point.
@@ -107,7 +61,7 @@ struct ReducedIk::Evaluator {
       // A long step is refused as a failed evaluation (Ipopt then shortens it): it can land the FK
       // on another equilibrium branch, near whose folds the following solves fail (IkOptions).
       if (S_tangent.size() > 0 &&
-          (u - u_tangent).cwiseQuotient(input_scales).norm() > options.ik.max_input_step) {
+          (u - u_tangent).cwiseQuotient(model->input_scales).norm() > options.ik.max_input_step) {
         ok = false;
         return false;
       }
@@ -119,7 +73,7 @@ struct ReducedIk::Evaluator {
         const VecX& start = starts[k];
         if (start.size() == 0 || !start.allFinite()) continue;
         x = start;
-        for (int i = 0; i < num_inputs(); ++i) x[input_offsets[i]] = u[i];
+        for (int i = 0; i < num_inputs(); ++i) x[model->input_offsets[i]] = u[i];  // the fixed inputs
         const int limit = predicted && k == 0 ? 8 : (converged_once ? 25 : options.max_iterations);
         const SolveSummary s = newton->solve(x, std::min(options.max_iterations, limit));
         ++fk_solves;
@@ -143,10 +97,10 @@ struct ReducedIk::Evaluator {
   bool sensitivity() {
     VecX c;
     Eigen::SparseMatrix<double, Eigen::RowMajor> J;
-    fk.evaluate_residuals_and_jacobian(x, c, J);
-    const FreeJacobian Jf = free_jacobian(fk, J);
+    model->forward.evaluate_residuals_and_jacobian(x, c, J);
+    const FreeJacobian Jf = free_jacobian(model->forward, J);
     MatX rhs(J.rows(), num_inputs());
-    for (int i = 0; i < num_inputs(); ++i) rhs.col(i) = -J.col(input_offsets[i]);
+    for (int i = 0; i < num_inputs(); ++i) rhs.col(i) = -J.col(model->input_offsets[i]);
     if (!pattern_analysed) {
       lu.analyze_pattern(Jf.matrix);
       pattern_analysed = true;
@@ -154,9 +108,9 @@ struct ReducedIk::Evaluator {
     if (!lu.factorize(Jf.matrix)) return false;
     const MatX dfree = lu.solve(rhs);
     if (!dfree.allFinite()) return false;
-    S.setZero(fk.num_variables(), num_inputs());
+    S.setZero(model->forward.num_variables(), num_inputs());
     for (size_t k = 0; k < Jf.columns.size(); ++k) S.row(Jf.columns[k]) = dfree.row(k);
-    for (int i = 0; i < num_inputs(); ++i) S(input_offsets[i], i) = 1.0;
+    for (int i = 0; i < num_inputs(); ++i) S(model->input_offsets[i], i) = 1.0;
     have_sensitivity = true;
     x_tangent = x;
     u_tangent = u_cached;
@@ -165,8 +119,8 @@ struct ReducedIk::Evaluator {
   }
 
   double distance(const VecX& u, VecX* gradient) const {
-    const VecX d = (u - reference).cwiseQuotient(input_scales);
-    if (gradient) *gradient = d.cwiseQuotient(input_scales);
+    const VecX d = (u - reference).cwiseQuotient(model->input_scales);
+    if (gradient) *gradient = d.cwiseQuotient(model->input_scales);
     return 0.5 * d.squaredNorm();
   }
 
@@ -235,7 +189,7 @@ class ReducedTargets final : public ResidualBlock {
     Eigen::Map<VecX> r(residual, num_rows());
     VecX c;
     Eigen::SparseMatrix<double, Eigen::RowMajor> G;
-    e_->targets.evaluate_residuals_and_jacobian(e_->x, c, G);
+    e_->model->targets.evaluate_residuals_and_jacobian(e_->x, c, G);
     r = c;
     if (jac) {
       Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
@@ -261,7 +215,7 @@ class ReducedStress final : public ResidualBlock {
     if (!solve_at_inputs(*e_, values[0], residual, num_rows(), jac)) return;
     Eigen::Map<VecX> r(residual, num_rows());
     MatX H;
-    r = rod_stresses(e_->assembly, e_->x, e_->stress_at, jac ? &H : nullptr) / sigma_max_;
+    r = rod_stresses(e_->assembly, e_->x, e_->model->stress_at, jac ? &H : nullptr) / sigma_max_;
     if (jac) {
       Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
           jacobians[0], num_rows(), e_->num_inputs()) = H * e_->S / sigma_max_;
@@ -279,33 +233,15 @@ struct ReducedIk::Solver {
   Problem problem;
   VariableId u = -1;
   std::unique_ptr<IpoptSolver> ipopt;
-  std::vector<VariableId> target_variables;
 };
 
-ReducedIk::ReducedIk(const RobotAssembly& assembly, const Problem& ik_problem,
-                     std::vector<VariableId> target_variables, const KinematicsOptions& options)
-    : solver_(std::make_unique<Solver>()) {
-  const IkOptions& o = options.ik;
-  require(std::isfinite(o.distance_weight) && o.distance_weight >= 0.0,
-          "IK options: distance_weight = ", o.distance_weight, " (must be finite and >= 0)");
-  require(!o.max_rod_stress || (std::isfinite(*o.max_rod_stress) && *o.max_rod_stress > 0.0),
-          "IK options: max_rod_stress = ", o.max_rod_stress.value_or(0.0), " Pa (must be finite and > 0)");
-  require(o.max_input_step > 0.0, "IK options: max_input_step = ", o.max_input_step,
-          " (must be > 0; infinity for no limit)");
-  require(o.stress_points_per_rod == 0 || o.stress_points_per_rod >= 2,
-          "IK options: stress_points_per_rod = ", o.stress_points_per_rod, " (0 for the default or >= 2)");
-  require(o.optimality_tolerance > 0.0 && o.target_tolerance > 0.0,
-          "IK options: optimality_tolerance = ", o.optimality_tolerance,
-          ", target_tolerance = ", o.target_tolerance, " (must be > 0)");
-  require(o.max_iterations > 0, "IK options: max_iterations = ", o.max_iterations, " (must be > 0)");
-  evaluator_ = std::make_shared<Evaluator>(assembly, ik_problem, options);
-  if (o.objective == IkObjective::ActuationEffort) {
-    actuation_effort(assembly, ik_problem.initial_values(), nullptr);  // throws if no rod is fed
-  }
+ReducedIk::ReducedIk(std::shared_ptr<const ReducedIkModel> model)
+    : evaluator_(std::make_shared<Evaluator>(std::move(model))), solver_(std::make_unique<Solver>()) {
+  const ReducedIkModel& rm = *evaluator_->model;
+  const IkOptions& o = rm.options.ik;
   Solver& s = *solver_;
-  s.target_variables = std::move(target_variables);
-  const RobotModel& m = assembly.model();
-  const int n_in = evaluator_->num_inputs();
+  const RobotModel& m = rm.assembly->model();
+  const int n_in = rm.num_inputs();
   VecX lower(n_in), upper(n_in);
   for (int i = 0; i < n_in; ++i) {
     lower[i] = m.inputs()[i].lower;
@@ -313,11 +249,10 @@ ReducedIk::ReducedIk(const RobotAssembly& assembly, const Problem& ik_problem,
   }
   s.u = s.problem.add_variable_block("inputs", m.default_input_values(), lower, upper);
   s.problem.add_objective_term(std::make_shared<ReducedObjective>(s.u, evaluator_));
-  s.problem.add_residual_block(
-      std::make_shared<ReducedTargets>(s.u, evaluator_->targets.num_rows(), evaluator_));
+  s.problem.add_residual_block(std::make_shared<ReducedTargets>(s.u, rm.targets.num_rows(), evaluator_));
   if (o.max_rod_stress)
-    s.problem.add_residual_block(std::make_shared<ReducedStress>(
-        s.u, static_cast<int>(evaluator_->stress_at.size()), *o.max_rod_stress, evaluator_));
+    s.problem.add_residual_block(std::make_shared<ReducedStress>(s.u, static_cast<int>(rm.stress_at.size()),
+                                                                 *o.max_rod_stress, evaluator_));
   IpoptOptions io;
   io.tol = o.optimality_tolerance;
   io.constraint_tolerance = o.target_tolerance;
@@ -328,17 +263,10 @@ ReducedIk::ReducedIk(const RobotAssembly& assembly, const Problem& ik_problem,
 
 ReducedIk::~ReducedIk() = default;
 
-void ReducedIk::set_target(int target, const VecX& pose7) {
-  const VariableId v = solver_->target_variables.at(target);
-  evaluator_->fk.fix_variable(v, pose7);
-  evaluator_->targets.fix_variable(v, pose7);
-  evaluator_->valid = false;
-}
-
 void ReducedIk::prepare(const VecX& x, const VecX& reference) {
   Evaluator& e = *evaluator_;
-  require(x.size() == e.fk.num_variables(), "reduced IK: state has size ", x.size(), ", expected ",
-          e.fk.num_variables());
+  require(x.size() == e.model->forward.num_variables(), "reduced IK: state has size ", x.size(),
+          ", expected ", e.model->forward.num_variables());
   require(reference.size() == e.num_inputs(), "reduced IK: reference has size ", reference.size(),
           ", expected ", e.num_inputs());
   e.reference = reference;
@@ -360,7 +288,7 @@ SolveSummary ReducedIk::solve(VecX& x, const VecX& reference) {
   prepare(x, reference);
   Evaluator& e = *evaluator_;
   VecX u(e.num_inputs());
-  for (int i = 0; i < e.num_inputs(); ++i) u[i] = x[e.input_offsets[i]];
+  for (int i = 0; i < e.num_inputs(); ++i) u[i] = x[e.model->input_offsets[i]];
   const RobotModel& m = e.assembly.model();
   for (int i = 0; i < u.size(); ++i)
     u[i] = std::min(std::max(u[i], m.inputs()[i].lower), m.inputs()[i].upper);

@@ -9,30 +9,52 @@
 // the step back), never as a result.
 // Why not the full space: Ipopt over all ~1000 assembly variables with the effort objective ended in
 // Restoration_Failed (L-BFGS on nonlinear equality constraints); here every iterate is an equilibrium.
+// Model and data: ReducedIkModel (the FK system, the target rows, input layout, stress points) is built
+// once and shared; ReducedIk holds one solver's state (the FK Newton workspace, x(u) and S cached for
+// the last u) and the small Ipopt problem over u whose blocks evaluate through that state.
 #include <memory>
 #include <vector>
 
+#include "ik_objectives.hpp"
 #include "pcr/robots/kinematics.hpp"
 
 namespace pcr::kinematics {
 
-/// The FK system of an IK problem: the target rows (kind "target.pose") inactive and the inputs fixed
-/// (at their initial values; evaluations take them from x). Square, in the IK problem's variable layout.
-Problem forward_problem_of(const Problem& ik_problem, const RobotAssembly& assembly);
+/// The FK system of an IK problem: its target blocks (target_residuals) inactive and the inputs fixed
+/// (evaluations and solvers take their values from x). Square, in the IK problem's variable layout.
+Problem forward_problem_of(const Problem& ik_problem, const RobotAssembly& assembly,
+                           const std::vector<ResidualId>& target_residuals);
+
+/// Whether the options need the reduced-space path from the start (an objective other than the input
+/// distance, or stress limits); the input distance goes there when Newton cannot finish.
+bool uses_reduced_space(const IkOptions& options);
+
+struct ReducedIkModel {
+  /// ik_problem: the IK square problem (inputs free, fixed target pose blocks) with the target blocks
+  /// target_residuals. Validates options.ik (InputError naming the value).
+  ReducedIkModel(std::shared_ptr<const RobotAssembly> assembly, const Problem& ik_problem,
+                 const std::vector<ResidualId>& target_residuals, const KinematicsOptions& options);
+  int num_inputs() const { return static_cast<int>(input_offsets.size()); }
+
+  std::shared_ptr<const RobotAssembly> assembly;
+  KinematicsOptions options;
+  Problem forward;                     ///< FK: target rows off, inputs fixed (square)
+  Problem targets;                     ///< only the target rows on
+  std::vector<int> input_offsets;      ///< of each input in x
+  VecX input_scales;                   ///< longest rod for lengths, 1 rad for angles
+  std::vector<StressPoint> stress_at;  ///< with a stress limit
+};
 
 class ReducedIk {
  public:
-  /// ik_problem: the assembly's problem with the IK target blocks (kind "target.pose") and the fixed
-  /// target variable blocks target_variables. Validates options.ik (InputError naming the value).
-  ReducedIk(const RobotAssembly& assembly, const Problem& ik_problem,
-            std::vector<VariableId> target_variables, const KinematicsOptions& options);
+  explicit ReducedIk(std::shared_ptr<const ReducedIkModel> model);
   ~ReducedIk();
   ReducedIk(const ReducedIk&) = delete;
   ReducedIk& operator=(const ReducedIk&) = delete;
 
-  void set_target(int target, const VecX& pose7);
-  /// x: an FK equilibrium (or initial guess) of the IK problem's layout in, solution out (unchanged
-  /// if no evaluation succeeded). reference: inputs for the distance term.
+  /// x: an FK equilibrium (or initial guess) of the IK problem's layout with the target poses in
+  /// (they stay as they are), solution out (unchanged if no evaluation succeeded). reference: inputs
+  /// for the distance term.
   SolveSummary solve(VecX& x, const VecX& reference);
 
   /// The reduced problem over the inputs (one variable block), for checks: prepare() sets the warm
@@ -47,9 +69,5 @@ class ReducedIk {
   struct Solver;
   std::unique_ptr<Solver> solver_;
 };
-
-/// Whether the options need the reduced-space path from the start (an objective other than the input
-/// distance, or stress limits); the input distance goes there when Newton cannot finish.
-bool uses_reduced_space(const IkOptions& options);
 
 }  // namespace pcr::kinematics

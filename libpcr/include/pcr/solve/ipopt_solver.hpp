@@ -2,9 +2,10 @@
 // Interior-point solve of a Problem with Ipopt (hidden: no Ipopt header here; DESIGN.md §5).
 //   min f(x) (0 without objective terms)  s.t.  c_l <= c(x) <= c_u,  x_l <= x <= x_u.
 // One IpoptApplication is initialised per solver and reused for every solve; with warm_start the
-// previous primal-dual solution seeds the next solve. Fixed variables are eliminated by Ipopt
-// (fixed_variable_treatment make_parameter). After Ipopt returns, the unscaled constraint violation is
-// recomputed here: status Converged only if it is <= constraint_tolerance and x is finite.
+// previous primal-dual solution seeds the next solve. Fixed variables are constants at the values the
+// start x holds, eliminated by Ipopt (fixed_variable_treatment make_parameter). After Ipopt returns, the
+// unscaled constraint violation is recomputed here: status Converged only if it is <= constraint_tolerance
+// and x is finite.
 //
 // NOT thread-safe: MUMPS in Ipopt 3.11 keeps global state, so there must be no concurrent Ipopt solves in
 // one process (not even with different IpoptSolver objects).
@@ -54,7 +55,8 @@ class IpoptSolver {
   IpoptSolver(const IpoptSolver&) = delete;
   IpoptSolver& operator=(const IpoptSolver&) = delete;
 
-  /// x: start point in, solution (or last iterate) out, size num_variables().
+  /// x: start point in (its fixed entries are the fixed values), solution (or last iterate) out, size
+  /// num_variables().
   SolveSummary solve(VecX& x);
   /// Forgets the stored multipliers: the next solve is a cold start.
   void reset_warm_start();

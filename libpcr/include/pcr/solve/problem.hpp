@@ -5,9 +5,13 @@
 // The global sparse Jacobian pattern is the union of the blocks' dense (block rows x variable block)
 // patterns, computed once; evaluation writes into it without rebuilding triplets.
 //
-// Thread safety: the const evaluation functions use mutable scratch buffers and a lazily rebuilt pattern
-// cache inside the Problem, so one Problem must not be evaluated from several threads at once (copy it
-// instead: copies are deep and independent).
+// Fixed variables are constants of a solve whose values are whatever x holds (the solvers leave those
+// entries of x alone); the values given to fix_variable are the initial values, nothing more.
+//
+// Thread safety: the const functions only read the Problem (the derived structure, e.g. the Jacobian
+// pattern, is updated by the non-const functions; evaluation scratch is per thread), so several threads
+// may evaluate one Problem at once while none changes it. Copies are deep and independent (the blocks
+// themselves are shared: they are immutable).
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -45,12 +49,14 @@ class Problem {
   ResidualId add_residual_block(std::shared_ptr<const ResidualBlock> block);
   void add_objective_term(std::shared_ptr<const ObjectiveTerm> term);
 
-  /// A switched-off block contributes no rows (the pattern is rebuilt lazily on the next evaluation).
+  /// A switched-off block contributes no rows (the patterns are rebuilt at once).
   void set_residual_active(ResidualId id, bool active);
+  /// The same for several blocks at once (one rebuild).
+  void set_residual_active(const std::vector<ResidualId>& ids, bool active);
   void set_variable_group(VariableId id, int group);
   void set_variable_bounds(VariableId id, const VecX& lower, const VecX& upper);
-  /// Fixes a variable block at value (lower = upper = initial = value; solvers treat it as a constant
-  /// and overwrite its entries of x with value). set_variable_bounds un-fixes it.
+  /// Fixes a variable block (lower = upper = initial = value): solvers treat it as a constant, with the
+  /// value its entries of x hold. set_variable_bounds un-fixes it.
   void fix_variable(VariableId id, const VecX& value);
   bool variable_fixed(VariableId id) const;
 
@@ -79,7 +85,8 @@ class Problem {
   /// c(x) and its Jacobian in the fixed pattern (J keeps its pattern between calls). J is row-major
   /// because each block's dense row-major Jacobian then lands as one contiguous run per row (a copy per
   /// block row through precomputed positions); solvers needing another layout map values once.
-  /// Neither evaluation allocates once c and J have their sizes (same structure_version()).
+  /// Neither evaluation allocates once c and J have their sizes (same structure_version()) and the calling
+  /// thread has evaluated a problem with blocks as large before.
   void evaluate_residuals_and_jacobian(const VecX& x, VecX& c,
                                        Eigen::SparseMatrix<double, Eigen::RowMajor>& J) const;
   /// f(x) and optionally its gradient (size num_variables()).
@@ -106,10 +113,11 @@ class Problem {
                         Eigen::SparseMatrix<double, Eigen::RowMajor>& H) const;
 
  private:
-  struct Impl;
+  struct Impl;  // problem_impl.hpp
   std::unique_ptr<Impl> impl_;
   void ensure_impl();
-  Impl& impl() const;
+  const Impl& impl() const;
+  Impl& impl();
 };
 
 }  // namespace pcr

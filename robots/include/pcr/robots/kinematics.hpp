@@ -11,6 +11,16 @@
 //    FK solve x(u), gradients by the implicit function theorem.
 //  - Derivatives by the implicit function theorem on the assembled Jacobian.
 // Poses are world-frame; rotations of poses in derivatives are world-frame rotation vectors.
+//
+// Model and data: what a kinematics object solves on - the assembly, the problems built
+// from it (IK: targets as equations, bounds and objective, the FK system at a solution, the reduced
+// space) and the options - is immutable once constructed and shared: by the objects over one
+// std::shared_ptr<const RobotAssembly>, and by with_fresh_state() copies. What a solve changes - the
+// state x, the path predictor's history, the Newton / Ipopt workspaces, the last Jacobian sign - belongs
+// to one object. So objects that share a model may solve in different threads at once (Newton paths
+// only: Ipopt 3.11's MUMPS keeps global state, ipopt_solver.hpp). The objects are movable (the
+// solvers' references into the model stay valid) and not copyable: a copy would either share the
+// workspaces or silently lose them; with_fresh_state() makes the independent object explicitly.
 #include <array>
 #include <limits>
 #include <memory>
@@ -83,15 +93,33 @@ struct KinematicsOptions {
   IkOptions ik;  ///< inverse kinematics only
 };
 
+namespace kinematics {
+struct FkData;
+struct IkData;
+}  // namespace kinematics
+
 class ForwardKinematics {
  public:
   explicit ForwardKinematics(std::shared_ptr<const RobotModel> model, const KinematicsOptions& options = {});
+  /// Over an assembly shared with other kinematics objects (options.assembly is not used: the assembly
+  /// carries its own discretisation).
+  explicit ForwardKinematics(std::shared_ptr<const RobotAssembly> assembly,
+                             const KinematicsOptions& options = {});
+  ForwardKinematics(ForwardKinematics&&) noexcept;
+  ForwardKinematics& operator=(ForwardKinematics&&) noexcept;
+  ~ForwardKinematics();
+  ForwardKinematics(const ForwardKinematics&) = delete;
+  ForwardKinematics& operator=(const ForwardKinematics&) = delete;
+  /// Another FK on the same assembly and options with its own state, starting as a new object does.
+  ForwardKinematics with_fresh_state() const;
+
   /// Solves for the given inputs (model order); throws InputError for a wrong size or out-of-bounds value.
   RobotSolution solve(const VecX& inputs);
-  const RobotAssembly& assembly() const { return assembly_; }
+  const RobotAssembly& assembly() const;
+  const std::shared_ptr<const RobotAssembly>& assembly_ptr() const;
   /// The assembly's variables at the last converged solution.
-  const VecX& state() const { return x_; }
-  bool has_solution() const { return has_solution_; }
+  const VecX& state() const;
+  bool has_solution() const;
 
   /// d(platform poses)/d(inputs) at the last solution: 6 rows per platform [dx (3), dtheta (3)].
   MatX input_jacobian() const;
@@ -100,22 +128,9 @@ class ForwardKinematics {
   MatX compliance(int platform) const;
 
  private:
-  /// One Newton (or Ipopt) solve from x; Newton stops after max_jacobian_evaluations fresh Jacobians.
-  SolveSummary solve_once(VecX& x, int max_jacobian_evaluations = std::numeric_limits<int>::max());
-  /// Fresh-Jacobian budgets of a direct attempt that has a continuation to fall back on, and of one
-  /// continuation step (see solve()).
-  static constexpr int kDirectJacobianEvaluations = 10;
-  static constexpr int kContinuationStepJacobianEvaluations = 8;
-  /// Orders tried by the one-input-at-a-time continuation (the last fallback; bounds its cost on inputs
-  /// without a reachable equilibrium: at most this many orders of one leg per input).
-  static constexpr int kOneInputOrders = 3;
-  RobotAssembly assembly_;
-  KinematicsOptions options_;
-  VecX x_;
-  bool has_solution_ = false;
-  int last_jacobian_sign_ = 0;  // of the last checked converged solve (check_stability)
-  struct Solvers;
-  std::shared_ptr<Solvers> solvers_;
+  explicit ForwardKinematics(std::unique_ptr<kinematics::FkData> data);
+  kinematics::FkData& data() const;
+  std::unique_ptr<kinematics::FkData> data_;
 };
 
 /// A target on a link carried by a platform. `mode` selects position (x, y, z, world frame) and/or
@@ -133,25 +148,37 @@ class InverseKinematics {
   /// targets fix which links are targeted and how; their poses can change at every solve.
   InverseKinematics(std::shared_ptr<const RobotModel> model, const std::vector<LinkTarget>& targets,
                     const KinematicsOptions& options = {});
+  /// Over an assembly shared with other kinematics objects (options.assembly is not used).
+  InverseKinematics(std::shared_ptr<const RobotAssembly> assembly, const std::vector<LinkTarget>& targets,
+                    const KinematicsOptions& options = {});
+  InverseKinematics(InverseKinematics&&) noexcept;
+  InverseKinematics& operator=(InverseKinematics&&) noexcept;
+  ~InverseKinematics();
+  InverseKinematics(const InverseKinematics&) = delete;
+  InverseKinematics& operator=(const InverseKinematics&) = delete;
+  /// Another IK on the same (shared) problems and options with its own state, starting as a new object
+  /// does.
+  InverseKinematics with_fresh_state() const;
+
   /// Solves for target poses (same order as the constructor's targets), warm-started from the
   /// previous solution. reference: inputs to stay close to (default: the previous solution's).
   RobotSolution solve(const std::vector<Pose>& target_poses, const VecX* reference = nullptr);
-  const RobotAssembly& assembly() const { return assembly_; }
-  const VecX& state() const { return x_; }
+  const RobotAssembly& assembly() const;
+  const std::shared_ptr<const RobotAssembly>& assembly_ptr() const;
+  /// The square IK system, the layout of state(): the assembly's variables, then one fixed pose block
+  /// [x (3), Q (4)] per target (target_variable); the targets as equations (target_residual), inputs free
+  /// without bounds.
+  const Problem& problem() const;
+  VariableId target_variable(int target) const;
+  ResidualId target_residual(int target) const;
+  const VecX& state() const;
   /// Whether the targets fix every degree of freedom (square system).
-  bool square() const { return square_; }
+  bool square() const;
 
  private:
-  RobotAssembly assembly_;
-  KinematicsOptions options_;
-  std::vector<VariableId> target_variables_;
-  std::vector<LinkTarget> targets_;
-  VecX x_;
-  bool square_ = false;
-  bool reduced_ = false;        // solved in the reduced space of the inputs when Newton cannot finish
-  int last_jacobian_sign_ = 0;  // of the last checked converged solve (check_stability)
-  struct Solvers;
-  std::shared_ptr<Solvers> solvers_;
+  explicit InverseKinematics(std::unique_ptr<kinematics::IkData> data);
+  kinematics::IkData& data() const;
+  std::unique_ptr<kinematics::IkData> data_;
 };
 
 /// Results (poses, rods, wrenches) read from the assembly's variables x.

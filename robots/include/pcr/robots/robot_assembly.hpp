@@ -5,8 +5,13 @@
 //   equations — per rod: its collocation equations; per attached rod end: the 7 coupling equations
 //               of its kind (the rod end frame = link pose * attachment frame); per free rod end: its
 //               dead loads; per platform: force and moment balance + |Q|^2 = 1.
-// Actuation inputs (rod lengths, joint values) are variable blocks too: fixed for forward
-// kinematics, free within their bounds for inverse kinematics.
+// Actuation inputs (rod lengths, joint values) are variable blocks too, fixed in the assembly's problem
+// (the forward kinematics system: their values are whatever x holds); inverse kinematics builds its own
+// problems from it with the inputs free (IkModel, robots/src/kinematics/ik_data.hpp).
+// A RobotAssembly is immutable once built: share it (std::shared_ptr<const RobotAssembly>) between
+// kinematics objects and threads; its const functions, the problem's evaluations included, may run in
+// several threads at once.
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -62,8 +67,8 @@ class RobotAssembly {
 
   const RobotModel& model() const { return *model_; }
   const std::shared_ptr<const RobotModel>& model_ptr() const { return model_; }
+  /// The forward kinematics system: inputs fixed, square.
   const Problem& problem() const { return problem_; }
-  Problem& problem() { return problem_; }
 
   int num_rods() const { return static_cast<int>(rods_.size()); }
   const CollocationRod& rod(int i) const { return *rods_[i]; }
@@ -71,6 +76,11 @@ class RobotAssembly {
   VariableId platform_variable(int platform) const { return platform_variables_[platform]; }
   /// Variable block (size 1) of model input i (a rod length or a joint value).
   VariableId input_variable(int input) const { return input_variables_[input]; }
+  /// Residual block of a platform's force and moment balance and |Q|^2 = 1 (7 rows: force / force scale,
+  /// moment / moment scale, the unit quaternion).
+  ResidualId platform_balance(int platform) const;
+  /// Residual block coupling rod i's end (at_tip: s = L, else s = 0) to its link; -1 for a free end.
+  ResidualId rod_coupling(int rod, bool at_tip) const;
   /// Representative scales: the longest rod [m], and the largest rod force / moment scale.
   double length_scale() const { return length_scale_; }
   double force_scale() const { return force_scale_; }
@@ -80,19 +90,22 @@ class RobotAssembly {
   /// frame to its end frame (straight when free), inputs at their defaults.
   VecX initial_guess() const;
   VecX inputs(const VecX& x) const;
-  /// Writes input values into x.
+  /// Writes input values into x (throws InputError for a wrong count).
   void set_inputs(VecX& x, const VecX& inputs) const;
+  /// Throws InputError unless there is one finite value per input within its bounds.
+  void check_inputs(const VecX& inputs) const;
   Pose platform_pose(const VecX& x, int platform) const;
-  /// Fixes (forward kinematics) or frees with the model's bounds (inverse kinematics) the inputs.
-  void fix_inputs(const VecX& inputs);
-  void free_inputs();
 
  private:
+  struct Builder;  // the constructor's steps (robot_assembly.cpp)
+  friend struct Builder;
   std::shared_ptr<const RobotModel> model_;
   Problem problem_;
   std::vector<std::shared_ptr<const CollocationRod>> rods_;
   std::vector<RodVariables> rod_variables_;
   std::vector<VariableId> platform_variables_, joint_variables_, input_variables_;
+  std::vector<ResidualId> platform_balances_;
+  std::vector<std::array<ResidualId, 2>> rod_couplings_;  // per rod: start, end (-1 when free)
   double length_scale_ = 1.0, force_scale_ = 1.0, moment_scale_ = 1.0;
 };
 

@@ -1,0 +1,45 @@
+#pragma once
+// Forward kinematics model and data (internal header of pcr::robots; kinematics.hpp "Model and data"):
+// FkModel is what an FK object solves on, immutable and shared; FkData is one object's per-solve state.
+#include <limits>
+#include <memory>
+#include <vector>
+
+#include "path_predictor.hpp"
+#include "pcr/robots/kinematics.hpp"
+#include "pcr/solve/ipopt_solver.hpp"
+#include "pcr/solve/newton_solver.hpp"
+
+namespace pcr::kinematics {
+
+struct FkModel {
+  FkModel(std::shared_ptr<const RobotAssembly> assembly, const KinematicsOptions& options);
+  std::shared_ptr<const RobotAssembly> assembly;  ///< its problem is the FK system (inputs fixed)
+  KinematicsOptions options;
+  std::vector<std::vector<BasisDerivatives>> sample_bases;  ///< read_solution
+};
+
+struct FkData {
+  explicit FkData(std::shared_ptr<const FkModel> model);
+  FkData(const FkData&) = delete;
+  FkData& operator=(const FkData&) = delete;
+
+  /// One Newton (or Ipopt) solve at inputs u from x (u written into x first); Newton stops after
+  /// max_jacobian_evaluations fresh Jacobians.
+  SolveSummary solve_at(const VecX& u, VecX& x,
+                        int max_jacobian_evaluations = std::numeric_limits<int>::max());
+
+  const std::shared_ptr<const FkModel> model;  // first: outlives the solvers that refer into it
+  VecX x;                                      // the last converged solution (initial guess before)
+  bool has_solution = false;
+  int last_jacobian_sign = 0;            // of the last checked converged solve (check_stability)
+  PathPredictor predictor;               // start point along a path of inputs
+  std::unique_ptr<NewtonSolver> newton;  // on model->assembly->problem(), made on first use
+  std::unique_ptr<IpoptSolver> ipopt;    // SolverKind::Ipopt, made on first use
+};
+
+/// The attempts of ForwardKinematics::solve at `inputs` (fk_strategies.cpp): x out, the summary of the
+/// attempt that converged (or of the last direct attempt, with what the fallbacks reached appended).
+SolveSummary solve_with_fallbacks(FkData& data, const VecX& inputs, VecX& x);
+
+}  // namespace pcr::kinematics

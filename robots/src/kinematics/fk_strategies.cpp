@@ -1,0 +1,147 @@
+// ForwardKinematics::solve's attempts, tried in order until one converges (kStrategies):
+//  1. Newton from the path predictor's start (the last solution when there is no path);
+//  2. Newton from the last solution (when the extrapolated start failed);
+//  3. continuation in the inputs from the last solution (input_continuation.hpp);
+//  4. continuation from the model's default inputs, solved from the straight initial guess, along the line;
+//  5. continuation from the default inputs one input at a time.
+// The warm path starts in a deformed state that may be far from the new inputs and fails more often than
+// the cold one (random input sweeps), hence the attempts from the default inputs after it. The direct
+// attempts, which have a continuation to fall back on, and each continuation step get a limited number
+// of fresh Jacobians (random sweeps, README "Stress tests": limited fresh Jacobians per step took 5x less
+// time per Stewart-Gough solve than full-budget steps, and more converged).
+#include <string>
+
+#include "fk_data.hpp"
+#include "input_continuation.hpp"
+
+namespace pcr::kinematics {
+
+namespace {
+
+/// Fresh-Jacobian budgets of a direct attempt and of one continuation step.
+constexpr int kDirectJacobianEvaluations = 10;
+constexpr int kContinuationStepJacobianEvaluations = 8;
+/// Orders tried by the one-input-at-a-time continuation (the last fallback; bounds its cost on inputs
+/// without a reachable equilibrium: at most this many orders of one leg per input).
+constexpr int kOneInputOrders = 3;
+
+/// One FK solve in progress.
+struct FkAttempt {
+  FkAttempt(FkData& d, const VecX& u, VecX& x_out) : data(d), inputs(u), x(x_out) {}
+  FkData& data;
+  const VecX& inputs;
+  VecX& x;               // the result (the last iterate of a failed attempt)
+  SolveSummary summary;  // of the converged attempt, else of the last direct one with notes appended
+  int iterations = 0, jacobians = 0;  // of all attempts
+  enum class Default { NotTried, Converged, Failed } default_state = Default::NotTried;
+  VecX x_default;  // the equilibrium at the default inputs (strategies 4 and 5)
+
+  void count(int more_iterations, int more_jacobians) {
+    iterations += more_iterations;
+    jacobians += more_jacobians;
+  }
+  SolveAtInputs solve_at() {
+    return [this](const VecX& u, VecX& xs, int max_jacobians) { return data.solve_at(u, xs, max_jacobians); };
+  }
+};
+
+/// A direct Newton attempt from `start` with the short budget.
+bool direct_attempt(FkAttempt& a, const VecX& start) {
+  a.x = start;
+  a.summary = a.data.solve_at(a.inputs, a.x, kDirectJacobianEvaluations);
+  a.count(a.summary.iterations, a.summary.jacobian_evaluations);
+  return a.summary.converged();
+}
+
+bool from_prediction(FkAttempt& a, const char*) {
+  bool on_path = false;
+  const VecX start = a.data.predictor.predict(a.data.x, a.inputs, &on_path);
+  if (on_path && a.data.newton) a.data.newton->continue_path();
+  return direct_attempt(a, start);
+}
+
+bool from_last_solution(FkAttempt& a, const char*) {
+  return a.data.has_solution && direct_attempt(a, a.data.x);
+}
+
+/// Takes a continuation's result: on success its state and summary, else a note on where it stopped.
+bool finish_continuation(FkAttempt& a, const ContinuationResult& r, const VecX& xr, const std::string& how) {
+  a.count(r.iterations, r.jacobian_evaluations);
+  if (!r.converged) {
+    a.summary.message += "; " + how + " stopped at " + r.stopped_at;
+    return false;
+  }
+  a.x = xr;
+  a.summary = r.last;
+  a.summary.message = "converged by " + how + " (" + std::to_string(r.steps) + " steps)";
+  return true;
+}
+
+bool continuation_from_last_solution(FkAttempt& a, const char* how) {
+  if (!a.data.has_solution) return false;
+  VecX xs = a.data.x;
+  const VecX u_last = a.data.model->assembly->inputs(a.data.x);
+  return finish_continuation(
+      a, continue_along_line(a.solve_at(), u_last, a.inputs, kContinuationStepJacobianEvaluations, xs), xs,
+      how);
+}
+
+/// The equilibrium at the default inputs from the straight initial guess, solved once per attempt.
+bool solve_default_inputs(FkAttempt& a) {
+  if (a.default_state == FkAttempt::Default::NotTried) {
+    const RobotAssembly& assembly = *a.data.model->assembly;
+    a.x_default = assembly.initial_guess();
+    const SolveSummary s0 = a.data.solve_at(assembly.model().default_input_values(), a.x_default);
+    a.count(s0.iterations, s0.jacobian_evaluations);
+    a.default_state = s0.converged() ? FkAttempt::Default::Converged : FkAttempt::Default::Failed;
+    if (!s0.converged())
+      a.summary.message += "; the default inputs did not converge from the straight initial guess";
+  }
+  return a.default_state == FkAttempt::Default::Converged;
+}
+
+bool continuation_from_default_inputs(FkAttempt& a, const char* how) {
+  if (!solve_default_inputs(a)) return false;
+  VecX xs = a.x_default;
+  const VecX u_default = a.data.model->assembly->model().default_input_values();
+  return finish_continuation(
+      a, continue_along_line(a.solve_at(), u_default, a.inputs, kContinuationStepJacobianEvaluations, xs), xs,
+      how);
+}
+
+bool one_input_at_a_time(FkAttempt& a, const char* how) {
+  if (!solve_default_inputs(a)) return false;
+  VecX xs = a.x_default;
+  const VecX u_default = a.data.model->assembly->model().default_input_values();
+  const ContinuationResult r =
+      continue_one_input_at_a_time(a.solve_at(), u_default, a.inputs, kDirectJacobianEvaluations,
+                                   kContinuationStepJacobianEvaluations, kOneInputOrders, xs);
+  return finish_continuation(a, r, xs, how);
+}
+
+/// A strategy returns whether it converged; the name is what the summary's message calls it.
+struct FkStrategy {
+  const char* name;
+  bool (*attempt)(FkAttempt& a, const char* name);
+};
+
+constexpr FkStrategy kStrategies[] = {
+    {"the predicted start", from_prediction},
+    {"the last solution", from_last_solution},
+    {"continuation in the inputs from the last solution", continuation_from_last_solution},
+    {"continuation in the inputs from the default inputs", continuation_from_default_inputs},
+    {"continuation from the default inputs one input at a time", one_input_at_a_time},
+};
+
+}  // namespace
+
+SolveSummary solve_with_fallbacks(FkData& data, const VecX& inputs, VecX& x) {
+  FkAttempt a(data, inputs, x);
+  for (const FkStrategy& s : kStrategies)
+    if (s.attempt(a, s.name)) break;
+  a.summary.iterations = a.iterations;
+  a.summary.jacobian_evaluations = a.jacobians;
+  return a.summary;
+}
+
+}  // namespace pcr::kinematics

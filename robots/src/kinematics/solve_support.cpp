@@ -1,0 +1,81 @@
+#include "solve_support.hpp"
+
+#include <sstream>
+
+#include "pcr/solve/free_jacobian.hpp"
+
+namespace pcr::kinematics {
+
+namespace {
+
+// A solver that reports convergence at a non-finite point has failed.
+void mark_non_finite(const VecX& x, SolveSummary& summary) {
+  if (summary.converged() && !x.allFinite()) {
+    summary.status = SolveStatus::Failed;
+    summary.message = "non-finite solution";
+  }
+}
+
+// Marks a converged solution failed when a rod is compressed to a point or inverted
+// (admissible_axial_stretch; rod_solve.cpp checks single rods the same way). Returns whether the
+// solution stays converged.
+bool reject_inadmissible(RobotSolution& s) {
+  if (!s.summary.converged()) return false;
+  for (const RodResult& r : s.rods) {
+    if (!admissible_axial_stretch(r.min_axial_stretch)) {
+      std::ostringstream msg;
+      msg << "inadmissible state: rod '" << r.name
+          << "' has axial stretch v3 = 1 + eps3 = " << r.min_axial_stretch
+          << " (compressed to a point or inverted; admissible: v3 > 0)"
+          << (s.summary.message.empty() ? "" : "; " + s.summary.message);
+      s.summary.status = SolveStatus::Failed;
+      s.summary.message = msg.str();
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+NewtonOptions newton_options(const KinematicsOptions& o) {
+  NewtonOptions n;
+  n.tolerance = o.tolerance;
+  n.max_iterations = o.max_iterations;
+  n.reuse_factorization = o.reuse_factorization;
+  n.linear_solver = o.linear_solver;
+  return n;
+}
+
+IpoptOptions ipopt_options(const KinematicsOptions& o) {
+  IpoptOptions i;
+  i.tol = o.tolerance;
+  i.constraint_tolerance = o.tolerance;
+  i.max_iterations = 3000;
+  return i;
+}
+
+RobotSolution finish_solution(const RobotAssembly& assembly, const VecX& x, const VecX& x_fallback,
+                              SolveSummary summary, Clock::time_point start,
+                              const std::vector<std::vector<BasisDerivatives>>& sample_bases,
+                              bool& accepted) {
+  summary.wall_time_seconds = seconds_since(start);
+  mark_non_finite(x, summary);
+  RobotSolution out = read_solution(assembly, x.allFinite() ? x : x_fallback, sample_bases);
+  out.summary = summary;
+  accepted = reject_inadmissible(out);
+  return out;
+}
+
+void monitor_stability(const Problem& fk, const VecX& x, int& last_sign, RobotSolution& out) {
+  out.jacobian_sign = jacobian_determinant_sign(fk, x);
+  if (out.jacobian_sign == 0) return;
+  out.jacobian_sign_changed = last_sign != 0 && out.jacobian_sign != last_sign;
+  last_sign = out.jacobian_sign;
+}
+
+}  // namespace pcr::kinematics

@@ -1,0 +1,31 @@
+#pragma once
+// What the forward and inverse kinematics solves share (internal header of pcr::robots): solver options
+// from KinematicsOptions, the verdict on a solution and stability monitoring.
+#include <chrono>
+
+#include "pcr/robots/kinematics.hpp"
+#include "pcr/solve/ipopt_solver.hpp"
+#include "pcr/solve/newton_solver.hpp"
+
+namespace pcr::kinematics {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t);
+
+NewtonOptions newton_options(const KinematicsOptions& o);
+/// Ipopt on the full assembly (FK with SolverKind::Ipopt, IK in the full space).
+IpoptOptions ipopt_options(const KinematicsOptions& o);
+
+/// The solution read from x (x_fallback where x is not finite, with the summary marked failed: a solver
+/// never hands back NaN) with `summary` (its wall time: since start).
+/// A converged solution with a rod compressed to a point or inverted is marked failed too
+/// (admissible_axial_stretch). accepted: whether the solution stays converged.
+RobotSolution finish_solution(const RobotAssembly& assembly, const VecX& x, const VecX& x_fallback,
+                              SolveSummary summary, Clock::time_point start,
+                              const std::vector<std::vector<BasisDerivatives>>& sample_bases, bool& accepted);
+
+/// Stability monitoring (KinematicsOptions::check_stability): the sign of det J of the FK system `fk` at
+/// the converged solution x, and whether it changed since the last checked solve (last_sign, updated).
+void monitor_stability(const Problem& fk, const VecX& x, int& last_sign, RobotSolution& out);
+
+}  // namespace pcr::kinematics
