@@ -9,6 +9,7 @@
 #include "pcr/math/quaternion.hpp"
 #include "pcr/math/so3.hpp"
 #include "pcr/rods/collocation_rod.hpp"
+#include "pcr/rods/rod_end.hpp"
 #include "pcr/rods/rod_solve.hpp"
 #include "pcr/solve/jacobian_check.hpp"
 #include "rod_fixtures.hpp"
@@ -473,4 +474,88 @@ BOOST_AUTO_TEST_CASE(a_collapsed_rod_is_not_reported_as_converged) {
   BOOST_TEST_REQUIRE(loop.summary.converged(), loop.summary.message);
   for (const RodState& st : loop.rod->sample(loop.x, loop.variables, 21))
     BOOST_TEST(1.0 + st.shear_extension_body[2] > 0.99);  // |n| ~ 0: v3 = 1 up to round-off
+}
+
+BOOST_AUTO_TEST_CASE(condensed_form_with_loads_carries_the_integral_of_p_in_local_unknowns) {
+  // Under distributed loads each control point carries T_i = sum_{j<i} w_j P_j, w_j = integral_0^1 N_j
+  // (collocation_rod.hpp). At the solution: T against that sum over the solution's P (basis_integrals,
+  // checked in test_basis), and n, m along the rod (state_at) against the closed-form balance with
+  // I(u) = sum over all control points of J_j(u) P_j (independent of T). The T rows are linear,
+  // (T_{i+1} - T_i - w_i P_i) / L0, solved to the residual tolerance 1e-12: T within n 1e-12 L0 (1e-10 L0
+  // asserted), and m, which reads L (I - c u) x f, within L0 |f| 1e-10 L0 (1e-9 M0 asserted, M0 >= L0^2 |f|
+  // here); n does not read I.
+  const RodModel m = loaded_rod(RodEndKind::Clamped, RodEndKind::Free);
+  RodSolveOptions o;
+  o.tolerance = 1e-12;
+  o.discretization = {RodFormulation::Condensed, 4, 12};
+  const RodSolution sol = solve_rod(m, o);
+  BOOST_REQUIRE_MESSAGE(sol.summary.converged(), sol.summary.brief_report());
+  const CollocationRod& rod = *sol.rod;
+  BOOST_REQUIRE(rod.condensed_with_loads());
+  BOOST_TEST(rod.control_point_size() == 10);
+  const collocation::PointLayout& layout = rod.point_layout();
+  const int n = rod.num_control_points(), cp = rod.control_point_size();
+  auto P = [&](int j) {
+    return Vec3(sol.x.segment<3>(sol.variables.control_point_offset + j * cp + layout.p));
+  };
+  const VecX w = basis_integrals(rod.knots(), 1.0);
+  Vec3 sum = Vec3::Zero();
+  for (int i = 0; i < n; ++i) {
+    const Vec3 T = sol.x.segment<3>(sol.variables.control_point_offset + i * cp + layout.integral);
+    BOOST_TEST((T - sum).norm() < 1e-10 * m.length, "T_" << i << " off by " << (T - sum).norm());
+    sum += w[i] * P(i);
+  }
+  const Vec3 c = rod.moment_point(), f = m.distributed_force(), l = m.loads.moment_per_length;
+  const Vec3 n0 = sol.x.segment<3>(sol.variables.wrench_offset),
+             h = sol.x.segment<3>(sol.variables.wrench_offset + 3);
+  for (double s : {0.0, 0.13, 0.35, 0.5, 0.61, 0.7}) {
+    const double u = s / m.length;
+    const VecX J = basis_integrals(rod.knots(), u);
+    Vec3 I = Vec3::Zero();
+    for (int j = 0; j < n; ++j) I += J[j] * P(j);
+    const RodState st = sol.at(s);
+    const Vec3 force = n0 - f * s;
+    const Vec3 moment = h - (st.position - c).cross(force) - l * s - (m.length * (I - c * u)).cross(f);
+    BOOST_TEST((st.force - force).norm() < 1e-13 * rod.force_scale(), "s = " << s);  // round-off of u L vs s
+    BOOST_TEST((st.moment - moment).norm() < 1e-9 * rod.moment_scale(),
+               "s = " << s << ": " << (st.moment - moment).norm());
+  }
+}
+
+BOOST_AUTO_TEST_CASE(condensed_form_with_loads_has_local_rows_and_a_size_linear_in_the_elements) {
+  // Every residual block of a condensed rod under loads touches a window of at most p + 1 consecutive
+  // control points (summing I(u) over every control point below u filled the rod's Jacobian below the
+  // diagonal), so the Jacobian's nonzeros grow linearly with the element count: doubling E = 30 -> 60
+  // doubles them up to the constant end blocks (ratio (60 + p) / (30 + p) = 1.88 for the per-point part;
+  // asserted in [1.75, 2.05], where a dense lower triangle would give about 3.6). A rod's end quantities
+  // (RodEndEvaluator at the tip) read the end control point, the wrench and L. Condensed rods with more
+  // than kMaxBandedCondensedPoints control points stay out of the structured solver's groups.
+  const RodModel m = loaded_rod(RodEndKind::Clamped, RodEndKind::Free);
+  const int p = 4;
+  long nonzeros[2] = {0, 0};
+  for (int k = 0; k < 2; ++k) {
+    const CollocationRod rod(m, {RodFormulation::Condensed, p, 30 * (k + 1)});  // 34 and 64 points
+    Problem problem;
+    const RodVariables vars = rod.add_to_problem(problem, {}, 1.0, false, 0);
+    nonzeros[k] = problem.jacobian_nonzeros();
+    std::vector<int> index(problem.num_variable_blocks(), -1);
+    for (size_t i = 0; i < vars.control_points.size(); ++i)
+      index[vars.control_points[i]] = static_cast<int>(i);
+    for (ResidualId b = 0; b < problem.num_residual_blocks(); ++b) {
+      int lo = 1 << 30, hi = -1;
+      for (VariableId v : problem.residual(b).variables())
+        if (index[v] >= 0) lo = std::min(lo, index[v]), hi = std::max(hi, index[v]);
+      BOOST_TEST(hi - lo <= p, problem.residual(b).name()
+                                   << " touches control points " << lo << " .. " << hi);
+    }
+    const RodEndEvaluator tip(rod, vars, true);
+    BOOST_TEST(tip.variables().size() == 3u);
+    BOOST_TEST(tip.variables()[0] == vars.control_points.back());
+    const bool grouped = rod.num_control_points() <= CollocationRod::kMaxBandedCondensedPoints;
+    BOOST_TEST(problem.variable(vars.wrench).group == (grouped ? 0 : -1));
+    BOOST_TEST(problem.variable(vars.control_points[0]).group == (grouped ? 0 : -1));
+  }
+  const double ratio = static_cast<double>(nonzeros[1]) / nonzeros[0];
+  BOOST_TEST(ratio >= 1.75);
+  BOOST_TEST(ratio <= 2.05);
 }

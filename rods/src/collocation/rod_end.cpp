@@ -8,6 +8,11 @@
 namespace pcr {
 using namespace collocation;
 
+// y = [p (3), q (4), n (3), m (3)] is the mixed form's control point itself.
+static_assert(kMixedPoint.size == 13 && kMixedPoint.p == 0 && kMixedPoint.q == 3 && kMixedPoint.n == 7 &&
+                  kMixedPoint.m == 10,
+              "RodEndEvaluator: the mixed control point is y");
+
 RodEndEvaluator::RodEndEvaluator(const CollocationRod& rod, const RodVariables& variables, bool at_tip)
     : at_tip_(at_tip),
       mixed_(rod.discretization().formulation == RodFormulation::Mixed),
@@ -21,18 +26,15 @@ RodEndEvaluator::RodEndEvaluator(const CollocationRod& rod, const RodVariables& 
     value_basis_ = {1.0};
     if (condensed_) {
       moment_point_ = rod.moment_point();
+      variables_.push_back(variables.wrench);
       if (at_tip && rod.condensed_with_loads()) {
-        // The tip's m reads I(1) = sum_j w_j P_j, w_j = integral_0^1 N_j: every control point, and L.
+        // The tip's m reads I(1) = T_{n-1} + w_{n-1} P_{n-1} of the end control point, and L.
         loads_ = true;
-        count_ = n;
-        variables_ = variables.control_points;
-        const VecX w = basis_integrals(rod.knots(), 1.0);
-        integral_weights_.assign(w.data(), w.data() + w.size());
+        tip_weight_ = rod.integral_weights()[n - 1];
         f_ = rod.model().distributed_force();
         l_ = rod.model().loads.moment_per_length;
+        variables_.push_back(variables.length);
       }
-      variables_.push_back(variables.wrench);
-      if (loads_) variables_.push_back(variables.length);
     }
     return;
   }
@@ -61,40 +63,37 @@ void RodEndEvaluator::evaluate(const double* const* values, RodEndVector& y,
     return;
   }
   if (condensed_ && loads_) {
-    // At s = L: n = n0 - f L, m = h - a x n - l L - L (I - c) x f with a = P_end - c, I = sum_j w_j P_j.
-    // dm/dP_j = L w_j hat(f) (+ hat(n) for P_end), dm/dn0 = -hat(a), dm/dh = 1,
+    // At s = L: n = n0 - f L, m = h - a x n - l L - L (I - c) x f with a = P - c, I = T + w P (the end
+    // control point's). dm/dP = hat(n) + L w hat(f), dm/dT = L hat(f), dm/dn0 = -hat(a), dm/dh = 1,
     // dn/dL = -f, dm/dL = a x f - l - (I - c) x f.
-    const int end = count_ - 1;
-    const Eigen::Map<const Eigen::Matrix<double, 7, 1>> point(values[end]);
-    const Eigen::Map<const Eigen::Matrix<double, 6, 1>> wrench(values[count_]);
-    const double L = values[count_ + 1][0];
-    Vec3 I = Vec3::Zero();
-    for (int j = 0; j < count_; ++j) I += integral_weights_[j] * Eigen::Map<const Vec3>(values[j]);
-    const Vec3 a = point.head<3>() - moment_point_, n = wrench.head<3>() - f_ * L;
-    y.head<7>() = point;
+    const PointLayout& lp = kCondensedLoadedPoint;
+    const Eigen::Map<const Eigen::Matrix<double, kCondensedLoadedPoint.size, 1>> point(values[0]);
+    const Eigen::Map<const Eigen::Matrix<double, 6, 1>> wrench(values[1]);
+    const double L = values[2][0];
+    const Vec3 P = point.segment<3>(lp.p);
+    const Vec3 I = point.segment<3>(lp.integral) + tip_weight_ * P;
+    const Vec3 a = P - moment_point_, n = wrench.head<3>() - f_ * L;
+    y.head<3>() = P;
+    y.segment<4>(3) = point.segment<4>(lp.q);
     y.segment<3>(7) = n;
     PointConstants loads;
     loads.f = f_;
     loads.l = l_;
-    y.segment<3>(10) =
-        condensed_moment<double>(point.head<3>(), n, wrench.tail<3>(), L, I, loads, moment_point_, 1.0);
+    y.segment<3>(10) = condensed_moment<double>(P, n, wrench.tail<3>(), L, I, loads, moment_point_, 1.0);
     if (jacobians) {
-      jacobians->assign(count_ + 2, MatX());
-      const Mat3 hat_f = hat(f_);
-      for (int j = 0; j < count_; ++j) {
-        MatX& J = (*jacobians)[j];
-        J = MatX::Zero(13, 7);
-        J.block<3, 3>(10, 0) = (L * integral_weights_[j]) * hat_f;
-      }
-      MatX& Jp = (*jacobians)[end];
-      Jp.topRows<7>().setIdentity();
-      Jp.block<3, 3>(10, 0) += hat(n);
-      MatX& Jw = (*jacobians)[count_];
+      jacobians->assign(3, MatX());
+      MatX& Jp = (*jacobians)[0];
+      Jp = MatX::Zero(13, lp.size);
+      Jp.block<3, 3>(0, lp.p).setIdentity();
+      Jp.block<4, 4>(3, lp.q).setIdentity();
+      Jp.block<3, 3>(10, lp.p) = hat(n) + (L * tip_weight_) * hat(f_);
+      Jp.block<3, 3>(10, lp.integral) = L * hat(f_);
+      MatX& Jw = (*jacobians)[1];
       Jw = MatX::Zero(13, 6);
       Jw.block<3, 3>(7, 0).setIdentity();
       Jw.block<3, 3>(10, 0) = -hat(a);
       Jw.block<3, 3>(10, 3).setIdentity();
-      MatX& JL = (*jacobians)[count_ + 1];
+      MatX& JL = (*jacobians)[2];
       JL = MatX::Zero(13, 1);
       JL.block<3, 1>(7, 0) = -f_;
       JL.block<3, 1>(10, 0) = a.cross(f_) - l_ - (I - moment_point_).cross(f_);
@@ -102,7 +101,11 @@ void RodEndEvaluator::evaluate(const double* const* values, RodEndVector& y,
     return;
   }
   if (condensed_) {
-    // y = [P, Q, n, h - (P - c) x n]: dm/dP = hat(n), dm/dn = -hat(P - c), dm/dh = I.
+    // y = [P, Q, n, h - (P - c) x n]: dm/dP = hat(n), dm/dn = -hat(P - c), dm/dh = I (also the base
+    // of the form with loads, where s = 0: its T does not enter).
+    static_assert(kCondensedPoint.p == 0 && kCondensedPoint.q == 3 && kCondensedLoadedPoint.p == 0 &&
+                      kCondensedLoadedPoint.q == 3,
+                  "the condensed control points start with y's [p, q]");
     const Eigen::Map<const Eigen::Matrix<double, 7, 1>> point(values[0]);
     const Eigen::Map<const Eigen::Matrix<double, 6, 1>> wrench(values[1]);
     const Vec3 n = wrench.head<3>(), arm = point.head<3>() - moment_point_;
@@ -112,8 +115,8 @@ void RodEndEvaluator::evaluate(const double* const* values, RodEndVector& y,
     if (jacobians) {
       jacobians->assign(2, MatX());
       MatX& Jp = (*jacobians)[0];
-      Jp = MatX::Zero(13, 7);
-      Jp.topRows<7>().setIdentity();
+      Jp = MatX::Zero(13, cp_size_);
+      Jp.topLeftCorner<7, 7>().setIdentity();
       Jp.block<3, 3>(10, 0) = hat(n);
       MatX& Jw = (*jacobians)[1];
       Jw = MatX::Zero(13, 6);
@@ -124,6 +127,8 @@ void RodEndEvaluator::evaluate(const double* const* values, RodEndVector& y,
     return;
   }
   // Primal: local z = [q (4), q_u (4), p_u (3), L (1)] for the wrench; p, q are the end values.
+  static_assert(kPrimalPoint.size == 7 && kPrimalPoint.p == 0 && kPrimalPoint.q == 3,
+                "the primal control point is [P, Q]");
   using D = Dual<12>;
   Eigen::Matrix<double, 12, 1> zv = Eigen::Matrix<double, 12, 1>::Zero();
   Vec3 p = Vec3::Zero();
@@ -143,7 +148,7 @@ void RodEndEvaluator::evaluate(const double* const* values, RodEndVector& y,
   Eigen::Matrix<D, 12, 1> z;
   for (int k = 0; k < 12; ++k) z[k] = D::variable(zv[k], k);
   V3<D> n, m;
-  primal_wrench(z, c, n, m);
+  primal_wrench<D>(z.segment<4>(0), z.segment<4>(4), z.segment<3>(8), z[11], c, n, m);
   y.segment<3>(0) = p;
   y.segment<4>(3) = zv.segment<4>(0);
   for (int i = 0; i < 3; ++i) {
