@@ -126,11 +126,14 @@ class CollocationRod {
   /// The condensed form's constant wrench [n, h] is read by every row of the rod: in the rod's band
   /// (BorderedBlockLu) it is a dense column that widens the band to the whole rod, at a cost growing with
   /// the square of the element count. Beyond this many control points add_to_problem leaves a condensed
-  /// rod's variables out of the groups, and Newton factors the system by the general sparse LU (whose
-  /// fill-reducing ordering takes the dense columns last), linear in the element count. Where the two
-  /// cross, measured by benchmarks/formulations (R5a with gravity, R5b without, degree 6): the band is
-  /// cheaper up to 16 elements (22 control points), the sparse LU from 64 (70), within 5 % of each other
-  /// at 32 (38).
+  /// rod's variables out of the groups, and Newton factors the system by the general sparse LU (natural
+  /// order: the wrench columns follow the rod's control points, so its supernodal LU fills only them
+  /// beyond the band), linear in the element count. Measured on
+  /// R5a (gravity) and R5b (none), degree 6, one cold FK and 9 warm solves (the driver of
+  /// benchmarks/formulations), band against sparse LU: 93M against 122M and 83M against 108M instructions
+  /// (callgrind) at 8 elements, 279M against 301M and 218M against 273M at 32; CPU time of the cold FK
+  /// on R5a with the band 84 ms, with the sparse LU 44 ms at 64 elements, 274 and 87 ms at 128
+  /// (bench_formulations). The switch sits between: 40 points, 34 elements of degree 6.
   static constexpr int kMaxBandedCondensedPoints = 40;
 
   /// Validates the model and the discretisation (InputError naming the value).
