@@ -55,11 +55,14 @@ BOOST_AUTO_TEST_CASE(every_block_jacobian_matches_finite_differences) {
                               RodEndKind::Free};
   std::mt19937 rng(7);
   std::normal_distribution<double> noise(0.0, 0.05);
-  // The condensed form twice: with the distributed loads (its rows read the integral of p) and without.
+  // The condensed form three times: with the distributed loads (its rows read the integral of p, summed
+  // over the control points on a short rod, 3 elements, or from the running integrals T on a long one,
+  // 40 elements: more than kMaxBandedCondensedPoints) and without.
   const RodDiscretization discretizations[] = {{RodFormulation::Primal, 3, 3},
                                                {RodFormulation::Mixed, 3, 3, MixedPoints::Midpoints},
                                                {RodFormulation::Mixed, 3, 3, MixedPoints::Greville},
                                                {RodFormulation::Condensed, 3, 3},
+                                               {RodFormulation::Condensed, 3, 40},
                                                {RodFormulation::Condensed, 3, 4}};
   for (const RodDiscretization& d : discretizations) {
     const RodFormulation f = d.formulation;
@@ -477,17 +480,17 @@ BOOST_AUTO_TEST_CASE(a_collapsed_rod_is_not_reported_as_converged) {
 }
 
 BOOST_AUTO_TEST_CASE(condensed_form_with_loads_carries_the_integral_of_p_in_local_unknowns) {
-  // Under distributed loads each control point carries T_i = sum_{j<i} w_j P_j, w_j = integral_0^1 N_j
-  // (collocation_rod.hpp). At the solution: T against that sum over the solution's P (basis_integrals,
-  // checked in test_basis), and n, m along the rod (state_at) against the closed-form balance with
-  // I(u) = sum over all control points of J_j(u) P_j (independent of T). The T rows are linear,
+  // Under distributed loads each control point of a long rod carries T_i = sum_{j<i} w_j P_j, w_j =
+  // integral_0^1 N_j (collocation_rod.hpp). At the solution: T against that sum over the solution's P
+  // (basis_integrals, checked in test_basis), and n, m along the rod (state_at) against the closed-form
+  // balance with I(u) = sum over all control points of J_j(u) P_j (independent of T). The T rows are linear,
   // (T_{i+1} - T_i - w_i P_i) / L0, solved to the residual tolerance 1e-12: T within n 1e-12 L0 (1e-10 L0
   // asserted), and m, which reads L (I - c u) x f, within L0 |f| 1e-10 L0 (1e-9 M0 asserted, M0 >= L0^2 |f|
   // here); n does not read I.
   const RodModel m = loaded_rod(RodEndKind::Clamped, RodEndKind::Free);
   RodSolveOptions o;
   o.tolerance = 1e-12;
-  o.discretization = {RodFormulation::Condensed, 4, 12};
+  o.discretization = {RodFormulation::Condensed, 4, 40};  // 44 > kMaxBandedCondensedPoints
   const RodSolution sol = solve_rod(m, o);
   BOOST_REQUIRE_MESSAGE(sol.summary.converged(), sol.summary.brief_report());
   const CollocationRod& rod = *sol.rod;
@@ -525,16 +528,17 @@ BOOST_AUTO_TEST_CASE(condensed_form_with_loads_carries_the_integral_of_p_in_loca
 BOOST_AUTO_TEST_CASE(condensed_form_with_loads_has_local_rows_and_a_size_linear_in_the_elements) {
   // Every residual block of a condensed rod under loads touches a window of at most p + 1 consecutive
   // control points (summing I(u) over every control point below u filled the rod's Jacobian below the
-  // diagonal), so the Jacobian's nonzeros grow linearly with the element count: doubling E = 30 -> 60
-  // doubles them up to the constant end blocks (ratio (60 + p) / (30 + p) = 1.88 for the per-point part;
-  // asserted in [1.75, 2.05], where a dense lower triangle would give about 3.6). A rod's end quantities
-  // (RodEndEvaluator at the tip) read the end control point, the wrench and L. Condensed rods with more
-  // than kMaxBandedCondensedPoints control points stay out of the structured solver's groups.
+  // diagonal), so the Jacobian's nonzeros grow linearly with the element count: doubling E = 40 -> 80
+  // doubles them up to the constant end blocks (ratio (80 + p) / (40 + p) = 1.91 for the per-point part;
+  // asserted in [1.75, 2.05], where a dense lower triangle would give about 3.7). A rod's end quantities
+  // (RodEndEvaluator at the tip) read the end control point, the wrench and L. Such rods, with more than
+  // kMaxBandedCondensedPoints control points, stay out of the structured solver's groups; a short rod
+  // (8 elements) keeps the summed integral (7 unknowns per point) and its group.
   const RodModel m = loaded_rod(RodEndKind::Clamped, RodEndKind::Free);
   const int p = 4;
   long nonzeros[2] = {0, 0};
   for (int k = 0; k < 2; ++k) {
-    const CollocationRod rod(m, {RodFormulation::Condensed, p, 30 * (k + 1)});  // 34 and 64 points
+    const CollocationRod rod(m, {RodFormulation::Condensed, p, 40 * (k + 1)});  // 44 and 84 points
     Problem problem;
     const RodVariables vars = rod.add_to_problem(problem, {}, 1.0, false, 0);
     nonzeros[k] = problem.jacobian_nonzeros();
@@ -551,10 +555,15 @@ BOOST_AUTO_TEST_CASE(condensed_form_with_loads_has_local_rows_and_a_size_linear_
     const RodEndEvaluator tip(rod, vars, true);
     BOOST_TEST(tip.variables().size() == 3u);
     BOOST_TEST(tip.variables()[0] == vars.control_points.back());
-    const bool grouped = rod.num_control_points() <= CollocationRod::kMaxBandedCondensedPoints;
-    BOOST_TEST(problem.variable(vars.wrench).group == (grouped ? 0 : -1));
-    BOOST_TEST(problem.variable(vars.control_points[0]).group == (grouped ? 0 : -1));
+    BOOST_TEST(rod.control_point_size() == 10);
+    BOOST_TEST(problem.variable(vars.wrench).group == -1);
+    BOOST_TEST(problem.variable(vars.control_points[0]).group == -1);
   }
+  const CollocationRod short_rod(m, {RodFormulation::Condensed, p, 8});
+  Problem problem;
+  const RodVariables vars = short_rod.add_to_problem(problem, {}, 1.0, false, 0);
+  BOOST_TEST(short_rod.control_point_size() == 7);
+  BOOST_TEST(problem.variable(vars.wrench).group == 0);
   const double ratio = static_cast<double>(nonzeros[1]) / nonzeros[0];
   BOOST_TEST(ratio >= 1.75);
   BOOST_TEST(ratio <= 2.05);

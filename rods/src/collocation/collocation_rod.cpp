@@ -62,13 +62,19 @@ CollocationRod::CollocationRod(RodModel model, RodDiscretization discretization)
                                                                     : &mixed_greville_form();
       break;
     case RodFormulation::Condensed:
-      form_ = loaded_condensed_ ? &condensed_loaded_form() : &condensed_form();
+      // With loads: the running integrals where the rod leaves the band (kMaxBandedCondensedPoints).
+      if (!loaded_condensed_)
+        form_ = &condensed_form();
+      else if (discretization.elements + discretization.degree > kMaxBandedCondensedPoints)
+        form_ = &condensed_loaded_form();
+      else
+        form_ = &condensed_summed_form();
       break;
   }
   require(form_ != nullptr, "rod '", model_.name, "': unknown formulation");
   knots_ = std::make_shared<const KnotVector>(
       KnotVector::open_uniform(discretization.degree, discretization.elements));
-  if (loaded_condensed_) integral_weights_ = basis_integrals(*knots_, 1.0);
+  if (loaded_condensed_) integral_weights_ = basis_integrals(*knots_, 1.0);  // also integrals_at()
   const double L = model_.length;
   const double kb = model_.bending_torsion_stiffness.maxCoeff();
   force_scale_ = kb / (L * L);

@@ -12,8 +12,10 @@
 // each point reads only its p + 1 active control points (T of the first of them), and T is fixed by
 // the local recurrence (rows "rod.integral", scaled by 1 / L0)
 //   T_0 = 0,   T_{i+1} - T_i - w_i P_i = 0   (i = 0 .. n - 2).
-// This is the same discrete solution as with I(u) summed over all control points, whose rows filled
-// the rod's Jacobian block below the diagonal; here it stays banded (bandwidth about (p + 1) 10).
+// This is the same discrete solution as with I(u) summed over all control points, whose rows fill the
+// rod's Jacobian block below the diagonal; here it stays banded (bandwidth about (p + 1) 10). Rods with at
+// most CollocationRod::kMaxBandedCondensedPoints control points, whose band the constant wrench fills
+// anyway, keep the sum over all control points (CondensedSummedForm: 7 unknowns per point, no T rows).
 #include "form_builder.hpp"
 #include "pcr/splines/basis.hpp"
 
@@ -99,6 +101,36 @@ class IntegralStepBlock final : public ResidualBlock {
   bool is_step() const { return variables().size() == 2; }
   double weight_, scale_;
 };
+
+/// The condensed form with loads, I(u) = sum_j J_j(u) P_j over every control point up to the active ones.
+struct CondensedSummedZ {
+  enum Entry { q, q_u, p_u, p, wrench, L, I, kEntries };
+  static constexpr LocalLayout<kEntries> layout{{{{kCondensedPoint.q, 4, 0},
+                                                  {kCondensedPoint.q, 4, 1},
+                                                  {kCondensedPoint.p, 3, 1},
+                                                  {kCondensedPoint.p, 3, 0},
+                                                  {kDirect, kWrenchSize},
+                                                  {kDirect, 1},
+                                                  {kCondensedPoint.p, 3, kIntegral}}}};
+};
+struct CondensedSummedTipZ {
+  enum Entry { p, q, wrench, L, I, kEntries };
+  static constexpr LocalLayout<kEntries> layout{{{{kCondensedPoint.p, 3, 0},
+                                                  {kCondensedPoint.q, 4, 0},
+                                                  {kDirect, kWrenchSize},
+                                                  {kDirect, 1},
+                                                  {kCondensedPoint.p, 3, kIntegral}}}};
+};
+
+// n(s), m(s) at u from a local vector with the entries p, wrench, L, I of Z.
+template <typename Z, typename T, typename Local>
+void condensed_summed_wrench(const Local& z, const PointConstants& c, const Vec3& moment_point, double u,
+                             V3<T>& n, V3<T>& m) {
+  const T L = get<Z, Z::L>(z)[0];
+  n = get<Z, Z::wrench>(z).template head<3>() - c.f.cast<T>() * (u * L);
+  m = condensed_moment<T>(get<Z, Z::p>(z), n, get<Z, Z::wrench>(z).template tail<3>(), L, get<Z, Z::I>(z), c,
+                          moment_point, u);
+}
 
 class CondensedForm final : public RodForm {
  public:
@@ -208,7 +240,87 @@ class CondensedLoadedForm final : public RodForm {
   }
 };
 
+class CondensedSummedForm final : public RodForm {
+ public:
+  const PointLayout& layout() const override { return kCondensedPoint; }
+  int field_rows(int n) const override { return 7 * (n - 2) + 6; }
+
+  void add_blocks(const FormBuilder& b) const override {
+    const Vec3 c_point = b.rod().moment_point();
+    const VariableId wrench = b.vars().wrench, L = b.vars().length;
+    std::optional<KernelPattern<CondensedSummedZ::layout.size(), 6>> pattern;
+    for (int j = 0; j + 1 < b.num_control_points(); ++j) {
+      const double u = b.midpoint(j);
+      const PointConstants c = b.constants_at(u);
+      b.add_detected<CondensedSummedZ, 6>(
+          "rod.condensed_field", u, widened(b, b.basis_at(u, 1), u), {wrench, L},
+          [c, c_point, u](const auto& z, auto* r) {
+            using T = typename std::decay_t<decltype(z)>::Scalar;
+            using Z = CondensedSummedZ;
+            V3<T> n, m;
+            condensed_summed_wrench<Z, T>(z, c, c_point, u, n, m);
+            const T length = get<Z, Z::L>(z)[0];
+            constitutive_rows<T>(get<Z, Z::q>(z), get<Z, Z::q_u>(z) / length, get<Z, Z::p_u>(z) / length, n,
+                                 m, c, r);
+          },
+          pattern);
+    }
+    b.add_unit_quaternion_rows(kCondensedPoint);
+    add_condensed_end(b, false);
+    if (!b.adds_end(true)) return;
+    const PointConstants c = b.constants_at(1.0);
+    const EndData e = b.end_data(true);
+    b.add<CondensedSummedTipZ, 7>(b.end_kind(true), 1.0, widened(b, b.end_basis(true), 1.0), {wrench, L},
+                                  [c, e, c_point](const auto& z, auto* r) {
+                                    using T = typename std::decay_t<decltype(z)>::Scalar;
+                                    using Z = CondensedSummedTipZ;
+                                    V3<T> n, m;
+                                    condensed_summed_wrench<Z, T>(z, c, c_point, 1.0, n, m);
+                                    end_conditions<T>(e.kind, cast_target<T>(e.target), e.loads, c,
+                                                      get<Z, Z::p>(z), get<Z, Z::q>(z), n, m, r);
+                                  });
+  }
+
+  void internal_wrench(const CollocationRod& rod, const VecX& x, const RodVariables& vars,
+                       const BasisDerivatives& d, const PointValues& value, RodState& st) const override {
+    const int n_points = rod.num_control_points(), size = kCondensedPoint.size;
+    require(d.integrals.size() == n_points, "rod '", rod.model().name,
+            "': sample basis without the basis integrals the condensed form with loads needs");
+    const double L = rod.length(x, vars), u = st.s / L;
+    Vec3 I = Vec3::Zero();
+    for (int j = 0; j < n_points; ++j)
+      if (d.integrals[j] != 0.0) I += d.integrals[j] * x.segment<3>(vars.control_point_offset + j * size);
+    PointConstants loads;
+    loads.f = rod.model().distributed_force();
+    loads.l = rod.model().loads.moment_per_length;
+    st.force = x.segment<3>(vars.wrench_offset) - loads.f * (u * L);
+    st.moment =
+        condensed_moment<double>(value.segment<3>(kCondensedPoint.p), st.force,
+                                 x.segment<3>(vars.wrench_offset + 3), L, I, loads, rod.moment_point(), u);
+  }
+
+ private:
+  // The basis b at u widened to the control points 0 .. its last one, with the integrals J_j(u)
+  // (kIntegral) that I(u) reads.
+  static PointBasis widened(const FormBuilder& b, PointBasis basis, double u) {
+    const VecX J = basis_integrals(b.rod().knots(), u);
+    const int last = basis.first + basis.count - 1;
+    std::vector<std::array<double, kBasisSlots>> B(last + 1, std::array<double, kBasisSlots>{});
+    for (int i = 0; i < basis.count; ++i) B[basis.first + i] = basis.B[i];
+    for (int i = 0; i <= last; ++i) B[i][kIntegral] = J[i];
+    basis.B = std::move(B);
+    basis.first = 0;
+    basis.count = last + 1;
+    return basis;
+  }
+};
+
 }  // namespace
+
+const RodForm& condensed_summed_form() {
+  static const CondensedSummedForm form;
+  return form;
+}
 
 const RodForm& condensed_form() {
   static const CondensedForm form;

@@ -38,8 +38,10 @@ const RodForm& primal_form();
 const RodForm& mixed_greville_form();
 const RodForm& mixed_midpoint_form();
 const RodForm& condensed_form();
-/// The condensed form with distributed loads (running integral T per control point).
+/// The condensed form with distributed loads: running integrals T per control point, or (small rods)
+/// the integral of p summed over the control points.
 const RodForm& condensed_loaded_form();
+const RodForm& condensed_summed_form();
 
 /// The constant frame and the prescribed loads of a model end (load factor and signs applied).
 struct EndData {

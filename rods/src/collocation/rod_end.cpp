@@ -26,15 +26,24 @@ RodEndEvaluator::RodEndEvaluator(const CollocationRod& rod, const RodVariables& 
     value_basis_ = {1.0};
     if (condensed_) {
       moment_point_ = rod.moment_point();
-      variables_.push_back(variables.wrench);
       if (at_tip && rod.condensed_with_loads()) {
-        // The tip's m reads I(1) = T_{n-1} + w_{n-1} P_{n-1} of the end control point, and L.
+        // The tip's m reads I(1) = sum_j w_j P_j, w_j = integral_0^1 N_j, and L: with running integrals
+        // T (collocation_rod.hpp) I(1) = T_{n-1} + w_{n-1} P_{n-1}, the end control point's; else every
+        // control point.
         loads_ = true;
-        tip_weight_ = rod.integral_weights()[n - 1];
+        integral_ = rod.point_layout().integral;
+        const VecX w = basis_integrals(rod.knots(), 1.0);
+        const int first = integral_ >= 0 ? n - 1 : 0;
+        count_ = n - first;
+        variables_.assign(variables.control_points.begin() + first, variables.control_points.end());
+        integral_weights_.assign(w.data() + first, w.data() + n);
         f_ = rod.model().distributed_force();
         l_ = rod.model().loads.moment_per_length;
+        variables_.push_back(variables.wrench);
         variables_.push_back(variables.length);
+        return;
       }
+      variables_.push_back(variables.wrench);
     }
     return;
   }
@@ -63,37 +72,42 @@ void RodEndEvaluator::evaluate(const double* const* values, RodEndVector& y,
     return;
   }
   if (condensed_ && loads_) {
-    // At s = L: n = n0 - f L, m = h - a x n - l L - L (I - c) x f with a = P - c, I = T + w P (the end
-    // control point's). dm/dP = hat(n) + L w hat(f), dm/dT = L hat(f), dm/dn0 = -hat(a), dm/dh = 1,
+    // At s = L: n = n0 - f L, m = h - a x n - l L - L (I - c) x f with a = P - c (P of the end control
+    // point), I = sum_j w_j P_j over the control points read (+ T of the end one with running integrals).
+    // dm/dP_j = L w_j hat(f) (+ hat(n) for the end), dm/dT = L hat(f), dm/dn0 = -hat(a), dm/dh = 1,
     // dn/dL = -f, dm/dL = a x f - l - (I - c) x f.
-    const PointLayout& lp = kCondensedLoadedPoint;
-    const Eigen::Map<const Eigen::Matrix<double, kCondensedLoadedPoint.size, 1>> point(values[0]);
-    const Eigen::Map<const Eigen::Matrix<double, 6, 1>> wrench(values[1]);
-    const double L = values[2][0];
-    const Vec3 P = point.segment<3>(lp.p);
-    const Vec3 I = point.segment<3>(lp.integral) + tip_weight_ * P;
-    const Vec3 a = P - moment_point_, n = wrench.head<3>() - f_ * L;
-    y.head<3>() = P;
-    y.segment<4>(3) = point.segment<4>(lp.q);
+    const int end = count_ - 1;
+    const Eigen::Map<const Eigen::Matrix<double, 7, 1>> point(values[end]);  // [P, Q] first in both layouts
+    const Eigen::Map<const Eigen::Matrix<double, 6, 1>> wrench(values[count_]);
+    const double L = values[count_ + 1][0];
+    Vec3 I = integral_ >= 0 ? Vec3(Eigen::Map<const Vec3>(values[end] + integral_)) : Vec3::Zero();
+    for (int j = 0; j < count_; ++j) I += integral_weights_[j] * Eigen::Map<const Vec3>(values[j]);
+    const Vec3 a = point.head<3>() - moment_point_, n = wrench.head<3>() - f_ * L;
+    y.head<7>() = point;
     y.segment<3>(7) = n;
     PointConstants loads;
     loads.f = f_;
     loads.l = l_;
-    y.segment<3>(10) = condensed_moment<double>(P, n, wrench.tail<3>(), L, I, loads, moment_point_, 1.0);
+    y.segment<3>(10) =
+        condensed_moment<double>(point.head<3>(), n, wrench.tail<3>(), L, I, loads, moment_point_, 1.0);
     if (jacobians) {
-      jacobians->assign(3, MatX());
-      MatX& Jp = (*jacobians)[0];
-      Jp = MatX::Zero(13, lp.size);
-      Jp.block<3, 3>(0, lp.p).setIdentity();
-      Jp.block<4, 4>(3, lp.q).setIdentity();
-      Jp.block<3, 3>(10, lp.p) = hat(n) + (L * tip_weight_) * hat(f_);
-      Jp.block<3, 3>(10, lp.integral) = L * hat(f_);
-      MatX& Jw = (*jacobians)[1];
+      jacobians->assign(count_ + 2, MatX());
+      const Mat3 hat_f = hat(f_);
+      for (int j = 0; j < count_; ++j) {
+        MatX& J = (*jacobians)[j];
+        J = MatX::Zero(13, cp_size_);
+        J.block<3, 3>(10, 0) = (L * integral_weights_[j]) * hat_f;
+      }
+      MatX& Jp = (*jacobians)[end];
+      Jp.topLeftCorner<7, 7>().setIdentity();
+      Jp.block<3, 3>(10, 0) += hat(n);
+      if (integral_ >= 0) Jp.block<3, 3>(10, integral_) = L * hat_f;
+      MatX& Jw = (*jacobians)[count_];
       Jw = MatX::Zero(13, 6);
       Jw.block<3, 3>(7, 0).setIdentity();
       Jw.block<3, 3>(10, 0) = -hat(a);
       Jw.block<3, 3>(10, 3).setIdentity();
-      MatX& JL = (*jacobians)[2];
+      MatX& JL = (*jacobians)[count_ + 1];
       JL = MatX::Zero(13, 1);
       JL.block<3, 1>(7, 0) = -f_;
       JL.block<3, 1>(10, 0) = a.cross(f_) - l_ - (I - moment_point_).cross(f_);

@@ -7,8 +7,8 @@
 // a rod of given length, free when it is an actuation input). Equations at the Greville abscissae
 // tau_1 = 0 < ... < tau_n = 1: u = 0 and u = 1 carry the end conditions (7 each); in the primal form
 // the n - 2 interior points carry the field equations. Mixed form: see MixedPoints. Condensed form:
-// [P (3), Q (4)] per control point (and T (3) with distributed loads) and one block [n (3), h (3)] per
-// rod, see RodFormulation. Each formulation is one unit in rods/src/collocation (primal_form.cpp,
+// [P (3), Q (4)] per control point (and T (3) with distributed loads on long rods) and one block [n (3), h
+// (3)] per rod, see RodFormulation. Each formulation is one unit in rods/src/collocation (primal_form.cpp,
 // mixed_forms.cpp, condensed_forms.cpp, which say which equation each row is); its control point
 // layout is named once in collocation/layout.hpp (PointLayout). All residuals are
 // dimensionless: forces by F0 = max(K_BT) / L0^2, moments by M0 = max(K_BT) / L0, lengths by L0
@@ -39,11 +39,12 @@ class RodForm;
 ///   collocated at the midpoints of the Greville abscissae (as MixedPoints::Midpoints). Equilibrium is
 ///   exact; 7 instead of 13 unknowns per control point. Without distributed loads it is the mixed
 ///   midpoint scheme with n, m eliminated (the same discrete solution). With them each row needs
-///   I(u) = integral_0^u p, which reads every control point before u; each control point then carries
-///   T_i = sum_{j<i} (integral_0^1 N_j) P_j as well (10 unknowns), tied by the local recurrence
-///   T_{i+1} = T_i + (integral_0^1 N_i) P_i, so that I(u) = T_k + sum of the p + 1 active J_i(u) P_i
-///   (k the first active function) and the Jacobian stays banded: the same discrete solution as
-///   summing over all control points, at a cost linear in the element count (condensed_forms.cpp).
+///   I(u) = integral_0^u p, which reads every control point before u. Rods with at most
+///   kMaxBandedCondensedPoints control points (whose band the constant wrench fills anyway) sum it so.
+///   Longer rods carry T_i = sum_{j<i} (integral_0^1 N_j) P_j in each control point as well (10
+///   unknowns), tied by the local recurrence T_{i+1} = T_i + (integral_0^1 N_i) P_i, so that
+///   I(u) = T_k + the sum of the p + 1 active J_i(u) P_i (k the first active function) and the rows stay
+///   local: the same discrete solution at a cost linear in the element count (condensed_forms.cpp).
 ///   Free of shear locking for the same reason as the mixed form (n is not computed from p').
 enum class RodFormulation { Primal, Mixed, Condensed };
 const char* to_string(RodFormulation formulation);
@@ -145,7 +146,8 @@ class CollocationRod {
   /// Condensed form with distributed loads: n, m read the integral of p (basis integrals).
   bool condensed_with_loads() const { return loaded_condensed_; }
   int num_control_points() const;
-  int control_point_size() const;  ///< 7 (primal, condensed), 10 (condensed with loads) or 13 (mixed)
+  /// 7 (primal, condensed), 10 (condensed with loads and running integrals) or 13 (mixed)
+  int control_point_size() const;
   /// The components of a control point block (offsets of P, Q and of N, M or T where present).
   const collocation::PointLayout& point_layout() const;
   /// Condensed form with loads: w_j = integral_0^1 N_j (the recurrence of T); empty otherwise.
