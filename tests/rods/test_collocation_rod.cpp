@@ -3,6 +3,7 @@
 #define BOOST_TEST_MODULE collocation_rod
 #include <boost/test/unit_test.hpp>
 
+#include <cmath>
 #include <random>
 
 #include "pcr/core/error.hpp"
@@ -555,6 +556,34 @@ BOOST_AUTO_TEST_CASE(condensed_form_with_loads_has_local_rows_and_a_size_linear_
     const RodEndEvaluator tip(rod, vars, true);
     BOOST_TEST(tip.variables().size() == 3u);
     BOOST_TEST(tip.variables()[0] == vars.control_points.back());
+    // Its Jacobians against central differences (step 1e-6: truncation ~1e-12, round-off ~1e-10 on
+    // values of order 1; 1e-7 asserted) at a perturbed state with a nonzero wrench and T.
+    VecX x = problem.initial_values();
+    for (int i = 0; i < x.size(); ++i) x[i] += 0.01 * std::sin(1.0 + i);
+    std::vector<VecX> blocks;
+    for (VariableId v : tip.variables())
+      blocks.push_back(x.segment(problem.variable(v).offset, problem.variable(v).size));
+    auto evaluate = [&](std::vector<MatX>* J) {
+      std::vector<const double*> values;
+      for (const VecX& b : blocks) values.push_back(b.data());
+      RodEndVector y;
+      tip.evaluate(values.data(), y, J);
+      return y;
+    };
+    std::vector<MatX> J;
+    evaluate(&J);
+    double worst = 0.0;
+    for (size_t k = 0; k < blocks.size(); ++k)
+      for (int c = 0; c < blocks[k].size(); ++c) {
+        const double h = 1e-6, saved = blocks[k][c];
+        blocks[k][c] = saved + h;
+        const RodEndVector plus = evaluate(nullptr);
+        blocks[k][c] = saved - h;
+        const RodEndVector minus = evaluate(nullptr);
+        blocks[k][c] = saved;
+        worst = std::max(worst, ((plus - minus) / (2 * h) - J[k].col(c)).lpNorm<Eigen::Infinity>());
+      }
+    BOOST_TEST(worst < 1e-7);
     BOOST_TEST(rod.control_point_size() == 10);
     BOOST_TEST(problem.variable(vars.wrench).group == -1);
     BOOST_TEST(problem.variable(vars.control_points[0]).group == -1);
