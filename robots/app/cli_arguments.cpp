@@ -5,6 +5,8 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "pcr/robots/robot_assembly.hpp"
+
 namespace pcr_app {
 namespace {
 
@@ -113,6 +115,12 @@ SolveArguments parse_solve_arguments(const std::string& command, int argc, const
     a.model_path = arg;
   }
   if (a.help) return a;
+  if (a.elements > 0) {
+    // Rejected before the model is read when one rod could not fit in memory (rod_memory_estimate).
+    const int degree = a.degree > 0 ? a.degree : pcr::AssemblyOptions{}.discretization.degree;
+    const std::string excess = pcr::rod_memory_excess(degree, a.elements);
+    if (!excess.empty()) throw UsageError("--elements " + std::to_string(a.elements) + ": " + excess);
+  }
   if (a.model_path.empty()) throw UsageError("missing MODEL (a URDF file)");
   if (command == "ik" && a.targets.empty())
     throw UsageError(
@@ -149,7 +157,9 @@ void print_solve_usage(std::ostream& out, const std::string& command) {
       << "  --csv DIR          DIR/platforms.csv, DIR/inputs.csv, DIR/rod_<name>.csv\n"
       << "  --vtk FILE         legacy VTK polydata (rods and outlines) for ParaView\n"
       << "  --png FILE         3-D picture drawn by gnuplot\n"
-      << "exit codes: 0 converged, 1 solve failed, 2 bad usage or input, 3 an output could not be written\n";
+      << "exit codes: 0 converged, 1 solve failed, 2 bad usage or input (also an element count whose\n"
+      << "                     rods could not fit in memory), 3 an output could not be written,\n"
+      << "                     4 out of memory or an internal error (a message on stderr)\n";
 }
 
 }  // namespace pcr_app

@@ -1,6 +1,8 @@
 // The pcr command-line tool: dispatches to the subcommands.
 #include <cstring>
+#include <exception>
 #include <iostream>
+#include <new>
 #include <string>
 
 #include "demo_basis.hpp"
@@ -16,7 +18,9 @@ void print_usage(std::ostream& out) {
       << "commands:\n"
       << "  fk MODEL [--input NAME=VALUE ...]        forward kinematics (pcr fk --help)\n"
       << "  ik MODEL --target LINK=x,y,z[,qw,qx,qy,qz]  inverse kinematics (pcr ik --help)\n"
-      << "  demo [--out DIR]   spline basis tables and a sample curve; with --out also DIR/basis.csv\n";
+      << "  demo [--out DIR]   spline basis tables and a sample curve; with --out also DIR/basis.csv\n"
+      << "exit codes: 0 success, 1 solve failed, 2 bad usage or input, 3 an output could not be written,\n"
+      << "            4 out of memory or an internal error (a message on stderr)\n";
 }
 
 // pcr demo [--out DIR]
@@ -41,18 +45,28 @@ int main(int argc, char** argv) {
     return argc < 2 ? pcr_app::kBadUsage : 0;
   }
   const std::string command = argv[1];
-  if (command == "demo") return demo_command(argc, argv);
-  if (command != "fk" && command != "ik") {
+  if (command != "fk" && command != "ik" && command != "demo") {
     std::cerr << "pcr: unknown command '" << command << "' (commands: fk, ik, demo)\n";
     return pcr_app::kBadUsage;
   }
   try {
+    if (command == "demo") return demo_command(argc, argv);
     return command == "fk" ? pcr_app::fk_command(argc, argv, std::cout, std::cerr)
                            : pcr_app::ik_command(argc, argv, std::cout, std::cerr);
   } catch (const pcr_app::UsageError& e) {
     std::cerr << "pcr " << command << ": " << e.what() << "\n";
   } catch (const pcr::InputError& e) {  // bad model file, target link, ...
     std::cerr << "pcr " << command << ": " << e.what() << "\n";
+  } catch (const std::bad_alloc&) {
+    std::cerr << "pcr " << command
+              << ": out of memory (fewer elements per rod, --elements, or a lower --degree need less)\n";
+    return pcr_app::kInternalError;
+  } catch (const std::exception& e) {
+    std::cerr << "pcr " << command << ": internal error: " << e.what() << "\n";
+    return pcr_app::kInternalError;
+  } catch (...) {
+    std::cerr << "pcr " << command << ": internal error (an unknown exception)\n";
+    return pcr_app::kInternalError;
   }
   return pcr_app::kBadUsage;
 }

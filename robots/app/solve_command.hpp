@@ -11,8 +11,8 @@
 
 namespace pcr_app {
 
-/// Exit codes of the solve commands.
-enum ExitCode { kConverged = 0, kSolveFailed = 1, kBadUsage = 2, kOutputFailed = 3 };
+/// Exit codes of the solve commands (and of main for what escapes them: kInternalError).
+enum ExitCode { kConverged = 0, kSolveFailed = 1, kBadUsage = 2, kOutputFailed = 3, kInternalError = 4 };
 
 /// Loads MODEL; a missing file is a UsageError naming it (load errors are pcr::InputError).
 std::shared_ptr<const pcr::RobotModel> load_model(const std::string& path);

@@ -3,6 +3,7 @@
 #include <tinyxml.h>
 
 #include "pcr/core/error.hpp"
+#include "pcr/robots/robot_assembly.hpp"
 #include "xml_element_reader.hpp"
 
 namespace pcr {
@@ -114,6 +115,13 @@ void read_discretization(XmlElementReader& reader, RodElement& rod) {
   rod.elements = reader.integer_or("elements", 0);
   if (reader.has("elements") && rod.elements < 1)
     reader.fail("elements", reader.text("elements"), "must be >= 1");
+  if (reader.has("elements")) {
+    // Rejected here, before any allocation, with the file and line; without a degree hint at the
+    // assembly's default degree (the tool's --degree is checked again when the rod is built).
+    const int degree = rod.degree > 0 ? rod.degree : AssemblyOptions{}.discretization.degree;
+    const std::string excess = rod_memory_excess(degree, rod.elements);
+    if (!excess.empty()) reader.fail("elements", reader.text("elements"), "is too many: " + excess);
+  }
   reader.finish();
 }
 

@@ -3,6 +3,7 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -38,11 +39,12 @@ fs::path work_directory() {
   return dir;
 }
 
-/// Runs the built pcr tool with the given arguments (shell words), capturing stdout and stderr.
-Run run_pcr(const std::string& arguments) {
+/// Runs the built pcr tool with the given arguments (shell words), capturing stdout and stderr; `prefix`
+/// is run by the same shell first (e.g. a ulimit for the tool).
+Run run_pcr(const std::string& arguments, const std::string& prefix = "") {
   const fs::path out = work_directory() / "stdout.txt", err = work_directory() / "stderr.txt";
   const std::string command =
-      std::string("'") + PCR_TOOL + "' " + arguments + " > '" + out.string() + "' 2> '" + err.string() + "'";
+      prefix + "'" + PCR_TOOL + "' " + arguments + " > '" + out.string() + "' 2> '" + err.string() + "'";
   const int status = std::system(command.c_str());
   Run run;
   run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -162,6 +164,39 @@ BOOST_AUTO_TEST_CASE(bad_arguments_are_usage_errors) {
   const Run link = run_pcr("ik " + model("planar_three_rod.urdf") + " --target nolink=0,0,0.3");
   BOOST_CHECK_EQUAL(link.exit_code, 2);
   BOOST_CHECK_MESSAGE(contains(link.err, "nolink"), link.err);
+}
+
+BOOST_AUTO_TEST_CASE(element_counts_that_cannot_fit_in_memory_are_rejected_naming_their_source) {
+  // 100,000 elements of degree 6: an estimated 7.6 GiB per rod (rod_memory_estimate), over the 2 GiB
+  // limit; rejected before any allocation, exit code 2, naming the option or the model's file and line.
+  const Run option = run_pcr("fk " + model("stewart_gough.urdf") + " --elements 100000");
+  BOOST_CHECK_EQUAL(option.exit_code, 2);
+  BOOST_CHECK_MESSAGE(contains(option.err, "--elements 100000") && contains(option.err, "GiB"), option.err);
+  // The same count as a model hint: a copy of the cantilever with elements="100000" on its
+  // <discretization> line.
+  std::string text = read_text(fs::path(PCR_MODEL_DIR) / "cantilever.urdf");
+  const size_t at = text.find("elements=\"8\"");
+  BOOST_REQUIRE(at != std::string::npos);
+  text.replace(at, 12, "elements=\"100000\"");
+  const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
+  const fs::path big = work_directory() / "cantilever_100000.urdf";
+  std::ofstream(big) << text;
+  const Run hint = run_pcr("fk '" + big.string() + "'");
+  BOOST_CHECK_EQUAL(hint.exit_code, 2);
+  BOOST_CHECK_MESSAGE(contains(hint.err, big.string() + ":" + std::to_string(line) + ":"), hint.err);
+  BOOST_CHECK_MESSAGE(contains(hint.err, "elements") && contains(hint.err, "GiB"), hint.err);
+  // Within the limit the counts are accepted (the largest count that fits is not run here).
+  BOOST_CHECK_EQUAL(run_pcr("fk " + model("cantilever.urdf") + " --elements 40").exit_code, 0);
+}
+
+BOOST_AUTO_TEST_CASE(running_out_of_memory_ends_with_exit_code_4_and_a_message) {
+  // A count within the up-front limit (an estimated 1.4 GiB per rod) that does not fit in a 600 MB
+  // address space (ulimit -v in the child's shell): stewart_gough with 20,000 elements per rod needs
+  // about 4 GB (1.06 GB measured at 5,000, linear in the element count). std::bad_alloc must end in
+  // exit code 4 with a message, not in an abort (a signal: exit code -1 here).
+  const Run run = run_pcr("fk " + model("stewart_gough.urdf") + " --elements 20000", "ulimit -v 600000; ");
+  BOOST_CHECK_EQUAL(run.exit_code, 4);
+  BOOST_CHECK_MESSAGE(contains(run.err, "out of memory"), run.err);
 }
 
 BOOST_AUTO_TEST_CASE(ik_of_an_fk_pose_gives_back_the_fk_inputs) {

@@ -3,12 +3,14 @@
 #define BOOST_TEST_MODULE collocation_rod
 #include <boost/test/unit_test.hpp>
 
+#include <cmath>
 #include <random>
 
 #include "pcr/core/error.hpp"
 #include "pcr/math/quaternion.hpp"
 #include "pcr/math/so3.hpp"
 #include "pcr/rods/collocation_rod.hpp"
+#include "pcr/rods/rod_end.hpp"
 #include "pcr/rods/rod_solve.hpp"
 #include "pcr/solve/jacobian_check.hpp"
 #include "rod_fixtures.hpp"
@@ -54,11 +56,14 @@ BOOST_AUTO_TEST_CASE(every_block_jacobian_matches_finite_differences) {
                               RodEndKind::Free};
   std::mt19937 rng(7);
   std::normal_distribution<double> noise(0.0, 0.05);
-  // The condensed form twice: with the distributed loads (its rows read the integral of p) and without.
+  // The condensed form three times: with the distributed loads (its rows read the integral of p, summed
+  // over the control points on a short rod, 3 elements, or from the running integrals T on a long one,
+  // 40 elements: more than kMaxBandedCondensedPoints) and without.
   const RodDiscretization discretizations[] = {{RodFormulation::Primal, 3, 3},
                                                {RodFormulation::Mixed, 3, 3, MixedPoints::Midpoints},
                                                {RodFormulation::Mixed, 3, 3, MixedPoints::Greville},
                                                {RodFormulation::Condensed, 3, 3},
+                                               {RodFormulation::Condensed, 3, 40},
                                                {RodFormulation::Condensed, 3, 4}};
   for (const RodDiscretization& d : discretizations) {
     const RodFormulation f = d.formulation;
@@ -473,4 +478,122 @@ BOOST_AUTO_TEST_CASE(a_collapsed_rod_is_not_reported_as_converged) {
   BOOST_TEST_REQUIRE(loop.summary.converged(), loop.summary.message);
   for (const RodState& st : loop.rod->sample(loop.x, loop.variables, 21))
     BOOST_TEST(1.0 + st.shear_extension_body[2] > 0.99);  // |n| ~ 0: v3 = 1 up to round-off
+}
+
+BOOST_AUTO_TEST_CASE(condensed_form_with_loads_carries_the_integral_of_p_in_local_unknowns) {
+  // Under distributed loads each control point of a long rod carries T_i = sum_{j<i} w_j P_j, w_j =
+  // integral_0^1 N_j (collocation_rod.hpp). At the solution: T against that sum over the solution's P
+  // (basis_integrals, checked in test_basis), and n, m along the rod (state_at) against the closed-form
+  // balance with I(u) = sum over all control points of J_j(u) P_j (independent of T). The T rows are linear,
+  // (T_{i+1} - T_i - w_i P_i) / L0, solved to the residual tolerance 1e-12: T within n 1e-12 L0 (1e-10 L0
+  // asserted), and m, which reads L (I - c u) x f, within L0 |f| 1e-10 L0 (1e-9 M0 asserted, M0 >= L0^2 |f|
+  // here); n does not read I.
+  const RodModel m = loaded_rod(RodEndKind::Clamped, RodEndKind::Free);
+  RodSolveOptions o;
+  o.tolerance = 1e-12;
+  o.discretization = {RodFormulation::Condensed, 4, 40};  // 44 > kMaxBandedCondensedPoints
+  const RodSolution sol = solve_rod(m, o);
+  BOOST_REQUIRE_MESSAGE(sol.summary.converged(), sol.summary.brief_report());
+  const CollocationRod& rod = *sol.rod;
+  BOOST_REQUIRE(rod.condensed_with_loads());
+  BOOST_TEST(rod.control_point_size() == 10);
+  const collocation::PointLayout& layout = rod.point_layout();
+  const int n = rod.num_control_points(), cp = rod.control_point_size();
+  auto P = [&](int j) {
+    return Vec3(sol.x.segment<3>(sol.variables.control_point_offset + j * cp + layout.p));
+  };
+  const VecX w = basis_integrals(rod.knots(), 1.0);
+  Vec3 sum = Vec3::Zero();
+  for (int i = 0; i < n; ++i) {
+    const Vec3 T = sol.x.segment<3>(sol.variables.control_point_offset + i * cp + layout.integral);
+    BOOST_TEST((T - sum).norm() < 1e-10 * m.length, "T_" << i << " off by " << (T - sum).norm());
+    sum += w[i] * P(i);
+  }
+  const Vec3 c = rod.moment_point(), f = m.distributed_force(), l = m.loads.moment_per_length;
+  const Vec3 n0 = sol.x.segment<3>(sol.variables.wrench_offset),
+             h = sol.x.segment<3>(sol.variables.wrench_offset + 3);
+  for (double s : {0.0, 0.13, 0.35, 0.5, 0.61, 0.7}) {
+    const double u = s / m.length;
+    const VecX J = basis_integrals(rod.knots(), u);
+    Vec3 I = Vec3::Zero();
+    for (int j = 0; j < n; ++j) I += J[j] * P(j);
+    const RodState st = sol.at(s);
+    const Vec3 force = n0 - f * s;
+    const Vec3 moment = h - (st.position - c).cross(force) - l * s - (m.length * (I - c * u)).cross(f);
+    BOOST_TEST((st.force - force).norm() < 1e-13 * rod.force_scale(), "s = " << s);  // round-off of u L vs s
+    BOOST_TEST((st.moment - moment).norm() < 1e-9 * rod.moment_scale(),
+               "s = " << s << ": " << (st.moment - moment).norm());
+  }
+}
+
+BOOST_AUTO_TEST_CASE(condensed_form_with_loads_has_local_rows_and_a_size_linear_in_the_elements) {
+  // Every residual block of a condensed rod under loads touches a window of at most p + 1 consecutive
+  // control points (summing I(u) over every control point below u filled the rod's Jacobian below the
+  // diagonal), so the Jacobian's nonzeros grow linearly with the element count: doubling E = 40 -> 80
+  // doubles them up to the constant end blocks (ratio (80 + p) / (40 + p) = 1.91 for the per-point part;
+  // asserted in [1.75, 2.05], where a dense lower triangle would give about 3.7). A rod's end quantities
+  // (RodEndEvaluator at the tip) read the end control point, the wrench and L. Such rods, with more than
+  // kMaxBandedCondensedPoints control points, stay out of the structured solver's groups; a short rod
+  // (8 elements) keeps the summed integral (7 unknowns per point) and its group.
+  const RodModel m = loaded_rod(RodEndKind::Clamped, RodEndKind::Free);
+  const int p = 4;
+  long nonzeros[2] = {0, 0};
+  for (int k = 0; k < 2; ++k) {
+    const CollocationRod rod(m, {RodFormulation::Condensed, p, 40 * (k + 1)});  // 44 and 84 points
+    Problem problem;
+    const RodVariables vars = rod.add_to_problem(problem, {}, 1.0, false, 0);
+    nonzeros[k] = problem.jacobian_nonzeros();
+    std::vector<int> index(problem.num_variable_blocks(), -1);
+    for (size_t i = 0; i < vars.control_points.size(); ++i)
+      index[vars.control_points[i]] = static_cast<int>(i);
+    for (ResidualId b = 0; b < problem.num_residual_blocks(); ++b) {
+      int lo = 1 << 30, hi = -1;
+      for (VariableId v : problem.residual(b).variables())
+        if (index[v] >= 0) lo = std::min(lo, index[v]), hi = std::max(hi, index[v]);
+      BOOST_TEST(hi - lo <= p, problem.residual(b).name()
+                                   << " touches control points " << lo << " .. " << hi);
+    }
+    const RodEndEvaluator tip(rod, vars, true);
+    BOOST_TEST(tip.variables().size() == 3u);
+    BOOST_TEST(tip.variables()[0] == vars.control_points.back());
+    // Its Jacobians against central differences (step 1e-6: truncation ~1e-12, round-off ~1e-10 on
+    // values of order 1; 1e-7 asserted) at a perturbed state with a nonzero wrench and T.
+    VecX x = problem.initial_values();
+    for (int i = 0; i < x.size(); ++i) x[i] += 0.01 * std::sin(1.0 + i);
+    std::vector<VecX> blocks;
+    for (VariableId v : tip.variables())
+      blocks.push_back(x.segment(problem.variable(v).offset, problem.variable(v).size));
+    auto evaluate = [&](std::vector<MatX>* J) {
+      std::vector<const double*> values;
+      for (const VecX& b : blocks) values.push_back(b.data());
+      RodEndVector y;
+      tip.evaluate(values.data(), y, J);
+      return y;
+    };
+    std::vector<MatX> J;
+    evaluate(&J);
+    double worst = 0.0;
+    for (size_t k = 0; k < blocks.size(); ++k)
+      for (int c = 0; c < blocks[k].size(); ++c) {
+        const double h = 1e-6, saved = blocks[k][c];
+        blocks[k][c] = saved + h;
+        const RodEndVector plus = evaluate(nullptr);
+        blocks[k][c] = saved - h;
+        const RodEndVector minus = evaluate(nullptr);
+        blocks[k][c] = saved;
+        worst = std::max(worst, ((plus - minus) / (2 * h) - J[k].col(c)).lpNorm<Eigen::Infinity>());
+      }
+    BOOST_TEST(worst < 1e-7);
+    BOOST_TEST(rod.control_point_size() == 10);
+    BOOST_TEST(problem.variable(vars.wrench).group == -1);
+    BOOST_TEST(problem.variable(vars.control_points[0]).group == -1);
+  }
+  const CollocationRod short_rod(m, {RodFormulation::Condensed, p, 8});
+  Problem problem;
+  const RodVariables vars = short_rod.add_to_problem(problem, {}, 1.0, false, 0);
+  BOOST_TEST(short_rod.control_point_size() == 7);
+  BOOST_TEST(problem.variable(vars.wrench).group == 0);
+  const double ratio = static_cast<double>(nonzeros[1]) / nonzeros[0];
+  BOOST_TEST(ratio >= 1.75);
+  BOOST_TEST(ratio <= 2.05);
 }

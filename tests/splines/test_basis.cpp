@@ -293,3 +293,29 @@ BOOST_AUTO_TEST_CASE(basis_integrals_match_their_closed_forms_and_derivatives) {
   }
   BOOST_CHECK_THROW(basis_integrals(KnotVector::open_uniform(3, 4), 1.5), InputError);
 }
+
+BOOST_AUTO_TEST_CASE(active_basis_integrals_are_those_of_the_functions_active_at_u) {
+  // The integrals of the p + 1 functions active at u (first as basis_derivatives gives it) against the
+  // entries of basis_integrals, which are checked against closed forms above: the same quadrature on the
+  // same spans in the same order, so equal up to the round-off of a different summation (1e-15).
+  for (const Case& c : all_cases()) {
+    const KnotVector& knots = c.knots;
+    const int p = knots.degree();
+    for (double u : sample_points()) {
+      VecX active(p + 1);
+      int first = -1;
+      active_basis_integrals(knots, u, first, active);
+      BOOST_TEST(first == basis_derivatives(knots, u, 0).first, "p = " << p << ", u = " << u);
+      const VecX all = basis_integrals(knots, u);
+      for (int j = 0; j <= p; ++j)
+        BOOST_TEST(std::abs(active[j] - all[first + j]) < 1e-15,
+                   "p = " << p << ", u = " << u << ", j = " << j);
+    }
+  }
+  VecX wrong_size(2);
+  int first = 0;
+  BOOST_CHECK_THROW(active_basis_integrals(KnotVector::open_uniform(3, 4), 0.5, first, wrong_size),
+                    InputError);
+  VecX four(4);
+  BOOST_CHECK_THROW(active_basis_integrals(KnotVector::open_uniform(3, 4), -0.1, first, four), InputError);
+}

@@ -181,4 +181,31 @@ VecX basis_integrals(const KnotVector& knots, double u) {
   return J;
 }
 
+void active_basis_integrals(const KnotVector& knots, double u, int& first, Eigen::Ref<VecX> integrals) {
+  require(u >= 0.0 && u <= 1.0, "active_basis_integrals: u = ", u, " is outside [0, 1]");
+  const int p = knots.degree();
+  require(integrals.size() == p + 1, "active_basis_integrals: ", integrals.size(), " values for degree ", p);
+  thread_local std::vector<double> nodes, weights;
+  if (static_cast<int>(nodes.size()) != p / 2 + 1) gauss_legendre(p / 2 + 1, nodes, weights);
+  first = knots.find_span(u) - p;
+  integrals.setZero();
+  // N_{first+j} is supported on [t_{first+j}, t_{first+j+p+1}]: below u only the spans from t_first on
+  // contribute (the same quadrature as basis_integrals, restricted to those spans).
+  MatX values(1, p + 1);
+  const std::vector<double>& t = knots.knots();
+  for (int k = first; k + 1 < static_cast<int>(t.size()) && t[k] < u; ++k) {
+    const double a = t[k], b = std::min(t[k + 1], u);
+    if (!(b > a)) continue;
+    for (size_t q = 0; q < nodes.size(); ++q) {
+      const double x = 0.5 * (a + b) + 0.5 * (b - a) * nodes[q];
+      int first_x = 0;
+      basis_derivatives(knots, x, 0, first_x, values);
+      for (int j = 0; j <= p; ++j) {
+        const int i = first_x + j - first;  // index among the functions active at u
+        if (i >= 0 && i <= p) integrals[i] += 0.5 * (b - a) * weights[q] * values(0, j);
+      }
+    }
+  }
+}
+
 }  // namespace pcr

@@ -8,6 +8,11 @@
 namespace pcr {
 using namespace collocation;
 
+// y = [p (3), q (4), n (3), m (3)] is the mixed form's control point itself.
+static_assert(kMixedPoint.size == 13 && kMixedPoint.p == 0 && kMixedPoint.q == 3 && kMixedPoint.n == 7 &&
+                  kMixedPoint.m == 10,
+              "RodEndEvaluator: the mixed control point is y");
+
 RodEndEvaluator::RodEndEvaluator(const CollocationRod& rod, const RodVariables& variables, bool at_tip)
     : at_tip_(at_tip),
       mixed_(rod.discretization().formulation == RodFormulation::Mixed),
@@ -22,17 +27,23 @@ RodEndEvaluator::RodEndEvaluator(const CollocationRod& rod, const RodVariables& 
     if (condensed_) {
       moment_point_ = rod.moment_point();
       if (at_tip && rod.condensed_with_loads()) {
-        // The tip's m reads I(1) = sum_j w_j P_j, w_j = integral_0^1 N_j: every control point, and L.
+        // The tip's m reads I(1) = sum_j w_j P_j, w_j = integral_0^1 N_j, and L: with running integrals
+        // T (collocation_rod.hpp) I(1) = T_{n-1} + w_{n-1} P_{n-1}, the end control point's; else every
+        // control point.
         loads_ = true;
-        count_ = n;
-        variables_ = variables.control_points;
+        integral_ = rod.point_layout().integral;
         const VecX w = basis_integrals(rod.knots(), 1.0);
-        integral_weights_.assign(w.data(), w.data() + w.size());
+        const int first = integral_ >= 0 ? n - 1 : 0;
+        count_ = n - first;
+        variables_.assign(variables.control_points.begin() + first, variables.control_points.end());
+        integral_weights_.assign(w.data() + first, w.data() + n);
         f_ = rod.model().distributed_force();
         l_ = rod.model().loads.moment_per_length;
+        variables_.push_back(variables.wrench);
+        variables_.push_back(variables.length);
+        return;
       }
       variables_.push_back(variables.wrench);
-      if (loads_) variables_.push_back(variables.length);
     }
     return;
   }
@@ -61,14 +72,15 @@ void RodEndEvaluator::evaluate(const double* const* values, RodEndVector& y,
     return;
   }
   if (condensed_ && loads_) {
-    // At s = L: n = n0 - f L, m = h - a x n - l L - L (I - c) x f with a = P_end - c, I = sum_j w_j P_j.
-    // dm/dP_j = L w_j hat(f) (+ hat(n) for P_end), dm/dn0 = -hat(a), dm/dh = 1,
+    // At s = L: n = n0 - f L, m = h - a x n - l L - L (I - c) x f with a = P - c (P of the end control
+    // point), I = sum_j w_j P_j over the control points read (+ T of the end one with running integrals).
+    // dm/dP_j = L w_j hat(f) (+ hat(n) for the end), dm/dT = L hat(f), dm/dn0 = -hat(a), dm/dh = 1,
     // dn/dL = -f, dm/dL = a x f - l - (I - c) x f.
     const int end = count_ - 1;
-    const Eigen::Map<const Eigen::Matrix<double, 7, 1>> point(values[end]);
+    const Eigen::Map<const Eigen::Matrix<double, 7, 1>> point(values[end]);  // [P, Q] first in both layouts
     const Eigen::Map<const Eigen::Matrix<double, 6, 1>> wrench(values[count_]);
     const double L = values[count_ + 1][0];
-    Vec3 I = Vec3::Zero();
+    Vec3 I = integral_ >= 0 ? Vec3(Eigen::Map<const Vec3>(values[end] + integral_)) : Vec3::Zero();
     for (int j = 0; j < count_; ++j) I += integral_weights_[j] * Eigen::Map<const Vec3>(values[j]);
     const Vec3 a = point.head<3>() - moment_point_, n = wrench.head<3>() - f_ * L;
     y.head<7>() = point;
@@ -83,12 +95,13 @@ void RodEndEvaluator::evaluate(const double* const* values, RodEndVector& y,
       const Mat3 hat_f = hat(f_);
       for (int j = 0; j < count_; ++j) {
         MatX& J = (*jacobians)[j];
-        J = MatX::Zero(13, 7);
+        J = MatX::Zero(13, cp_size_);
         J.block<3, 3>(10, 0) = (L * integral_weights_[j]) * hat_f;
       }
       MatX& Jp = (*jacobians)[end];
-      Jp.topRows<7>().setIdentity();
+      Jp.topLeftCorner<7, 7>().setIdentity();
       Jp.block<3, 3>(10, 0) += hat(n);
+      if (integral_ >= 0) Jp.block<3, 3>(10, integral_) = L * hat_f;
       MatX& Jw = (*jacobians)[count_];
       Jw = MatX::Zero(13, 6);
       Jw.block<3, 3>(7, 0).setIdentity();
@@ -102,7 +115,11 @@ void RodEndEvaluator::evaluate(const double* const* values, RodEndVector& y,
     return;
   }
   if (condensed_) {
-    // y = [P, Q, n, h - (P - c) x n]: dm/dP = hat(n), dm/dn = -hat(P - c), dm/dh = I.
+    // y = [P, Q, n, h - (P - c) x n]: dm/dP = hat(n), dm/dn = -hat(P - c), dm/dh = I (also the base
+    // of the form with loads, where s = 0: its T does not enter).
+    static_assert(kCondensedPoint.p == 0 && kCondensedPoint.q == 3 && kCondensedLoadedPoint.p == 0 &&
+                      kCondensedLoadedPoint.q == 3,
+                  "the condensed control points start with y's [p, q]");
     const Eigen::Map<const Eigen::Matrix<double, 7, 1>> point(values[0]);
     const Eigen::Map<const Eigen::Matrix<double, 6, 1>> wrench(values[1]);
     const Vec3 n = wrench.head<3>(), arm = point.head<3>() - moment_point_;
@@ -112,8 +129,8 @@ void RodEndEvaluator::evaluate(const double* const* values, RodEndVector& y,
     if (jacobians) {
       jacobians->assign(2, MatX());
       MatX& Jp = (*jacobians)[0];
-      Jp = MatX::Zero(13, 7);
-      Jp.topRows<7>().setIdentity();
+      Jp = MatX::Zero(13, cp_size_);
+      Jp.topLeftCorner<7, 7>().setIdentity();
       Jp.block<3, 3>(10, 0) = hat(n);
       MatX& Jw = (*jacobians)[1];
       Jw = MatX::Zero(13, 6);
@@ -124,6 +141,8 @@ void RodEndEvaluator::evaluate(const double* const* values, RodEndVector& y,
     return;
   }
   // Primal: local z = [q (4), q_u (4), p_u (3), L (1)] for the wrench; p, q are the end values.
+  static_assert(kPrimalPoint.size == 7 && kPrimalPoint.p == 0 && kPrimalPoint.q == 3,
+                "the primal control point is [P, Q]");
   using D = Dual<12>;
   Eigen::Matrix<double, 12, 1> zv = Eigen::Matrix<double, 12, 1>::Zero();
   Vec3 p = Vec3::Zero();
@@ -143,7 +162,7 @@ void RodEndEvaluator::evaluate(const double* const* values, RodEndVector& y,
   Eigen::Matrix<D, 12, 1> z;
   for (int k = 0; k < 12; ++k) z[k] = D::variable(zv[k], k);
   V3<D> n, m;
-  primal_wrench(z, c, n, m);
+  primal_wrench<D>(z.segment<4>(0), z.segment<4>(4), z.segment<3>(8), z[11], c, n, m);
   y.segment<3>(0) = p;
   y.segment<4>(3) = zv.segment<4>(0);
   for (int i = 0; i < 3; ++i) {

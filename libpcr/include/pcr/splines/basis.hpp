@@ -31,6 +31,12 @@ void basis_derivatives(const KnotVector& knots, double u, int max_derivative, in
 
 VecX basis_integrals(const KnotVector& knots, double u);
 
+/// integrals[j] = J_{first+j}(u) for the degree + 1 functions that do not vanish at u (first as
+/// basis_derivatives gives it), by the quadrature of basis_integrals over the at most degree + 1 spans
+/// of their supports below u: work independent of the number of basis functions. integrals must have
+/// degree + 1 entries (else InputError).
+void active_basis_integrals(const KnotVector& knots, double u, int& first, Eigen::Ref<VecX> integrals);
+
 /// NURBS rational basis R_i = N_i w_i / W and its derivatives (The NURBS Book eq. 4.8 / A4.2 applied to
 /// the basis); weights.size() == knots.num_basis(), all > 0 (else InputError).
 BasisDerivatives rational_basis_derivatives(const KnotVector& knots, const VecX& weights, double u,

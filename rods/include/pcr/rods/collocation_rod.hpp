@@ -6,9 +6,11 @@
 // form, [P (3), Q (4), N (3), M (3)] in the mixed form; the rod length L is one more block (fixed for
 // a rod of given length, free when it is an actuation input). Equations at the Greville abscissae
 // tau_1 = 0 < ... < tau_n = 1: u = 0 and u = 1 carry the end conditions (7 each); in the primal form
-// the n - 2 interior points carry the field equations. Mixed form: see MixedPoints. Condensed form
-// (rods without distributed loads): [P (3), Q (4)] per control point and one block [n (3), h (3)] per
-// rod, see RodFormulation. All residuals are
+// the n - 2 interior points carry the field equations. Mixed form: see MixedPoints. Condensed form:
+// [P (3), Q (4)] per control point (and T (3) with distributed loads on long rods) and one block [n (3), h
+// (3)] per rod, see RodFormulation. Each formulation is one unit in rods/src/collocation (primal_form.cpp,
+// mixed_forms.cpp, condensed_forms.cpp, which say which equation each row is); its control point
+// layout is named once in collocation/layout.hpp (PointLayout). All residuals are
 // dimensionless: forces by F0 = max(K_BT) / L0^2, moments by M0 = max(K_BT) / L0, lengths by L0
 // (the model's length), constitutive equations as strains; the primal force balance (which carries
 // K_SE times the round-off of p'') by max(K_SE) / L0.
@@ -16,12 +18,17 @@
 #include <string>
 #include <vector>
 
+#include "pcr/rods/collocation/layout.hpp"
 #include "pcr/rods/rod_model.hpp"
 #include "pcr/solve/problem.hpp"
 #include "pcr/splines/basis.hpp"
 #include "pcr/splines/knot_vector.hpp"
 
 namespace pcr {
+
+namespace collocation {
+class RodForm;
+}
 
 /// - Primal: p, q; n, m from the constitutive law (locks for slender rods, DESIGN.md §2).
 /// - Mixed: p, q, n, m all splines; balance and constitutive laws collocated.
@@ -31,9 +38,14 @@ namespace pcr {
 ///   constant distributed loads f, l; so only p, q are splines and the 6 constitutive rows are
 ///   collocated at the midpoints of the Greville abscissae (as MixedPoints::Midpoints). Equilibrium is
 ///   exact; 7 instead of 13 unknowns per control point. Without distributed loads it is the mixed
-///   midpoint scheme with n, m eliminated (the same discrete solution); with them each row also reads
-///   the integral of p up to its point (every control point before it). Free of shear locking for the
-///   same reason as the mixed form (n is not computed from p').
+///   midpoint scheme with n, m eliminated (the same discrete solution). With them each row needs
+///   I(u) = integral_0^u p, which reads every control point before u. Rods with at most
+///   kMaxBandedCondensedPoints control points (whose band the constant wrench fills anyway) sum it so.
+///   Longer rods carry T_i = sum_{j<i} (integral_0^1 N_j) P_j in each control point as well (10
+///   unknowns), tied by the local recurrence T_{i+1} = T_i + (integral_0^1 N_i) P_i, so that
+///   I(u) = T_k + the sum of the p + 1 active J_i(u) P_i (k the first active function) and the rows stay
+///   local: the same discrete solution at a cost linear in the element count (condensed_forms.cpp).
+///   Free of shear locking for the same reason as the mixed form (n is not computed from p').
 enum class RodFormulation { Primal, Mixed, Condensed };
 const char* to_string(RodFormulation formulation);
 
@@ -55,6 +67,21 @@ struct RodDiscretization {
   int elements = 4;                                   ///< number of equal knot spans >= 1
   MixedPoints mixed_points = MixedPoints::Midpoints;  ///< mixed form only (the condensed form: midpoints)
 };
+
+/// Memory [bytes] that one rod's discretisation of this degree and element count is estimated to take
+/// in a solve, for the mixed form (13 unknowns per control point, the most of the formulations): the row
+/// of each unknown has about 13 (p + 1) Jacobian entries of 8 bytes, held about 8 times over (the
+/// residual blocks' dense Jacobians, the problem's Jacobian and its free-column copy with their indices,
+/// the LU factors with their fill). Measured for comparison (`/usr/bin/time -v pcr fk
+/// models/stewart_gough.urdf --elements E --formulation mixed`, six rods, degree 6): 4.7 KB per unknown
+/// at E = 1,000; the estimate is 5.8 KB.
+double rod_memory_estimate(int degree, int elements);
+/// Limit of rod_memory_estimate for one rod: 2 GiB (about 28,000 elements at degree 6, 19,800 at
+/// degree 9), so that a robot of a few such rods still fits a machine of some 16 GiB.
+inline constexpr double kMaxRodMemoryBytes = 2.0 * 1024.0 * 1024.0 * 1024.0;
+/// Empty when rod_memory_estimate(degree, elements) is within kMaxRodMemoryBytes, else what is wrong
+/// (the estimate and the limit), for a message naming where the element count came from.
+std::string rod_memory_excess(int degree, int elements);
 
 /// State of a rod at arc length s (world frame unless named _body).
 struct RodState {
@@ -97,6 +124,19 @@ struct RodEndOptions {
 
 class CollocationRod {
  public:
+  /// The condensed form's constant wrench [n, h] is read by every row of the rod: in the rod's band
+  /// (BorderedBlockLu) it is a dense column that widens the band to the whole rod, at a cost growing with
+  /// the square of the element count. Beyond this many control points add_to_problem leaves a condensed
+  /// rod's variables out of the groups, and Newton factors the system by the general sparse LU (natural
+  /// order: the wrench columns follow the rod's control points, so its supernodal LU fills only them
+  /// beyond the band), linear in the element count. Measured on
+  /// R5a (gravity) and R5b (none), degree 6, one cold FK and 9 warm solves (the driver of
+  /// benchmarks/formulations), band against sparse LU: 93M against 122M and 83M against 108M instructions
+  /// (callgrind) at 8 elements, 279M against 301M and 218M against 273M at 32; CPU time of the cold FK
+  /// on R5a with the band 84 ms, with the sparse LU 44 ms at 64 elements, 274 and 87 ms at 128
+  /// (bench_formulations). The switch sits between: 40 points, 34 elements of degree 6.
+  static constexpr int kMaxBandedCondensedPoints = 40;
+
   /// Validates the model and the discretisation (InputError naming the value).
   CollocationRod(RodModel model, RodDiscretization discretization);
 
@@ -106,7 +146,12 @@ class CollocationRod {
   /// Condensed form with distributed loads: n, m read the integral of p (basis integrals).
   bool condensed_with_loads() const { return loaded_condensed_; }
   int num_control_points() const;
-  int control_point_size() const;  ///< 7 (primal, condensed) or 13 (mixed)
+  /// 7 (primal, condensed), 10 (condensed with loads and running integrals) or 13 (mixed)
+  int control_point_size() const;
+  /// The components of a control point block (offsets of P, Q and of N, M or T where present).
+  const collocation::PointLayout& point_layout() const;
+  /// Condensed form with loads: w_j = integral_0^1 N_j (the recurrence of T); empty otherwise.
+  const VecX& integral_weights() const { return integral_weights_; }
   /// Values of a rod configuration (initial guesses): the control points, then in the condensed
   /// form the wrench [n, h] (6).
   int configuration_size() const;
@@ -116,9 +161,12 @@ class CollocationRod {
   int num_equations(const RodEndOptions& ends) const;
 
   /// Adds the rod's variable blocks (initial guess: the straight rod leaving the clamped end frame,
-  /// or `initial` when given) and its residual blocks, with loads and intrinsic strains multiplied by
-  /// load_factor (for continuation). The length block is fixed at the model's length unless
-  /// free_length. `group` tags the rod's variables for structured solvers.
+  /// or `initial` when given; the running integrals T of the condensed form with loads are taken from
+  /// its P, whatever `initial` holds there) and its residual blocks, with loads and intrinsic strains
+  /// multiplied by load_factor (for continuation). The length block is fixed at the model's length unless
+  /// free_length. `group` tags the rod's variables for structured solvers (a band per rod,
+  /// BorderedBlockLu), except those of a condensed rod with more than kMaxBandedCondensedPoints control
+  /// points (see there).
   RodVariables add_to_problem(Problem& problem, const RodEndOptions& ends = {}, double load_factor = 1.0,
                               bool free_length = false, int group = -1, const VecX* initial = nullptr) const;
 
@@ -164,6 +212,13 @@ class CollocationRod {
   std::shared_ptr<const KnotVector> knots_;
   double force_scale_ = 1.0, moment_scale_ = 1.0;
   bool loaded_condensed_ = false;
+  const collocation::RodForm* form_ = nullptr;  ///< the formulation's unit (static, one per formulation)
+  VecX integral_weights_;
+
+  /// basis_integrals(knots(), u) from integral_weights_ and the active functions' integrals.
+  VecX integrals_at(double u) const;
+  /// Condensed form with loads: T_0 = 0, T_{i+1} = T_i + w_i P_i in a configuration; else nothing.
+  void set_running_integrals(VecX& configuration) const;
 };
 
 }  // namespace pcr

@@ -4,9 +4,10 @@
 // blocks of a robot are built on top of this (robots/): they never need to know the formulation.
 // Mixed form: y is the end control point itself (open knot vector: the spline interpolates its end
 // control points). Condensed form: p, q from the end control point, n and m = h - (p - c) x n from
-// the rod's wrench block [n, h]; with distributed loads the tip's n, m also read L and (through the
-// integral of p) every control point. Primal form: p, q from the end control point, n = R K_SE (eps - eps0)
-// and m = R K_BT (kappa - kappa0) from the p+1 end control points and L.
+// the rod's wrench block [n, h]; with distributed loads the tip's n, m also read L and the integral of p:
+// the end control point's running integral T, or every control point (collocation_rod.hpp). Primal form: p, q
+// from the end control point, n = R K_SE (eps - eps0) and m = R K_BT (kappa - kappa0) from the p+1 end
+// control points and L.
 #include <vector>
 
 #include "pcr/rods/collocation_rod.hpp"
@@ -38,8 +39,9 @@ class RodEndEvaluator {
   std::vector<double> value_basis_, derivative_basis_;  ///< N_i and N_i' at the end
   Vec3 k_se_, k_bt_, eps0_, kappa0_;
   Vec3 moment_point_ = Vec3::Zero();  ///< condensed form
-  bool loads_ = false;                ///< condensed form with distributed loads, tip: reads every P_j and L
-  std::vector<double> integral_weights_;  ///< integral_0^1 N_j
+  bool loads_ = false;  ///< condensed form with distributed loads, tip: reads the integral of p and L
+  int integral_ = -1;   ///< component of T in the control points (running integrals), else -1
+  std::vector<double> integral_weights_;  ///< integral_0^1 N_j of the control points read
   Vec3 f_ = Vec3::Zero(), l_ = Vec3::Zero();
 };
 

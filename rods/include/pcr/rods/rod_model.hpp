@@ -19,12 +19,13 @@ struct Material {
 };
 
 struct CrossSection {
-  double area = 0.0;               ///< A [m^2]
-  double second_moment_1 = 0.0;    ///< I1 about d1 [m^4]
-  double second_moment_2 = 0.0;    ///< I2 about d2 [m^4]
-  double torsion_constant = 0.0;   ///< J [m^4]
-  double shear_coefficient = 1.0;  ///< k in K_SE = diag(k G A, k G A, E A); 1 as in Till & Rucker's PCR models
-  double outer_radius = 0.0;       ///< largest distance of a section point from the centerline [m] (for stresses)
+  double area = 0.0;              ///< A [m^2]
+  double second_moment_1 = 0.0;   ///< I1 about d1 [m^4]
+  double second_moment_2 = 0.0;   ///< I2 about d2 [m^4]
+  double torsion_constant = 0.0;  ///< J [m^4]
+  double shear_coefficient =
+      1.0;                    ///< k in K_SE = diag(k G A, k G A, E A); 1 as in Till & Rucker's PCR models
+  double outer_radius = 0.0;  ///< largest distance of a section point from the centerline [m] (for stresses)
   /// Solid circle of the given radius: A = pi r^2, I1 = I2 = pi r^4 / 4, J = pi r^4 / 2.
   static CrossSection circle(double radius);
   /// Solid rectangle, width along d1, height along d2: I1 = w h^3 / 12, I2 = h w^3 / 12, J by the
@@ -43,8 +44,8 @@ const char* to_string(RodEndKind kind);
 
 struct RodEnd {
   RodEndKind kind = RodEndKind::Free;
-  Vec3 position = Vec3::Zero();          ///< prescribed position (Clamped, Collar, Spherical)
-  Quat orientation = Quat(1, 0, 0, 0);   ///< prescribed frame (Clamped) or axis R e3 (Collar)
+  Vec3 position = Vec3::Zero();         ///< prescribed position (Clamped, Collar, Spherical)
+  Quat orientation = Quat(1, 0, 0, 0);  ///< prescribed frame (Clamped) or axis R e3 (Collar)
   /// External force and moment applied *to the rod* at this end (world frame). With n, m the force
   /// and moment that the part s+ exerts on s-: at s = L, n = force, m = moment; at s = 0,
   /// n = -force, m = -moment.

@@ -25,8 +25,9 @@ struct EndLoads {
 
 /// r[0..7) from p, q, n, m at the end (all world frame), scaled by the rod's reference scales.
 template <typename T>
-void end_conditions(RodEndKind kind, const EndTarget<T>& target, const EndLoads& loads, const PointConstants& c,
-                    const V3<T>& p, const V4<T>& q, const V3<T>& n, const V3<T>& m, T* r) {
+void end_conditions(RodEndKind kind, const EndTarget<T>& target, const EndLoads& loads,
+                    const PointConstants& c, const V3<T>& p, const V4<T>& q, const V3<T>& n, const V3<T>& m,
+                    T* r) {
   const double L0 = c.length_scale, F0 = c.force_scale, M0 = c.moment_scale;
   switch (kind) {
     case RodEndKind::Clamped:

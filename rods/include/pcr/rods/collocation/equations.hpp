@@ -7,10 +7,12 @@
 //   kappa = 2 vec(conj(q) (x) q') / |q|^2          (R' = R hat(kappa); the |q| factor drops out)
 //   kappa' = 2 vec(conj(q) (x) q'') / |q|^2 - 4 (q . q') vec(conj(q) (x) q') / |q|^4
 // which equals vee(R^T R') = [<d2',d3>, <d3',d1>, <d1',d2>] (DESIGN.md; not the slide's <d3',d2>).
-// Every residual is made dimensionless with the rod's reference scales (see PointConstants).
+// Every residual is made dimensionless with the rod's reference scales (see PointConstants). Each
+// kernel's local vector z is named once by its layout struct (layout.hpp), right above the kernel.
 #include <Eigen/Core>
 
 #include "pcr/core/types.hpp"
+#include "pcr/rods/collocation/layout.hpp"
 
 namespace pcr::collocation {
 
@@ -67,16 +69,28 @@ V3<T> body_curvature(const V4<T>& q, const V4<T>& q_s) {
   return conj_product_vec(q, q_s) * (2.0 / q.squaredNorm());
 }
 
-/// Primal form, interior point: force balance (3), moment balance (3), |q|^2 - 1 (1).
-/// z = [q (4), q_u (4), q_uu (4), p_u (3), p_uu (3), L (1)]  (u-derivatives, s = L u).
+/// Primal form, interior point: force balance (3), moment balance (3), |q|^2 - 1 (1); u-derivatives,
+/// s = L u.
+struct PrimalInteriorZ {
+  enum Entry { q, q_u, q_uu, p_u, p_uu, L, kEntries };
+  static constexpr LocalLayout<kEntries> layout{{{{kPrimalPoint.q, 4, 0},
+                                                  {kPrimalPoint.q, 4, 1},
+                                                  {kPrimalPoint.q, 4, 2},
+                                                  {kPrimalPoint.p, 3, 1},
+                                                  {kPrimalPoint.p, 3, 2},
+                                                  {kDirect, 1}}}};
+};
+
 template <typename T>
-void primal_interior(const Eigen::Matrix<T, 19, 1>& z, const PointConstants& c, T* r) {
-  const V4<T> q = z.template segment<4>(0);
-  const T L = z[18];
-  const V4<T> q_s = z.template segment<4>(4) / L;
-  const V4<T> q_ss = z.template segment<4>(8) / (L * L);
-  const V3<T> p_s = z.template segment<3>(12) / L;
-  const V3<T> p_ss = z.template segment<3>(15) / (L * L);
+void primal_interior(const Eigen::Matrix<T, PrimalInteriorZ::layout.size(), 1>& z, const PointConstants& c,
+                     T* r) {
+  using Z = PrimalInteriorZ;
+  const V4<T> q = get<Z, Z::q>(z);
+  const T L = get<Z, Z::L>(z)[0];
+  const V4<T> q_s = get<Z, Z::q_u>(z) / L;
+  const V4<T> q_ss = get<Z, Z::q_uu>(z) / (L * L);
+  const V3<T> p_s = get<Z, Z::p_u>(z) / L;
+  const V3<T> p_ss = get<Z, Z::p_uu>(z) / (L * L);
   const T S = q.squaredNorm();
   const M3<T> R = rotation(q);
   const V3<T> w1 = conj_product_vec(q, q_s);
@@ -123,64 +137,40 @@ void constitutive_rows(const V4<T>& q, const V4<T>& q_s, const V3<T>& p_s, const
   }
 }
 
+/// The mixed form at a point: the values and u-derivatives of q, p, n, m and the length.
+struct MixedZ {
+  enum Entry { q, q_u, p_u, n, n_u, m, m_u, L, kEntries };
+  static constexpr LocalLayout<kEntries> layout{{{{kMixedPoint.q, 4, 0},
+                                                  {kMixedPoint.q, 4, 1},
+                                                  {kMixedPoint.p, 3, 1},
+                                                  {kMixedPoint.n, 3, 0},
+                                                  {kMixedPoint.n, 3, 1},
+                                                  {kMixedPoint.m, 3, 0},
+                                                  {kMixedPoint.m, 3, 1},
+                                                  {kDirect, 1}}}};
+};
+template <typename T>
+using MixedLocal = Eigen::Matrix<T, MixedZ::layout.size(), 1>;
+
 /// Mixed form constitutive equations (constitutive_rows) at a point.
-/// z = [q (4), q_u (4), p_u (3), n (3), n_u (3), m (3), m_u (3), L (1)].
 template <typename T>
-void mixed_constitutive(const Eigen::Matrix<T, 24, 1>& z, const PointConstants& c, T* r) {
-  const T L = z[23];
-  constitutive_rows<T>(z.template segment<4>(0), z.template segment<4>(4) / L, z.template segment<3>(8) / L,
-                       z.template segment<3>(11), z.template segment<3>(17), c, r);
+void mixed_constitutive(const MixedLocal<T>& z, const PointConstants& c, T* r) {
+  using Z = MixedZ;
+  const T L = get<Z, Z::L>(z)[0];
+  constitutive_rows<T>(get<Z, Z::q>(z), get<Z, Z::q_u>(z) / L, get<Z, Z::p_u>(z) / L, get<Z, Z::n>(z),
+                       get<Z, Z::m>(z), c, r);
 }
 
-/// Condensed form (rods without distributed loads): n' = 0 and (m + (p - c) x n)' = m' + p' x n = 0, so
-/// n(s) = n and m(s) = h - (p(s) - c) x n with two constant unknowns, the force n and the moment h
-/// about a fixed point c. Only the constitutive rows remain.
-/// z = [q (4), q_u (4), p_u (3), p (3), n (3), h (3), L (1)].
+/// Mixed form field equations at a point: n' + f (3), m' + p' x n + l (3), then the two constitutive
+/// equations (6).
 template <typename T>
-void condensed_field(const Eigen::Matrix<T, 21, 1>& z, const PointConstants& c, const Vec3& moment_point,
-                     T* r) {
-  const T L = z[20];
-  const V3<T> n = z.template segment<3>(14);
-  const V3<T> arm = z.template segment<3>(11) - moment_point.cast<T>();
-  const V3<T> m = z.template segment<3>(17) - arm.cross(n);
-  constitutive_rows<T>(z.template segment<4>(0), z.template segment<4>(4) / L, z.template segment<3>(8) / L,
-                       n, m, c, r);
-}
-
-/// Condensed form with constant distributed loads f, l (world frame; PointConstants): n' = -f and
-/// (m + (p - c) x n)' = -l - (p - c) x f integrate to n(s) = n - f s and
-/// m(s) = h - (p(s) - c) x n(s) - l s - A(s) x f,  A(s) = integral_0^s (p - c) dt = L (I(u) - c u),
-/// with I(u) = integral_0^u p du' (from the basis integrals). s = u L at the point's u.
-/// z = [q (4), q_u (4), p_u (3), p (3), n (3), h (3), L (1), I (3)].
-template <typename T>
-V3<T> condensed_moment(const V3<T>& p, const V3<T>& n_s, const V3<T>& h, const T& L, const V3<T>& I,
-                       const PointConstants& c, const Vec3& moment_point, double u) {
-  const V3<T> cp = moment_point.cast<T>();
-  const V3<T> A = (I - cp * u) * L;
-  return h - (p - cp).cross(n_s) - c.l.cast<T>() * (u * L) - A.cross(c.f.cast<T>());
-}
-
-template <typename T>
-void condensed_loaded_field(const Eigen::Matrix<T, 24, 1>& z, const PointConstants& c,
-                            const Vec3& moment_point, double u, T* r) {
-  const T L = z[20];
-  const V3<T> n = z.template segment<3>(14) - c.f.cast<T>() * (u * L);
-  const V3<T> m = condensed_moment<T>(z.template segment<3>(11), n, z.template segment<3>(17), L,
-                                      z.template segment<3>(21), c, moment_point, u);
-  constitutive_rows<T>(z.template segment<4>(0), z.template segment<4>(4) / L, z.template segment<3>(8) / L,
-                       n, m, c, r);
-}
-
-/// Mixed form field equations at a point: n_d' + f (3), m_d' + p_d' x n_d + l (3), then the two
-/// constitutive equations (6).
-/// z = [q (4), q_u (4), p_u (3), n (3), n_u (3), m (3), m_u (3), L (1)].
-template <typename T>
-void mixed_field(const Eigen::Matrix<T, 24, 1>& z, const PointConstants& c, T* r) {
-  const T L = z[23];
-  const V3<T> p_s = z.template segment<3>(8) / L;
-  const V3<T> n = z.template segment<3>(11);
-  const V3<T> n_s = z.template segment<3>(14) / L;
-  const V3<T> m_s = z.template segment<3>(20) / L;
+void mixed_field(const MixedLocal<T>& z, const PointConstants& c, T* r) {
+  using Z = MixedZ;
+  const T L = get<Z, Z::L>(z)[0];
+  const V3<T> p_s = get<Z, Z::p_u>(z) / L;
+  const V3<T> n = get<Z, Z::n>(z);
+  const V3<T> n_s = get<Z, Z::n_u>(z) / L;
+  const V3<T> m_s = get<Z, Z::m_u>(z) / L;
   const V3<T> e_n = n_s + c.f;
   const V3<T> e_m = m_s + p_s.cross(n) + c.l;
   const double fr = c.length_scale / c.force_scale, mr = c.length_scale / c.moment_scale;
@@ -194,19 +184,91 @@ void mixed_field(const Eigen::Matrix<T, 24, 1>& z, const PointConstants& c, T* r
 /// Mixed form, interior Greville point of the Greville scheme (MixedPoints::Greville): the 12 field
 /// equations, then |q|^2 - 1.
 template <typename T>
-void mixed_interior(const Eigen::Matrix<T, 24, 1>& z, const PointConstants& c, T* r) {
+void mixed_interior(const MixedLocal<T>& z, const PointConstants& c, T* r) {
   mixed_field(z, c, r);
-  r[12] = z.template segment<4>(0).squaredNorm() - 1.0;
+  r[12] = get<MixedZ, MixedZ::q>(z).squaredNorm() - 1.0;
 }
 
-/// Primal form: internal force and moment at a point from the constitutive law.
-/// z = [q (4), q_u (4), p_u (3), L (1)]; outputs n, m (world frame).
+/// Condensed form (rods without distributed loads): n' = 0 and (m + (p - c) x n)' = m' + p' x n = 0, so
+/// n(s) = n and m(s) = h - (p(s) - c) x n with two constant unknowns, the force n and the moment h
+/// about a fixed point c (the wrench block [n, h]). Only the constitutive rows remain.
+struct CondensedZ {
+  enum Entry { q, q_u, p_u, p, wrench, L, kEntries };
+  static constexpr LocalLayout<kEntries> layout{{{{kCondensedPoint.q, 4, 0},
+                                                  {kCondensedPoint.q, 4, 1},
+                                                  {kCondensedPoint.p, 3, 1},
+                                                  {kCondensedPoint.p, 3, 0},
+                                                  {kDirect, kWrenchSize},
+                                                  {kDirect, 1}}}};
+};
+
 template <typename T>
-void primal_wrench(const Eigen::Matrix<T, 12, 1>& z, const PointConstants& c, V3<T>& n, V3<T>& m) {
-  const V4<T> q = z.template segment<4>(0);
-  const T L = z[11];
-  const V4<T> q_s = z.template segment<4>(4) / L;
-  const V3<T> p_s = z.template segment<3>(8) / L;
+void condensed_field(const Eigen::Matrix<T, CondensedZ::layout.size(), 1>& z, const PointConstants& c,
+                     const Vec3& moment_point, T* r) {
+  using Z = CondensedZ;
+  const T L = get<Z, Z::L>(z)[0];
+  const V3<T> n = get<Z, Z::wrench>(z).template head<3>();
+  const V3<T> arm = get<Z, Z::p>(z) - moment_point.cast<T>();
+  const V3<T> m = get<Z, Z::wrench>(z).template tail<3>() - arm.cross(n);
+  constitutive_rows<T>(get<Z, Z::q>(z), get<Z, Z::q_u>(z) / L, get<Z, Z::p_u>(z) / L, n, m, c, r);
+}
+
+/// Condensed form with constant distributed loads f, l (world frame; PointConstants): n' = -f and
+/// (m + (p - c) x n)' = -l - (p - c) x f integrate to n(s) = n - f s and
+/// m(s) = h - (p(s) - c) x n(s) - l s - A(s) x f,  A(s) = integral_0^s (p - c) dt = L (I(u) - c u),
+/// with I(u) = integral_0^u p du'. s = u L at the point's u.
+template <typename T>
+V3<T> condensed_moment(const V3<T>& p, const V3<T>& n_s, const V3<T>& h, const T& L, const V3<T>& I,
+                       const PointConstants& c, const Vec3& moment_point, double u) {
+  const V3<T> cp = moment_point.cast<T>();
+  const V3<T> A = (I - cp * u) * L;
+  return h - (p - cp).cross(n_s) - c.l.cast<T>() * (u * L) - A.cross(c.f.cast<T>());
+}
+
+/// The condensed form with loads at a point: as CondensedZ, and I(u) = T_k + sum_i J_i(u) P_i in two
+/// parts (collocation_rod.hpp): T_k of the first control point k active at u (the integral carried by
+/// the basis functions before it) and the integrals J_i(u) = integral_0^u N_i of the active ones.
+struct CondensedLoadedZ {
+  enum Entry { q, q_u, p_u, p, wrench, L, T_first, I_active, kEntries };
+  static constexpr LocalLayout<kEntries> layout{{{{kCondensedLoadedPoint.q, 4, 0},
+                                                  {kCondensedLoadedPoint.q, 4, 1},
+                                                  {kCondensedLoadedPoint.p, 3, 1},
+                                                  {kCondensedLoadedPoint.p, 3, 0},
+                                                  {kDirect, kWrenchSize},
+                                                  {kDirect, 1},
+                                                  {kCondensedLoadedPoint.integral, 3, kSelected},
+                                                  {kCondensedLoadedPoint.p, 3, kIntegral}}}};
+};
+
+/// n(s), m(s) of the condensed form with loads at u from its local vector (Z: CondensedLoadedZ or the
+/// tip's CondensedLoadedTipZ, which name the same quantities).
+template <typename Z, typename T, typename Local>
+void condensed_loaded_wrench(const Local& z, const PointConstants& c, const Vec3& moment_point, double u,
+                             V3<T>& n, V3<T>& m) {
+  const T L = get<Z, Z::L>(z)[0];
+  const V3<T> I = get<Z, Z::T_first>(z) + get<Z, Z::I_active>(z);
+  n = get<Z, Z::wrench>(z).template head<3>() - c.f.cast<T>() * (u * L);
+  m = condensed_moment<T>(get<Z, Z::p>(z), n, get<Z, Z::wrench>(z).template tail<3>(), L, I, c, moment_point,
+                          u);
+}
+
+template <typename T>
+void condensed_loaded_field(const Eigen::Matrix<T, CondensedLoadedZ::layout.size(), 1>& z,
+                            const PointConstants& c, const Vec3& moment_point, double u, T* r) {
+  using Z = CondensedLoadedZ;
+  V3<T> n, m;
+  condensed_loaded_wrench<Z, T>(z, c, moment_point, u, n, m);
+  const T L = get<Z, Z::L>(z)[0];
+  constitutive_rows<T>(get<Z, Z::q>(z), get<Z, Z::q_u>(z) / L, get<Z, Z::p_u>(z) / L, n, m, c, r);
+}
+
+/// Primal form: internal force and moment at a point from the constitutive law, from q and the
+/// u-derivatives q_u, p_u (world frame).
+template <typename T>
+void primal_wrench(const V4<T>& q, const V4<T>& q_u, const V3<T>& p_u, const T& L, const PointConstants& c,
+                   V3<T>& n, V3<T>& m) {
+  const V4<T> q_s = q_u / L;
+  const V3<T> p_s = p_u / L;
   const M3<T> R = rotation(q);
   const V3<T> v = R.transpose() * p_s;
   const V3<T> kappa = body_curvature(q, q_s);

@@ -2,9 +2,9 @@
 // A residual block at one collocation point of one rod (shared by rods and robot couplings).
 //
 // The equations at a point depend on a small local vector z (values and u-derivatives of p, q, n, m
-// at the point, and the rod length L). z is gathered from the p+1 active control points (and, for the
-// integral of p in the condensed form under loads, every control point before them) with the basis
-// values cached at construction: z_g = sum_i B_d(u)[i] c_i[component]. The kernel is evaluated with
+// at the point, and the rod length L; layout.hpp names it per kernel). z is gathered from the p+1 active
+// control points with the basis values cached at construction: z_g = sum_i B_d(u)[i] c_i[component]
+// (d: a u-derivative, the integral from 0, or the selector of one point). The kernel is evaluated with
 // Dual<NL> numbers, which gives dr/dz exactly; the chain rule dz/dc_i = B_d(u)[i] scatters it into one
 // dense Jacobian per control point (and dr/dz directly into the direct blocks, e.g. the length).
 //
@@ -22,40 +22,23 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <utility>
 #include <vector>
 
 #include "pcr/core/error.hpp"
 #include "pcr/math/dual.hpp"
+#include "pcr/rods/collocation/layout.hpp"
 #include "pcr/solve/residual_block.hpp"
 
 namespace pcr::collocation {
 
-/// A group of local variables: z[local .. local+dim) = derivative-th u-derivative of the control
-/// point components [component .. component+dim).
-struct LocalGroup {
-  int local;
-  int component;
-  int dim;
-  int derivative;
-};
-
-/// A variable block read directly (not through the basis): z[local .. local+size) = its values, e.g.
-/// the rod length L or the condensed form's constant force and moment.
-struct DirectBlock {
-  int local;
-  int size;
-};
-
-/// LocalGroup::derivative of a group that reads integral_0^u of the component (the basis integrals).
-constexpr int kIntegral = 3;
-
-/// Basis values at a point: B[i][d] = d-th u-derivative (d = kIntegral: integral from 0 to u) of the
-/// function first + i, i < count.
+/// Basis values at a point: B[i][slot] = the basis row `slot` (layout.hpp: u-derivatives 0..2,
+/// kIntegral, kSelected) of the function first + i, i < count.
 struct PointBasis {
   int first = 0;
   int count = 0;
-  std::vector<std::array<double, 4>> B;
+  std::vector<std::array<double, kBasisSlots>> B;
 };
 
 /// depends[row * NL + k]: dr_row / dz_k is not identically zero.
@@ -206,7 +189,7 @@ class PointBlock final : public ResidualBlock {
 
   bool depends(int row, int local) const { return depends_[row * NL + local]; }
 
-  static constexpr int kMaxComponents = 13, kDerivativeSlots = kIntegral + 1;
+  static constexpr int kMaxComponents = 13, kDerivativeSlots = kBasisSlots;
   /// Components [begin, end) of the control points read with basis row `derivative`.
   struct ReadRange {
     int derivative, begin, end;
@@ -257,6 +240,22 @@ std::shared_ptr<const ResidualBlock> make_point_block(
   return std::make_shared<PointBlock<NL, NR, Kernel>>(std::move(kind), std::move(name), std::move(variables),
                                                       cp_size, basis, std::move(groups), std::move(direct),
                                                       std::move(kernel), depends);
+}
+
+/// make_point_block with the kernel's local vector named by the layout struct Z (layout.hpp): NL, the
+/// local groups and the direct blocks follow from Z::layout; `variables` lists the basis.count control
+/// points, then one variable block per direct entry of Z in entry order.
+template <typename Z, int NR, typename Kernel>
+std::shared_ptr<const ResidualBlock> make_point_block(
+    std::string kind, std::string name, std::vector<VariableId> variables, int cp_size,
+    const PointBasis& basis, Kernel kernel,
+    const KernelPattern<Z::layout.size(), NR>& depends = dense_kernel_pattern<Z::layout.size(), NR>()) {
+  require(static_cast<int>(variables.size()) == basis.count + Z::layout.num_direct(), "PointBlock '", name,
+          "': ", variables.size(), " variable blocks for ", basis.count, " control points and ",
+          Z::layout.num_direct(), " direct blocks");
+  return make_point_block<Z::layout.size(), NR>(std::move(kind), std::move(name), std::move(variables),
+                                                cp_size, basis, Z::layout.groups(), Z::layout.direct(),
+                                                std::move(kernel), depends);
 }
 
 }  // namespace pcr::collocation

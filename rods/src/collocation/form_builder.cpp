@@ -1,0 +1,108 @@
+#include "form_builder.hpp"
+
+#include <algorithm>
+
+#include "pcr/math/quaternion.hpp"
+#include "pcr/splines/basis.hpp"
+
+namespace pcr::collocation {
+
+FormBuilder::FormBuilder(const CollocationRod& rod, Problem& problem, const RodVariables& vars,
+                         const RodEndOptions& ends, double load_factor)
+    : rod_(rod),
+      problem_(problem),
+      vars_(vars),
+      ends_(ends),
+      load_factor_(load_factor),
+      tau_(rod.knots().greville()) {}
+
+PointConstants FormBuilder::constants_at(double u) const {
+  const RodModel& model = rod_.model();
+  const double L = model.length;
+  PointConstants c;
+  c.k_se = model.shear_extension_stiffness;
+  c.k_bt = model.bending_torsion_stiffness;
+  c.length_scale = L;
+  c.force_scale = rod_.force_scale();
+  c.moment_scale = rod_.moment_scale();
+  const double s = u * L;
+  model.intrinsic.at(s, c.eps0, c.kappa0);
+  if (model.intrinsic.varying) {
+    // s-derivatives of the intrinsic strains by central differences (h = 1e-5 L: error ~1e-10 of the
+    // strain variation scale); one-sided at the ends.
+    const double h = 1e-5 * L, sa = std::max(0.0, s - h), sb = std::min(L, s + h);
+    Vec3 ea, ka, eb, kb;
+    model.intrinsic.at(sa, ea, ka);
+    model.intrinsic.at(sb, eb, kb);
+    c.eps0_s = load_factor_ * (eb - ea) / (sb - sa);
+    c.kappa0_s = load_factor_ * (kb - ka) / (sb - sa);
+  }
+  c.eps0 *= load_factor_;
+  c.kappa0 *= load_factor_;
+  c.f = load_factor_ * model.distributed_force();
+  c.l = load_factor_ * model.loads.moment_per_length;
+  return c;
+}
+
+PointBasis FormBuilder::basis_at(double u, int max_derivative) const {
+  const int p = rod_.discretization().degree;
+  const BasisDerivatives d = basis_derivatives(rod_.knots(), u, max_derivative);
+  PointBasis b;
+  b.first = d.first;
+  b.count = p + 1;
+  b.B.assign(p + 1, {});
+  for (int k = 0; k <= max_derivative; ++k)
+    for (int i = 0; i <= p; ++i) b.B[i][k] = d.values(k, i);
+  return b;
+}
+
+PointBasis FormBuilder::end_basis(bool at_tip) const {
+  PointBasis b;
+  b.first = at_tip ? num_control_points() - 1 : 0;
+  b.count = 1;
+  b.B.assign(1, {});
+  b.B[0][0] = 1.0;
+  return b;
+}
+
+EndData FormBuilder::end_data(bool at_tip) const {
+  const RodEnd& end = at_tip ? rod_.model().tip : rod_.model().base;
+  EndData e;
+  e.kind = end.kind;
+  e.target.position = end.position;
+  e.target.orientation = end.orientation.normalized();
+  e.target.frame = rotation_matrix(e.target.orientation);
+  // n, m are the force and moment of the part s+ on s-: an applied load is -(F, M) at the base.
+  const double sign = at_tip ? 1.0 : -1.0;
+  e.loads.n_bar = sign * load_factor_ * end.force;
+  e.loads.m_bar = sign * load_factor_ * end.moment;
+  return e;
+}
+
+std::string FormBuilder::end_kind(bool at_tip) const {
+  return std::string("rod.end_") + to_string(at_tip ? rod_.model().tip.kind : rod_.model().base.kind);
+}
+
+std::string FormBuilder::where(double u) const {
+  return rod_.model().name + "@u=" + std::to_string(u);
+}
+
+namespace {
+// |q|^2 - 1 at a point (the Greville abscissae of the midpoint schemes).
+struct UnitQuaternionZ {
+  enum Entry { q, kEntries };
+  static constexpr LocalLayout<kEntries> layout{{{{kMixedPoint.q, 4, 0}}}};
+};
+static_assert(kPrimalPoint.q == kMixedPoint.q && kCondensedPoint.q == kMixedPoint.q &&
+                  kCondensedLoadedPoint.q == kMixedPoint.q,
+              "every layout keeps Q at the same offset (UnitQuaternionZ)");
+}  // namespace
+
+void FormBuilder::add_unit_quaternion_rows(const PointLayout& layout) const {
+  require(layout.q == kMixedPoint.q, "add_unit_quaternion_rows: Q at component ", layout.q);
+  for (int j = 1; j + 1 < num_control_points(); ++j)
+    add<UnitQuaternionZ, 1>("rod.unit_quaternion", tau_[j], basis_at(tau_[j], 0), {},
+                            [](const auto& z, auto* r) { r[0] = z.squaredNorm() - 1.0; });
+}
+
+}  // namespace pcr::collocation
