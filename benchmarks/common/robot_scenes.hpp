@@ -1,5 +1,5 @@
 #pragma once
-// The Stewart-Gough scenes of the benchmarks (shared/scenes/README.md R5a, R5b): models, the R5a
+// The Stewart-Gough scenes of the benchmarks (docs/benchmarks.md (Scenes) R5a, R5b): models, the R5a
 // inputs and target, the R5b teleoperation path.
 #include <memory>
 #include <vector>

@@ -1,5 +1,5 @@
 #pragma once
-// The single-rod scenes of the benchmarks (shared/scenes/README.md R1, R2, R3 and the Weeger et al.
+// The single-rod scenes of the benchmarks (docs/benchmarks.md (Scenes) R1, R2, R3 and the Weeger et al.
 // 2017 helical spring), with their analytic solutions where one exists, and the element counts the
 // collocation sweeps use on them.
 #include <functional>

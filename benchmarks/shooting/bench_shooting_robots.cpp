@@ -1,5 +1,5 @@
 // Speed and accuracy of the robot shooting solver (pcr/robots/shooting/shooting_robot_solver.hpp) on
-// the Stewart-Gough scenes (/work/shared/scenes/README.md):
+// the Stewart-Gough scenes (docs/benchmarks.md, Scenes):
 //  - R5a_fk_cold, R5a_ik_cold: FK at moved inputs / IK to the R5a target ((0, 0, 0.4), R_y(10 deg)),
 //    each solve from the cold guess; error = platform position error [m] (FK) or max input error [m]
 //    (IK) against Dormand-Prince at 1e-12;

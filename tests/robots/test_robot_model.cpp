@@ -27,7 +27,7 @@ constexpr double kWritten = 1e-11;
 // Pure double arithmetic on O(1) numbers (compositions of a few rotations).
 constexpr double kRoundoff = 1e-12;
 
-// R5 hole pattern (scenes/README.md), computed here independently of the model file.
+// R5 hole pattern (docs/benchmarks.md, Scenes), computed here independently of the model file.
 Vec3 r5_point(int i, bool platform) {
   const double alpha1 = 100.0, alpha2 = 120.0 - alpha1, R_hp = 0.087;
   const double a = platform ? alpha1 : alpha2, b = platform ? alpha2 : alpha1;

@@ -1,6 +1,6 @@
-// Observed convergence orders of the collocation rods under uniform h-refinement (DESIGN.md §2, "known
+// Observed convergence orders of the collocation rods under uniform h-refinement (docs/design.md §2, "known
 // behaviour to reproduce"), on scenes R1 (end moment, phi = pi), R2 (Bisshopp-Drucker elastica,
-// alpha = 10) and R3 (exact helix) of shared/scenes/README.md.
+// alpha = 10) and R3 (exact helix) of docs/benchmarks.md (Scenes).
 //
 // The observed order of an error e between E and 2E elements is log2(e_E / e_2E). Errors: the max over
 // 201 points of |p_h(s) - p(s)| (centerline; R1, R3) and |p_h(L) - p(L)| (tip; all scenes).

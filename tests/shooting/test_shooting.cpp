@@ -168,7 +168,7 @@ BOOST_AUTO_TEST_CASE(precurved_rod_without_loads_is_its_intrinsic_arc) {
 
 // ---- R2: Bisshopp-Drucker table --------------------------------------------------------------------
 BOOST_AUTO_TEST_CASE(r2_bisshopp_drucker_table) {
-  // alpha, (L - x_tip)/L, y_tip/L, tip angle (scenes/README.md R2).
+  // alpha, (L - x_tip)/L, y_tip/L, tip angle (Bisshopp & Drucker 1945; docs/benchmarks.md, Scenes R2).
   const double table[14][4] = {
       {0.2, 0.00265, 0.06636, 0.0996}, {0.4, 0.01035, 0.13098, 0.1972}, {0.6, 0.02249, 0.19235, 0.2907},
       {0.8, 0.03817, 0.24945, 0.3791}, {1, 0.05643, 0.30172, 0.4614},   {1.5, 0.10794, 0.41098, 0.6395},

@@ -1,5 +1,5 @@
 // Robot FK / IK by shooting against the collocation solver (kinematics.hpp) on the Stewart-Gough
-// scenes R5a and R5b (/work/shared/scenes/README.md): two independent discretisations of the same
+// scenes R5a and R5b (docs/benchmarks.md, Scenes): two independent discretisations of the same
 // RobotModel, both at tight settings, must give the same platform poses, inputs and rod wrenches.
 #define BOOST_TEST_MODULE shooting_robots
 #include <boost/test/unit_test.hpp>
@@ -99,7 +99,7 @@ void check_against_collocation(const RobotSolution& c, const RobotSolution& s, c
   BOOST_TEST(dm < 1e-6 * mmax, what << ": rod moments differ by " << dm << " N m (max " << mmax << ")");
 }
 
-/// Balance of the platform computed here from the rods' tip states (DESIGN.md §3, platform mass at
+/// Balance of the platform computed here from the rods' tip states (docs/design.md §3, platform mass at
 /// its origin in R5a): m g - sum n(L) = 0 and - sum (m(L) + (p(L) - x) x n(L)) = 0.
 void check_platform_balance(const RobotModel& m, const RobotSolution& s) {
   Vec3 F = m.platforms()[0].mass * m.gravity(), M = Vec3::Zero();

@@ -102,7 +102,7 @@ BOOST_AUTO_TEST_CASE(slender_stiff_buckling_and_looping_cantilevers) {
         RodModel m = steel_cantilever(slenderness);
         c.load(m);
         RodSolveOptions o;
-        // Degree 4, 16 elements: resolves two loops (DESIGN.md default degree, refined for the loops).
+        // Degree 4, 16 elements: resolves two loops (refined for the loops).
         o.discretization = {f, 4, 16};
         o.tolerance = 1e-10;
         RodSolution sol;

@@ -54,7 +54,7 @@ struct Consistency {
 };
 
 /// Recomputes, from the RobotSolution alone (and the model), what a converged result must satisfy.
-/// Sign conventions (kinematics.hpp, DESIGN.md §3): the rod exerts +n(0), +m(0) on its start link at
+/// Sign conventions (kinematics.hpp, docs/design.md §3): the rod exerts +n(0), +m(0) on its start link at
 /// p(0) and -n(L), -m(L) on its end link at p(L); platform balance about the platform origin x:
 ///   m g + F_ext + sum_start n(0) - sum_end n(L) = 0,
 ///   (R c) x m g + sum (r_load x F + T) + sum_start [m(0) + (p(0) - x) x n(0)]

@@ -1,7 +1,7 @@
 #pragma once
-// Residual blocks of the robot assembly (DESIGN.md §3; internal header of pcr::robots):
+// Residual blocks of the robot assembly (docs/design.md §3; internal header of pcr::robots):
 //  - CouplingBlock: a rod end held in a link frame (the 7 end equations of its coupling kind, with
-//    the target frame = link pose * attachment, DESIGN.md §1);
+//    the target frame = link pose * attachment, docs/design.md §1);
 //  - PlatformBalanceBlock: force and moment balance of a platform about its origin, and |Q|^2 = 1;
 //  - PoseTargetBlock: IK target on a platform-carried frame (position and/or orientation).
 #include <array>

@@ -1,7 +1,7 @@
 #pragma once
 // Quaternions q = [w, x, y, z] (scalar first, Hamilton product) and the rotation they define.
 //
-// R(q) = R_unit(q) / |q|^2 is a rotation for every q != 0 (DESIGN.md §1); R_unit is the usual
+// R(q) = R_unit(q) / |q|^2 is a rotation for every q != 0 (docs/design.md §1); R_unit is the usual
 // quadratic form, equal to R(q) when |q| = 1. Its first and second derivatives with respect to the
 // four components of q are what the collocation Jacobians need.
 #include <array>

@@ -1,6 +1,6 @@
 #pragma once
 // The Jacobian of a square problem with respect to its free (not fixed) variables, for the implicit
-// function theorem and for stability monitoring (DESIGN.md §4: the sign of det J along a quasi-static
+// function theorem and for stability monitoring (docs/design.md §4: the sign of det J along a quasi-static
 // path changes where the path crosses a fold or a bifurcation, e.g. a buckling load).
 #include <Eigen/SparseCore>
 #include <vector>

@@ -1,5 +1,5 @@
 #pragma once
-// Interior-point solve of a Problem with Ipopt (hidden: no Ipopt header here; DESIGN.md §5).
+// Interior-point solve of a Problem with Ipopt (hidden: no Ipopt header here; docs/design.md §5).
 //   min f(x) (0 without objective terms)  s.t.  c_l <= c(x) <= c_u,  x_l <= x <= x_u.
 // One IpoptApplication is initialised per solver and reused for every solve; with warm_start the
 // previous primal-dual solution seeds the next solve. Fixed variables are constants at the values the

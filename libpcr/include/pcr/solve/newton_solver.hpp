@@ -1,6 +1,6 @@
 #pragma once
 // Damped Newton for square, equality-only problems c(x) = c_l (= c_u), no objective, no bounds on the
-// free variables (DESIGN.md §5 "skip what a scene does not need"). Fixed variables are constants: they
+// free variables (docs/design.md §5 "skip what a scene does not need"). Fixed variables are constants: they
 // keep the values they have in the x passed to solve() (write Problem::fix_variable's values there).
 //   J dx = -(c(x) - c_l)   (LU: pattern analysed once, numeric factorisation per iteration)
 //   x <- x + alpha dx,  alpha = 1, 1/2, ... until |r(x + alpha dx)|_2 <= (1 - armijo alpha) |r(x)|_2

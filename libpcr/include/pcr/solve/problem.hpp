@@ -1,5 +1,5 @@
 #pragma once
-// A nonlinear problem built from variable blocks and residual blocks (DESIGN.md §5):
+// A nonlinear problem built from variable blocks and residual blocks (docs/design.md §5):
 //   find x with  c_l <= c(x) <= c_u,  x_l <= x <= x_u,  minimising f(x) (zero when no objective terms).
 // The description is fixed once built; values live in a separate vector x (size num_variables()).
 // The global sparse Jacobian pattern is the union of the blocks' dense (block rows x variable block)

@@ -1,5 +1,5 @@
 #pragma once
-// Forward and inverse kinematics of a robot (DESIGN.md §4) on its assembly.
+// Forward and inverse kinematics of a robot (docs/design.md §4) on its assembly.
 //  - ForwardKinematics: inputs -> platform poses, rod shapes and end wrenches (square system;
 //    Newton by default). Each solve is warm-started from the previous solution; a failed solve is
 //    retried by continuation in the inputs from the last converged state, then from the default inputs.

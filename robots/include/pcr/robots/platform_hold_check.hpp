@@ -1,5 +1,5 @@
 #pragma once
-// Structural well-posedness of an assembly (DESIGN.md §3). The rod and platform equations always count
+// Structural well-posedness of an assembly (docs/design.md §3). The rod and platform equations always count
 // square (7 per rod end, 7 per platform), so what can still go wrong is rank: a platform whose 6 DOF
 // are not all held by the kinematic couplings of its rods (e.g. only spherical or free ends, a single
 // collar) leaves the assembled Jacobian singular. The check models each rod as rigid between its

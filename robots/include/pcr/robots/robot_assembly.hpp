@@ -1,5 +1,5 @@
 #pragma once
-// The multibody system of a robot (DESIGN.md §3) as one Problem:
+// The multibody system of a robot (docs/design.md §3) as one Problem:
 //   unknowns  — per rod: control points (+ length), per platform: pose [x (3), Q (4)], per moving
 //               URDF joint: its value;
 //   equations — per rod: its collocation equations; per attached rod end: the 7 coupling equations
@@ -34,7 +34,7 @@ struct AssemblyOptions {
   bool use_model_hints = true;
   /// Formulation of rods without a model hint chosen by slenderness (formulation_by_slenderness()):
   /// primal (7 instead of 13 unknowns per control point) only for thick rods, mixed otherwise (the
-  /// primal form locks for slender rods, DESIGN.md §2). Off: discretization.formulation for all.
+  /// primal form locks for slender rods, docs/design.md §2). Off: discretization.formulation for all.
   bool formulation_by_slenderness = true;
   double primal_min_gyration_ratio = 1.0 / 16.0;  ///< threshold of gyration_ratio() for primal
   /// Mixed rods at the midpoints (MixedPoints::Midpoints) are solved in the condensed form instead

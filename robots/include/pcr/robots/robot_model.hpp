@@ -1,5 +1,5 @@
 #pragma once
-// Immutable description of a parallel continuum robot (DESIGN.md §3): the URDF link tree (fixed base,
+// Immutable description of a parallel continuum robot (docs/design.md §3): the URDF link tree (fixed base,
 // actuated joints, floating platforms), the Cosserat rods joining links, gravity, external loads and the
 // actuation inputs. Built by the URDF loader (urdf_loader.hpp) or in code; the solver keeps its own
 // per-evaluation buffers. SI units; "world" is the frame of the base (root) link.
@@ -91,7 +91,7 @@ struct ActuationInput {
 };
 
 /// Number of kinematic constraints a coupling puts on the relative motion of the two links a rod joins
-/// (the Dirichlet part of its 7 end equations, DESIGN.md §1): clamped 6, collar 5, spherical 3, free 0.
+/// (the Dirichlet part of its 7 end equations, docs/design.md §1): clamped 6, collar 5, spherical 3, free 0.
 int kinematic_constraint_count(RodEndKind coupling);
 
 class RobotModel {
@@ -141,7 +141,7 @@ class RobotModel {
   Pose attachment_pose(const RodAttachment& attachment, const VecX& joint_values,
                        const std::vector<Pose>& platform_poses) const;
 
-  /// Assembly counts (DESIGN.md §3): each platform adds 7 unknowns (x, Q) and 7 equations (6 balance +
+  /// Assembly counts (docs/design.md §3): each platform adds 7 unknowns (x, Q) and 7 equations (6 balance +
   /// |Q|^2 = 1); each rod end adds 7 boundary/coupling equations, of which kinematic_constraint_count
   /// hold the links together.
   int platform_unknown_count() const { return 7 * static_cast<int>(platforms_.size()); }

@@ -1,5 +1,5 @@
 #pragma once
-// One Cosserat rod discretised by isogeometric collocation (DESIGN.md §2; Weeger, Yeung & Dunn 2017).
+// One Cosserat rod discretised by isogeometric collocation (docs/design.md §2; Weeger, Yeung & Dunn 2017).
 //
 // p(u), q(u) (and in the mixed form n(u), m(u)) are B-splines of degree p >= 2 on an open knot vector
 // over u in [0, 1], s = L u. Each control point is one variable block: [P (3), Q (4)] in the primal
@@ -30,7 +30,7 @@ namespace collocation {
 class RodForm;
 }
 
-/// - Primal: p, q; n, m from the constitutive law (locks for slender rods, DESIGN.md §2).
+/// - Primal: p, q; n, m from the constitutive law (locks for slender rods, docs/design.md §2).
 /// - Mixed: p, q, n, m all splines; balance and constitutive laws collocated.
 /// - Condensed: the balance laws integrate in closed form, n(s) = n - f s and
 ///   m(s) = h - (p(s) - c) x n(s) - l s - (integral_0^s (p - c)) x f with the constant unknowns n, h
@@ -53,7 +53,7 @@ const char* to_string(RodFormulation formulation);
 /// two constitutive laws); the unit-norm rows |q|^2 - 1 stay at the n - 2 interior Greville points.
 ///  - Midpoints (default): at the n - 1 midpoints (tau_i + tau_{i+1}) / 2, so each first-order field
 ///    equation has n - 1 rows and the 6 + 6 end conditions complete it, as for a shooting method.
-///  - Greville (Weeger, Yeung & Dunn 2017; DESIGN.md §2): balance laws at the n - 2 interior points,
+///  - Greville (Weeger, Yeung & Dunn 2017; docs/design.md §2): balance laws at the n - 2 interior points,
 ///    constitutive laws at all n. The forces n(u) then have a second mode besides the constant one
 ///    that the balance rows do not see; only the compliant constitutive rows fix it, weakly when
 ///    n = p + E is odd. Measured (README "Mixed collocation points"): errors 100-1000x larger at

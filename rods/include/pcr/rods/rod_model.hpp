@@ -1,5 +1,5 @@
 #pragma once
-// Description of one Cosserat rod (DESIGN.md §1): geometry, stiffness, intrinsic strains, loads and
+// Description of one Cosserat rod (docs/design.md §1): geometry, stiffness, intrinsic strains, loads and
 // the conditions at its two ends. Shared by the collocation rods and the shooting reference, so that
 // both solve exactly the same problem. SI units; vectors in the world frame unless named _body.
 #include <functional>
@@ -33,7 +33,7 @@ struct CrossSection {
   static CrossSection rectangle(double width, double height);
 };
 
-/// Kind of condition at a rod end (DESIGN.md §1; Dirichlet = kinematic, Neumann = loads).
+/// Kind of condition at a rod end (docs/design.md §1; Dirichlet = kinematic, Neumann = loads).
 enum class RodEndKind {
   Clamped,    ///< p = position, R = R(orientation)                           (Dirichlet)
   Collar,     ///< p = position, d3 parallel to R(orientation) e3, m . d3 = moment . d3 (free in torsion)

@@ -28,7 +28,7 @@ struct RodSolveOptions {
   bool check_stability = false;
 };
 
-/// Stability indicator (DESIGN.md §4): the sign of det J (the Jacobian of the collocation system with
+/// Stability indicator (docs/design.md §4): the sign of det J (the Jacobian of the collocation system with
 /// respect to the free unknowns) at the solution against its sign in the unloaded state (load factor 0,
 /// where the straight initial guess is the solution and is stable). det J vanishes where an equilibrium
 /// path crosses a fold or a bifurcation (a zero eigenvalue of the second variation of the energy), so

@@ -1,14 +1,14 @@
 #pragma once
 // Forward and inverse kinematics of a RobotModel by shooting (Black, Till & Rucker 2018, "Parallel
 // continuum robots: modeling, analysis, and actuation-based force sensing", IEEE T-RO 34(1);
-// DESIGN.md §6): the independent reference of the collocation solver (kinematics.hpp).
+// docs/design.md §6): the independent reference of the collocation solver (kinematics.hpp).
 //
 // Unknowns: for every rod its base wrench n(0), m(0) (world frame; the base is clamped), for FK every
 // platform pose (position x and a world rotation vector increment: R <- exp(hat(dtheta)) R), for IK
 // the inputs (the platform poses are the targets, so the system is square when the model has 6 inputs
 // per platform). Residuals: each rod's tip coupling against the platform pose (clamped: position +
 // 2 vec(q_e); collar: position, the two components of R_T^T d3 normal to the frame axis, m(L) . d3 = 0;
-// spherical: position, m(L) = 0) and each platform's balance (DESIGN.md §3)
+// spherical: position, m(L) = 0) and each platform's balance (docs/design.md §3)
 //   F_ext + m g - sum n(L) = 0,
 //   M_ext + (x_c - x) x m g + (r_F - x) x F_ext - sum (m(L) + (p(L) - x) x n(L)) = 0.
 // Newton (the shared loop, pcr/solve/newton_loop.hpp) with the Jacobian from the variational

@@ -1,5 +1,5 @@
 #pragma once
-// The 7 boundary equations at a rod end (DESIGN.md §1), from p, q, n, m at that end. Shared by the
+// The 7 boundary equations at a rod end (docs/design.md §1), from p, q, n, m at that end. Shared by the
 // single-rod end conditions (constant target frame) and the robot couplings (target frame = link
 // pose * attachment, itself unknown). Dirichlet (kinematic) conditions fix p and q (or parts of them);
 // Neumann conditions fix n and m. Sign: n, m are the force and moment that the part s+ exerts on s-,

@@ -1,12 +1,12 @@
 #pragma once
 // The Cosserat rod equations at one collocation point, written once for double and Dual<N> scalars
-// (DESIGN.md §1-2). Shared by pcr::rods and the robot couplings in pcr::robots.
+// (docs/design.md §1-2). Shared by pcr::rods and the robot couplings in pcr::robots.
 //
 // Frames: p, n, m, f, l in the world frame; strains eps, kappa and stiffness in the body frame.
 // Orientation: R(q) = R_unit(q) / |q|^2 and the body curvature in quaternion form
 //   kappa = 2 vec(conj(q) (x) q') / |q|^2          (R' = R hat(kappa); the |q| factor drops out)
 //   kappa' = 2 vec(conj(q) (x) q'') / |q|^2 - 4 (q . q') vec(conj(q) (x) q') / |q|^4
-// which equals vee(R^T R') = [<d2',d3>, <d3',d1>, <d1',d2>] (DESIGN.md; not the slide's <d3',d2>).
+// which equals vee(R^T R') = [<d2',d3>, <d3',d1>, <d1',d2>] (docs/design.md §1).
 // Every residual is made dimensionless with the rod's reference scales (see PointConstants). Each
 // kernel's local vector z is named once by its layout struct (layout.hpp), right above the kernel.
 #include <Eigen/Core>

@@ -1,5 +1,5 @@
 #pragma once
-// The Cosserat rod as an initial value problem in s (DESIGN.md §1, §6), for the shooting reference.
+// The Cosserat rod as an initial value problem in s (docs/design.md §1, §6), for the shooting reference.
 //
 // State y = [p (3), q (4, [w,x,y,z]), n (3), m (3)] (world frame, 13 numbers). With R = R(q) and the
 // body-frame strains

@@ -1,5 +1,5 @@
 #pragma once
-// Shooting-method solution of one rod's boundary value problem (DESIGN.md §6): the six unknown base
+// Shooting-method solution of one rod's boundary value problem (docs/design.md §6): the six unknown base
 // quantities z are found by Newton (the shared loop pcr/solve/newton_loop.hpp; Jacobian from the
 // variational equations, backtracking line search), with a Levenberg-Marquardt step when Newton stalls and
 // load stepping (continuation in a load factor with warm starts) when the full load fails. Independent of the
@@ -20,7 +20,7 @@
 //   spherical: p(L) - p_bar, m(L) - moment
 //   free:      n(L) - force, m(L) - moment
 // Every pairing that RodModel::validate accepts is supported (at least one end clamped). A collar
-// honours the torsional part of its applied moment (m . d3 = moment . d3; DESIGN.md's m . d3 = 0 is
+// honours the torsional part of its applied moment (m . d3 = moment . d3; docs/design.md's m . d3 = 0 is
 // the unloaded case).
 //
 // Strategy: Newton from the warm start, or else from the unloaded rod (clamped base: n(0) = m(0) = 0;
