@@ -1,6 +1,6 @@
-// Run time against error of single collocation rods (docs/design.md §2) on scenes R1 (end moment, phi = 2 pi),
-// R2 (Bisshopp-Drucker, alpha = 10) and R3 (exact helix) of docs/benchmarks.md (Scenes), over the degree p
-// and the number of elements E, for both formulations (primal, mixed) and both solver paths (Newton,
+// Run time against error of single collocation rods (docs/design.md §2) on scenes R1 (end moment, phi = 2
+// pi), R2 (Bisshopp-Drucker, alpha = 10) and R3 (exact helix) of docs/benchmarks.md (Scenes), over the degree
+// p and the number of elements E, for both formulations (primal, mixed) and both solver paths (Newton,
 // Ipopt); scenes in benchmarks/common/rod_scenes.hpp. Errors (exact_error there): max over 201 points of
 // |p_h(s) - p(s)| against the analytic centerline (R1, R3), or
 // |p_h(L) - p(L)| against the elliptic-integral elastica tip (R2 with EA = GA = 1e14 EI / L^2: the
