@@ -66,6 +66,8 @@ int kinematic_constraint_count(RodEndKind coupling) {
     case RodEndKind::Clamped: return 6;
     case RodEndKind::Collar: return 5;
     case RodEndKind::Spherical: return 3;
+    case RodEndKind::Universal: return 4;
+    case RodEndKind::Revolute: return 5;
     case RodEndKind::Free: return 0;
   }
   return 0;

@@ -60,6 +60,8 @@ const char* to_string(RodEndKind kind) {
     case RodEndKind::Clamped: return "clamped";
     case RodEndKind::Collar: return "collar";
     case RodEndKind::Spherical: return "spherical";
+    case RodEndKind::Universal: return "universal";
+    case RodEndKind::Revolute: return "revolute";
     case RodEndKind::Free: return "free";
   }
   return "unknown";

@@ -2,12 +2,18 @@
 
 #include <cmath>
 
+#include "pcr/core/error.hpp"
 #include "pcr/math/quaternion.hpp"
 #include "pcr/math/so3.hpp"
 
 namespace pcr {
 namespace shooting {
 namespace {
+
+// Universal and revolute ends: rejected until the shooting reference implements them.
+[[noreturn]] void reject_joint_end() {
+  throw_input_error("shooting: universal and revolute rod ends are not implemented yet");
+}
 
 Quat times_pure(const Quat& a, const Vec3& u) {
   return quat_multiply(a, Quat(0.0, u[0], u[1], u[2]));
@@ -82,6 +88,9 @@ void enforce_base(const RodEnd& base, RodStateVector& y0) {
       p = base.position;
       m = -base.moment;
       break;
+    case RodEndKind::Universal:
+    case RodEndKind::Revolute:
+      reject_joint_end();
     case RodEndKind::Free:
       n = -base.force;
       m = -base.moment;
@@ -146,6 +155,9 @@ void base_tangents(const RodEnd& base, const RodStateVector& y0, RodStateWithTan
         Y.col(1 + j).segment<3>(RodStateIndex::n) = e;
         rotation_column(4 + j, e);
         break;
+      case RodEndKind::Universal:
+      case RodEndKind::Revolute:
+        reject_joint_end();
       case RodEndKind::Free:
         Y.col(1 + j).segment<3>(RodStateIndex::p) = e;
         rotation_column(4 + j, e);
@@ -179,6 +191,9 @@ void retract_base(const RodEnd& base, const Vec6& dz, RodStateVector& y0) {
       y0.segment<3>(RodStateIndex::n) += a;
       q = quat_multiply(Quat(q), quat_from_rotation_vector(b)).normalized();
       break;
+    case RodEndKind::Universal:
+    case RodEndKind::Revolute:
+      reject_joint_end();
     case RodEndKind::Free:
       y0.segment<3>(RodStateIndex::p) += a;
       q = quat_multiply(Quat(q), quat_from_rotation_vector(b)).normalized();
@@ -225,6 +240,9 @@ Vec6 tip_residual(const RodEnd& tip, const RodStateVector& y) {
       break;
     }
     case RodEndKind::Spherical: r << p - tip.position, m - tip.moment; break;
+    case RodEndKind::Universal:
+    case RodEndKind::Revolute:
+      reject_joint_end();
     case RodEndKind::Free: r << n - tip.force, m - tip.moment; break;
   }
   return r;
@@ -261,6 +279,9 @@ Mat6 tip_residual_jacobian(const RodEnd& tip, const RodStateWithTangents& Y) {
         break;
       }
       case RodEndKind::Spherical: dr << dp, dm; break;
+      case RodEndKind::Universal:
+      case RodEndKind::Revolute:
+        reject_joint_end();
       case RodEndKind::Free: dr << dn, dm; break;
     }
     J.col(j) = dr;
@@ -275,6 +296,9 @@ Vec6 residual_scale(const RodEnd& tip, const RodOde& ode) {
     case RodEndKind::Clamped: scale << L, L, L, 1, 1, 1; break;
     case RodEndKind::Collar: scale << L, L, L, 1, 1, M; break;
     case RodEndKind::Spherical: scale << L, L, L, M, M, M; break;
+    case RodEndKind::Universal:
+    case RodEndKind::Revolute:
+      reject_joint_end();
     case RodEndKind::Free: scale << F, F, F, M, M, M; break;
   }
   return scale;
@@ -287,6 +311,9 @@ Vec6 unknown_scale(const RodEnd& base, const RodOde& ode) {
     case RodEndKind::Clamped: scale << F, F, F, M, M, M; break;
     case RodEndKind::Collar: scale << F, F, F, M, M, 1; break;
     case RodEndKind::Spherical: scale << F, F, F, 1, 1, 1; break;
+    case RodEndKind::Universal:
+    case RodEndKind::Revolute:
+      reject_joint_end();
     case RodEndKind::Free: scale << L, L, L, 1, 1, 1; break;
   }
   return scale;

@@ -16,6 +16,10 @@ namespace pcr {
 struct Link {
   std::string name;
   int parent_joint = -1;  ///< index into RobotModel::joints(); -1 for the base (root) link
+  /// URDF <inertial> of a link that is not a platform [kg], centre of mass in the link frame [m]: its
+  /// weight loads the passive joints between it and the world (and the platform carrying it, if any).
+  double mass = 0.0;
+  Vec3 center_of_mass = Vec3::Zero();
 };
 
 enum class JointType { Fixed, Prismatic, Revolute, Continuous, Floating };
@@ -33,8 +37,14 @@ struct Joint {
   Pose origin;                      ///< joint frame in the parent link frame
   Vec3 axis = Vec3::UnitX();        ///< unit vector in the joint frame
   double lower = 0.0, upper = 0.0;  ///< URDF limits [m or rad]; +-infinity for continuous joints
-  double default_value = 0.0;       ///< initial value, within [lower, upper]
+  double default_value = 0.0;       ///< initial value, within [lower, upper] (a passive joint's initial guess)
   int value_index = -1;             ///< index into the joint-value vector (moving joints only), else -1
+  /// A passive joint is not an input: its value is an unknown of the assembly, balanced by the
+  /// generalised force of everything beyond it (rods, loads, weights) and its spring,
+  /// Q_beyond - stiffness (q - rest) = 0 [N or N m; stiffness in N/m or N m/rad].
+  bool passive = false;
+  double stiffness = 0.0;
+  double rest = 0.0;
 };
 
 /// A link whose parent joint is floating: its world pose (position x, unit quaternion Q) is unknown.
@@ -52,6 +62,7 @@ struct RodAttachment {
   int link = -1;
   Pose frame;  ///< rod end frame in the link frame (its z axis is the rod tangent d3)
   RodEndKind coupling = RodEndKind::Free;
+  Vec3 axis = Vec3::UnitX();  ///< universal: first joint axis; revolute: pin axis (unit, in `frame`)
 };
 
 enum class RodFormulationHint { Auto, Primal, Mixed };
@@ -91,7 +102,8 @@ struct ActuationInput {
 };
 
 /// Number of kinematic constraints a coupling puts on the relative motion of the two links a rod joins
-/// (the Dirichlet part of its 7 end equations, docs/design.md §1): clamped 6, collar 5, spherical 3, free 0.
+/// (the Dirichlet part of its 7 end equations, docs/design.md §1): clamped 6, collar 5, revolute 5,
+/// universal 4, spherical 3, free 0.
 int kinematic_constraint_count(RodEndKind coupling);
 
 class RobotModel {

@@ -38,14 +38,25 @@ enum class RodEndKind {
   Clamped,    ///< p = position, R = R(orientation)                           (Dirichlet)
   Collar,     ///< p = position, d3 parallel to R(orientation) e3, m . d3 = moment . d3 (free in torsion)
   Spherical,  ///< p = position, m = applied moment (0 for a pin)
-  Free        ///< applied force and moment (dead loads)                    (Neumann)
+  /// Hooke joint: p = position; the rod frame turns only about a first axis a fixed in the end frame and
+  /// a second axis b fixed in the rod (b = e3 x a / |e3 x a| in the rod's body frame, i.e. normal to a and
+  /// to the tangent when the rod frame equals the end frame); no moment about a or b (the applied moment
+  /// aside); torsion is transmitted.
+  Universal,
+  /// Pin: p = position; the rod frame turns only about the axis a fixed in the end frame; no moment about a
+  /// (the applied moment aside).
+  Revolute,
+  Free  ///< applied force and moment (dead loads)                    (Neumann)
 };
 const char* to_string(RodEndKind kind);
 
 struct RodEnd {
   RodEndKind kind = RodEndKind::Free;
   Vec3 position = Vec3::Zero();         ///< prescribed position (Clamped, Collar, Spherical)
-  Quat orientation = Quat(1, 0, 0, 0);  ///< prescribed frame (Clamped) or axis R e3 (Collar)
+  Quat orientation = Quat(1, 0, 0, 0);  ///< prescribed frame (Clamped, Universal, Revolute) or axis R e3 (Collar)
+  /// Universal: the first joint axis a; Revolute: the pin axis a. A unit vector in the end frame
+  /// (`orientation`), not along its z axis for Universal.
+  Vec3 axis = Vec3::UnitX();
   /// External force and moment applied *to the rod* at this end (world frame). With n, m the force
   /// and moment that the part s+ exerts on s-: at s = L, n = force, m = moment; at s = 0,
   /// n = -force, m = -moment.

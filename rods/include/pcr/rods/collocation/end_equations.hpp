@@ -4,6 +4,7 @@
 // pose * attachment, itself unknown). Dirichlet (kinematic) conditions fix p and q (or parts of them);
 // Neumann conditions fix n and m. Sign: n, m are the force and moment that the part s+ exerts on s-,
 // so an external load (F, M) on the rod gives n = F, m = M at s = L and n = -F, m = -M at s = 0.
+#include "pcr/core/error.hpp"
 #include "pcr/rods/collocation/equations.hpp"
 #include "pcr/rods/rod_model.hpp"
 
@@ -30,6 +31,9 @@ void end_conditions(RodEndKind kind, const EndTarget<T>& target, const EndLoads&
                     T* r) {
   const double L0 = c.length_scale, F0 = c.force_scale, M0 = c.moment_scale;
   switch (kind) {
+    case RodEndKind::Universal:
+    case RodEndKind::Revolute:
+      throw_input_error("collocation rod end: the ", to_string(kind), " coupling is not implemented yet");
     case RodEndKind::Clamped:
       for (int i = 0; i < 3; ++i) r[i] = (p[i] - target.position[i]) / L0;
       for (int i = 0; i < 4; ++i) r[3 + i] = q[i] - target.orientation[i];
