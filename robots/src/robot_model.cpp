@@ -290,9 +290,14 @@ void RobotModel::build_rods() {
     inputs_.push_back(
         {e.name, ActuationInput::Kind::RodLength, r, e.length_lower, e.length_upper, e.length_default});
   }
+  passive_joints_.clear();
   for (int j = 0; j < static_cast<int>(joints_.size()); ++j) {
     const Joint& joint = joints_[j];
     if (joint.value_index < 0) continue;
+    if (joint.passive) {
+      passive_joints_.push_back(j);
+      continue;
+    }
     inputs_.push_back(
         {joint.name, ActuationInput::Kind::JointValue, j, joint.lower, joint.upper, joint.default_value});
   }

@@ -122,8 +122,10 @@ class RobotModel {
   const std::vector<Platform>& platforms() const { return platforms_; }
   const std::vector<RodElement>& rods() const { return rods_; }
   const std::vector<ExternalLoad>& loads() const { return loads_; }
-  /// Order: actuated rod lengths (rod order), then moving joints (joint order).
+  /// Order: actuated rod lengths (rod order), then moving joints that are not passive (joint order).
   const std::vector<ActuationInput>& inputs() const { return inputs_; }
+  /// Indices (into joints()) of the passive joints, in joint order.
+  const std::vector<int>& passive_joints() const { return passive_joints_; }
   const Vec3& gravity() const { return gravity_; }
   int base_link() const { return base_link_; }
 
@@ -170,6 +172,7 @@ class RobotModel {
   std::vector<RodElement> rods_;
   std::vector<ExternalLoad> loads_;
   std::vector<ActuationInput> inputs_;
+  std::vector<int> passive_joints_;
   Vec3 gravity_ = Vec3::Zero();
   int base_link_ = -1;
   int joint_value_count_ = 0;

@@ -35,6 +35,7 @@ struct RobotSolution {
   VecX inputs;                  ///< in the model's input order
   std::vector<Pose> platforms;  ///< in the model's platform order
   std::vector<RodResult> rods;
+  VecX passive_joints;  ///< passive joint values [m or rad], in RobotModel::passive_joints() order
   /// Collocation only: with KinematicsOptions::check_stability: sign of det J, J = dR/dx of
   /// the FK system (inputs fixed at the solution's) over its free unknowns at the solution: +1 or -1; 0 when
   /// not checked, not converged or singular.
