@@ -49,6 +49,33 @@ void check_options(const JacobianCheckOptions& o) {
           ") must be >= 0 and not both 0");
 }
 
+// Central differences of f() (a vector-valued function of the touched blocks x) over every entry j of
+// every block k, each compared by `judge` with analytic(k, j, i) = d f_i / d x[k][j]; the worst entry is
+// recorded in result (row i, block k, column j).
+template <typename F, typename Analytic>
+void compare_with_central_differences(std::vector<VecX>& x, const std::vector<VariableId>& ids,
+                                      const JacobianCheckOptions& options, F f, Analytic analytic,
+                                      EntryJudge& judge, JacobianCheckResult& result) {
+  for (size_t k = 0; k < x.size(); ++k) {
+    for (int j = 0; j < x[k].size(); ++j) {
+      const double x0 = x[k][j], h = step_for(x0, options);
+      x[k][j] = x0 + h;
+      const VecX plus = f();
+      x[k][j] = x0 - h;
+      const VecX minus = f();
+      x[k][j] = x0;
+      for (int i = 0; i < plus.size(); ++i) {
+        if (judge.consider(analytic(static_cast<int>(k), j, i), (plus[i] - minus[i]) / (2.0 * h))) {
+          result.row = result.global_row = i;
+          result.variable_index = static_cast<int>(k);
+          result.variable = ids[k];
+          result.column = j;
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 
 std::string JacobianCheckResult::to_string() const {
@@ -81,31 +108,20 @@ JacobianCheckResult check_block_jacobian(const ResidualBlock& block, const std::
     jacobians[k] = RowMajorMatX::Constant(rows, values[k].size(), std::nan(""));
     jacobian_ptrs[k] = jacobians[k].data();
   }
-  VecX c(rows), c_plus(rows), c_minus(rows);
+  VecX c(rows);
   block.evaluate(value_ptrs.data(), c.data(), jacobian_ptrs.data());
 
   JacobianCheckResult result;
   result.block_name = block.name();
   result.block_kind = block.kind();
   EntryJudge judge{options, result};
-  for (size_t k = 0; k < ids.size(); ++k) {
-    for (int j = 0; j < x[k].size(); ++j) {
-      const double x0 = x[k][j], h = step_for(x0, options);
-      x[k][j] = x0 + h;
-      block.evaluate(value_ptrs.data(), c_plus.data(), nullptr);
-      x[k][j] = x0 - h;
-      block.evaluate(value_ptrs.data(), c_minus.data(), nullptr);
-      x[k][j] = x0;
-      for (int r = 0; r < rows; ++r) {
-        if (judge.consider(jacobians[k](r, j), (c_plus[r] - c_minus[r]) / (2.0 * h))) {
-          result.row = result.global_row = r;
-          result.variable_index = static_cast<int>(k);
-          result.variable = ids[k];
-          result.column = j;
-        }
-      }
-    }
-  }
+  const auto residual = [&]() {
+    VecX r(rows);
+    block.evaluate(value_ptrs.data(), r.data(), nullptr);
+    return r;
+  };
+  compare_with_central_differences(
+      x, ids, options, residual, [&](int k, int j, int i) { return jacobians[k](i, j); }, judge, result);
   return result;
 }
 
@@ -149,24 +165,9 @@ JacobianCheckResult check_block_hessian(const ResidualBlock& block, const std::v
   result.block_name = block.name();
   result.block_kind = block.kind();
   EntryJudge judge{options, result};
-  for (size_t k = 0; k < ids.size(); ++k) {
-    for (int j = 0; j < x[k].size(); ++j) {
-      const double x0 = x[k][j], h = step_for(x0, options);
-      x[k][j] = x0 + h;
-      const VecX g_plus = weighted_gradient();
-      x[k][j] = x0 - h;
-      const VecX g_minus = weighted_gradient();
-      x[k][j] = x0;
-      for (int i = 0; i < n; ++i) {
-        if (judge.consider(H(i, start[k] + j), (g_plus[i] - g_minus[i]) / (2.0 * h))) {
-          result.row = result.global_row = i;
-          result.variable_index = static_cast<int>(k);
-          result.variable = ids[k];
-          result.column = j;
-        }
-      }
-    }
-  }
+  compare_with_central_differences(
+      x, ids, options, weighted_gradient, [&](int k, int j, int i) { return H(i, start[k] + j); }, judge,
+      result);
   return result;
 }
 
