@@ -4,7 +4,7 @@
 //    (0, 0.02, 0.48) m in 100 steps of (0, 0.001, 0.001) m and back), solves per second, and the cost
 //    of the operations a warm solve is made of (printed).
 // Error: max over the inputs (IK) or platform position (FK) against a reference computed in the same
-// run with 32 elements of degree 5 (converged to < 1e-9 m, see README). The mixed form at the default
+// run with 32 elements of degree 5 (converged to < 1e-9 m, docs/benchmarks.md). The mixed form at the default
 // degree and midpoints (method collocation-mixed-newton) over the element counts and, as baselines of
 // those choices, degree 5 and the Greville points of Weeger et al. (collocation-mixed-greville-newton;
 // MixedPoints). Scenes:
@@ -113,36 +113,11 @@ void print_operation_costs(const InverseKinematics& ik) {
       lu.nonzeros_l(), lu.nonzeros_u());
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  BenchCsv csv(argc > 1 ? argv[1] : "benchmarks/results/robots.csv");
-  if (!csv.ok()) {
-    std::cerr << "bench_robots: cannot write " << csv.path() << "\n";
-    return 2;
-  }
-  const auto r5a = load_r5a();
-  const auto r5b = load_r5b();
-  // The default degree (AssemblyOptions) over the element counts, and at 8 elements the baselines of
-  // the default's choice: degree 5 (the default before), degree 5 at the Greville points (before that).
-  const int p = AssemblyOptions().discretization.degree;
-  const MixedPoints mid = MixedPoints::Midpoints;
-  // Rows named "condensed": the condensed form (the default for these rods since 2026-11-23; R5a's
-  // rods carry gravity, so n, m also read the integral of p); the mixed rows are its baseline.
-  const RodFormulation condensed = RodFormulation::Condensed;
-  const Mesh meshes[] = {{p, 2, mid},
-                         {p, 4, mid},
-                         {p, 8, mid},
-                         {p, 8, mid, true},
-                         {p, 16, mid},
-                         {5, 8, mid},
-                         {5, 8, MixedPoints::Greville},
-                         {p, 2, mid, false, 1e-10, condensed},
-                         {p, 4, mid, false, 1e-10, condensed},
-                         {p, 8, mid, false, 1e-10, condensed},
-                         {p, 16, mid, false, 1e-10, condensed},
-                         {5, 8, mid, false, 1e-10, condensed}};
-
+// R5a: cold FK at the default inputs and cold IK to the scene target (a new solver object per solve) for each
+// mesh, against references at 32 elements of degree 5; prints the assembly time of each mesh. False when a
+// reference does not converge.
+bool run_r5a_cold(BenchCsv& csv, const std::shared_ptr<const RobotModel>& r5a,
+                  const std::vector<Mesh>& meshes) {
   const Pose target = r5a_target();
   InverseKinematics ik_ref(r5a, {platform_target()}, options(5, 32, 1e-11));
   const RobotSolution ik_reference = ik_ref.solve({target});
@@ -150,7 +125,7 @@ int main(int argc, char** argv) {
   const RobotSolution fk_reference = fk_ref.solve(r5a->default_input_values());
   if (!ik_reference.summary.converged() || !fk_reference.summary.converged()) {
     std::cerr << "bench_robots: reference did not converge\n";
-    return 1;
+    return false;
   }
   for (const Mesh& mesh : meshes) {
     const char* points = label_of(mesh);
@@ -164,7 +139,6 @@ int main(int argc, char** argv) {
     for (const std::string problem : {"FK", "IK"}) {
       double error = 0;
       int iterations = 0;
-      // cold: a new solver object each time (assembly included)
       const Timing t = time_repeated(
           [&] {
             RobotSolution s;
@@ -186,8 +160,100 @@ int main(int argc, char** argv) {
                   settings_of(mesh).c_str(), points, error, t.median * 1e3);
     }
   }
+  return true;
+}
 
-  // R5b teleoperation: reference inputs along the path at 32 elements, then timed warm solves.
+// R5b reference inputs along the path at 32 elements of degree 5 (empty when a solve fails).
+std::vector<VecX> r5b_reference(const std::shared_ptr<const RobotModel>& r5b, const std::vector<Pose>& path) {
+  std::vector<VecX> reference;
+  InverseKinematics ik(r5b, {platform_target()}, options(5, 32, 1e-11));
+  for (const Pose& p : path) {
+    const RobotSolution s = ik.solve({p});
+    if (!s.summary.converged()) {
+      std::cerr << "bench_robots: R5b reference failed at " << p.position.transpose() << "\n";
+      return {};
+    }
+    reference.push_back(s.inputs);
+  }
+  return reference;
+}
+
+// R5b: warm-started IK along the path, five passes (1,000 solves: the fresh Jacobians, 1 in ~50, average
+// out), timed per solve; the error is the largest input error against the reference over all passes.
+void run_r5b_path(BenchCsv& csv, const std::shared_ptr<const RobotModel>& r5b, const std::vector<Pose>& path,
+                  const std::vector<VecX>& reference, const Mesh& mesh) {
+  InverseKinematics ik(
+      r5b, {platform_target()},
+      options(mesh.degree, mesh.elements, mesh.tolerance, mesh.points, mesh.sparse_lu, mesh.formulation));
+  ik.solve({path[0]});  // start of the path (cold), not timed
+  std::vector<double> times;
+  double error = 0;
+  int iterations = 0, failures = 0, jacobians = 0;
+  std::string passes;  // solves/s and fresh Jacobians of each pass (the first starts from a cold solve)
+  for (int pass = 0; pass < 5; ++pass) {
+    double pass_time = 0.0;
+    const int pass_jacobians = jacobians;
+    for (size_t k = 1; k < path.size(); ++k) {
+      const auto t0 = Clock::now();
+      const RobotSolution s = ik.solve({path[k]});
+      times.push_back(seconds_since(t0));
+      pass_time += times.back();
+      iterations += s.summary.iterations;
+      jacobians += s.summary.jacobian_evaluations;
+      if (!s.summary.converged()) ++failures;
+      error = std::max(error, (s.inputs - reference[k]).lpNorm<Eigen::Infinity>());
+    }
+    char text[64];
+    std::snprintf(text, sizeof text, "%s%.0f/s (%d)", pass == 0 ? "" : ", ", (path.size() - 1) / pass_time,
+                  jacobians - pass_jacobians);
+    passes += text;
+  }
+  const Timing t = summarise(times);
+  if (failures > 0) error = NAN;
+  csv.row("R5b_teleop_IK_warm", method_of(mesh), settings_of(mesh), error, t,
+          double(iterations) / times.size());
+  std::printf(
+      "R5b warm IK %-17s %-9s  max input error %.2e m  median %.3f ms/solve, mean %.3f ms/solve (%.0f "
+      "solves/s), %.2f it/solve, %d fresh Jacobians in %zu solves%s\n",
+      settings_of(mesh).c_str(), label_of(mesh), error, t.median * 1e3, t.mean * 1e3, 1.0 / t.mean,
+      double(iterations) / times.size(), jacobians, times.size(), failures ? "  FAILURES" : "");
+  std::printf("  per pass: %s (fresh Jacobians)\n", passes.c_str());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  BenchCsv csv(argc > 1 ? argv[1] : "benchmarks/results/robots.csv");
+  if (!csv.ok()) {
+    std::cerr << "bench_robots: cannot write " << csv.path() << "\n";
+    return 2;
+  }
+  const auto r5a = load_r5a();
+  const auto r5b = load_r5b();
+  // The default degree (AssemblyOptions) over the element counts, and at 8 elements the baselines of
+  // the default's choice: degree 5, degree 5 at the Greville points.
+  const int p = AssemblyOptions().discretization.degree;
+  const MixedPoints mid = MixedPoints::Midpoints;
+  // Rows named "condensed": the condensed form (the default for these rods; R5a's rods carry gravity, so
+  // n, m also read the integral of p); the mixed rows are its baseline.
+  const RodFormulation condensed = RodFormulation::Condensed;
+  if (!run_r5a_cold(csv, r5a,
+                    {{p, 2, mid},
+                     {p, 4, mid},
+                     {p, 8, mid},
+                     {p, 8, mid, true},
+                     {p, 16, mid},
+                     {5, 8, mid},
+                     {5, 8, MixedPoints::Greville},
+                     {p, 2, mid, false, 1e-10, condensed},
+                     {p, 4, mid, false, 1e-10, condensed},
+                     {p, 8, mid, false, 1e-10, condensed},
+                     {p, 16, mid, false, 1e-10, condensed},
+                     {5, 8, mid, false, 1e-10, condensed}}))
+    return 1;
+
+  // R5b teleoperation: the cost of a warm solve's operations, reference inputs along the path at 32
+  // elements, then timed warm solves.
   const std::vector<Pose> path = r5b_path();
   for (const Mesh& mesh :
        {Mesh{p, 8, mid}, Mesh{5, 8, mid}, Mesh{p, 16, mid}, Mesh{p, 8, mid, false, 1e-10, condensed},
@@ -200,20 +266,10 @@ int main(int argc, char** argv) {
                 to_string(mesh.formulation), problem.num_rows(), problem.jacobian_nonzeros());
     if (ik.solve({path[0]}).summary.converged()) print_operation_costs(ik);
   }
-  std::vector<VecX> reference;
-  {
-    InverseKinematics ik(r5b, {platform_target()}, options(5, 32, 1e-11));
-    for (const Pose& p : path) {
-      const RobotSolution s = ik.solve({p});
-      if (!s.summary.converged()) {
-        std::cerr << "bench_robots: R5b reference failed at " << p.position.transpose() << "\n";
-        return 1;
-      }
-      reference.push_back(s.inputs);
-    }
-  }
+  const std::vector<VecX> reference = r5b_reference(r5b, path);
+  if (reference.empty()) return 1;
   // Greville points only at 8 elements (at 4, warm Newton solves fail along the path and each failure
-  // goes to Ipopt, minutes; README, "Mixed collocation points").
+  // goes to Ipopt, minutes).
   const Mesh path_meshes[] = {
       {p, 2, mid},
       {p, 4, mid},
@@ -224,7 +280,7 @@ int main(int argc, char** argv) {
       {5, 16, mid},
       {5, 16, mid, true},  // sparse LU baseline
       {5, 8, MixedPoints::Greville},
-      // a looser Newton tolerance (README "Using the pcr tool": T = 100 x the accuracy)
+      // a looser Newton tolerance (docs/cli.md: T = 100 x the accuracy)
       {p, 8, mid, false, 1e-6},
       {p, 8, mid, true, 1e-6},
       {5, 16, mid, false, 1e-6},
@@ -241,44 +297,7 @@ int main(int argc, char** argv) {
       // the last solutions, so 1e-6 leaves ~8e-8 m there)
       {5, 14, mid, false, 1e-7, condensed},
       {5, 16, mid, false, 1e-7, condensed}};
-  for (const Mesh& mesh : path_meshes) {
-    InverseKinematics ik(
-        r5b, {platform_target()},
-        options(mesh.degree, mesh.elements, mesh.tolerance, mesh.points, mesh.sparse_lu, mesh.formulation));
-    ik.solve({path[0]});  // start of the path (cold), not timed
-    std::vector<double> times;
-    double error = 0;
-    int iterations = 0, failures = 0, jacobians = 0;
-    std::string passes;  // solves/s and fresh Jacobians of each pass (the first starts from a cold solve)
-    for (int pass = 0; pass < 5; ++pass) {  // 1,000 solves: the fresh Jacobians (1 in ~50) average out
-      double pass_time = 0.0;
-      const int pass_jacobians = jacobians;
-      for (size_t k = 1; k < path.size(); ++k) {
-        const auto t0 = Clock::now();
-        const RobotSolution s = ik.solve({path[k]});
-        times.push_back(seconds_since(t0));
-        pass_time += times.back();
-        iterations += s.summary.iterations;
-        jacobians += s.summary.jacobian_evaluations;
-        if (!s.summary.converged()) ++failures;
-        error = std::max(error, (s.inputs - reference[k]).lpNorm<Eigen::Infinity>());
-      }
-      char text[64];
-      std::snprintf(text, sizeof text, "%s%.0f/s (%d)", pass == 0 ? "" : ", ", (path.size() - 1) / pass_time,
-                    jacobians - pass_jacobians);
-      passes += text;
-    }
-    const Timing t = summarise(times);
-    if (failures > 0) error = NAN;
-    csv.row("R5b_teleop_IK_warm", method_of(mesh), settings_of(mesh), error, t,
-            double(iterations) / times.size());
-    std::printf(
-        "R5b warm IK %-17s %-9s  max input error %.2e m  median %.3f ms/solve, mean %.3f ms/solve (%.0f "
-        "solves/s), %.2f it/solve, %d fresh Jacobians in %zu solves%s\n",
-        settings_of(mesh).c_str(), label_of(mesh), error, t.median * 1e3, t.mean * 1e3, 1.0 / t.mean,
-        double(iterations) / times.size(), jacobians, times.size(), failures ? "  FAILURES" : "");
-    std::printf("  per pass: %s (fresh Jacobians)\n", passes.c_str());
-  }
+  for (const Mesh& mesh : path_meshes) run_r5b_path(csv, r5b, path, reference, mesh);
   std::cout << "wrote " << csv.path() << "\n";
   return 0;
 }
