@@ -93,23 +93,11 @@ double binomial(int n, int k) {
   return result;
 }
 
-}  // namespace
-
-SplineCurve SplineCurve::with_elevated_degree(int times) const {
-  require(times >= 0, "SplineCurve::with_elevated_degree: times = ", times, " must be >= 0");
-  if (times == 0) return *this;
-  // The NURBS Book A5.9 (DegreeElevateCurve): extract each Bezier segment by knot insertion, elevate it
-  // (eq. 5.36), and remove the inserted knots again while writing the new control points.
-  const int p = knots_.degree(), t = times, ph = p + t, ph2 = ph / 2;
-  const std::vector<double>& U = knots_.knots();
-  const int m = static_cast<int>(U.size()) - 1;  // last knot index
-  const MatX Pw = homogeneous_points();
-  const Eigen::Index dim = Pw.rows();
-  const int new_num_basis = knots_.num_basis() + t * knots_.num_elements();
-  std::vector<double> Uh(U.size() + t * (knots_.num_elements() + 1));
-  MatX Qw = MatX::Zero(dim, new_num_basis);
-
-  // Bezier elevation coefficients: bezalfs(i, j) = C(p, j) C(t, i-j) / C(ph, i).
+// Bezier degree elevation coefficients (The NURBS Book eq. 5.36): row i, column j of the (p + t + 1) x
+// (p + 1) matrix is C(p, j) C(t, i - j) / C(p + t, i), the weight of the degree-p point j in the elevated
+// point i.
+MatX bezier_elevation_coefficients(int p, int t) {
+  const int ph = p + t, ph2 = ph / 2;
   MatX bezalfs = MatX::Zero(ph + 1, p + 1);
   bezalfs(0, 0) = bezalfs(ph, p) = 1.0;
   for (int i = 1; i <= ph2; ++i) {
@@ -119,6 +107,41 @@ SplineCurve SplineCurve::with_elevated_degree(int times) const {
   }
   for (int i = ph2 + 1; i <= ph - 1; ++i)
     for (int j = std::max(0, i - t); j <= std::min(p, i); ++j) bezalfs(i, j) = bezalfs(ph - i, p - j);
+  return bezalfs;
+}
+
+// Inserts the knot ub r times into the current segment bpts (knots U from index a, ub of multiplicity mul),
+// leaving the Bezier segment [ua, ub] in bpts and the leftmost points of the next segment in next_bpts
+// (The NURBS Book A5.9, the knot insertion step).
+void insert_to_bezier(const std::vector<double>& U, int p, int a, int mul, int r, double ua, double ub,
+                      std::vector<double>& alfs, MatX& bpts, MatX& next_bpts) {
+  const double numer = ub - ua;
+  for (int k = p; k > mul; --k) alfs[k - mul - 1] = numer / (U[a + k] - ua);
+  for (int j = 1; j <= r; ++j) {
+    const int save = r - j, s = mul + j;
+    for (int k = p; k >= s; --k)
+      bpts.col(k) = alfs[k - s] * bpts.col(k) + (1.0 - alfs[k - s]) * bpts.col(k - 1);
+    next_bpts.col(save) = bpts.col(p);
+  }
+}
+
+}  // namespace
+
+SplineCurve SplineCurve::with_elevated_degree(int times) const {
+  require(times >= 0, "SplineCurve::with_elevated_degree: times = ", times, " must be >= 0");
+  if (times == 0) return *this;
+  // The NURBS Book A5.9 (DegreeElevateCurve): extract each Bezier segment by knot insertion, elevate it
+  // (eq. 5.36), and remove the inserted knots again while writing the new control points.
+  const int p = knots_.degree(), t = times, ph = p + t;
+  const std::vector<double>& U = knots_.knots();
+  const int m = static_cast<int>(U.size()) - 1;  // last knot index
+  const MatX Pw = homogeneous_points();
+  const Eigen::Index dim = Pw.rows();
+  const int new_num_basis = knots_.num_basis() + t * knots_.num_elements();
+  std::vector<double> Uh(U.size() + t * (knots_.num_elements() + 1));
+  MatX Qw = MatX::Zero(dim, new_num_basis);
+
+  const MatX bezalfs = bezier_elevation_coefficients(p, t);
 
   MatX bpts = Pw.leftCols(p + 1);                        // current Bezier segment, degree p
   MatX ebpts = MatX::Zero(dim, ph + 1);                  // elevated segment, degree ph
@@ -137,16 +160,7 @@ SplineCurve SplineCurve::with_elevated_degree(int times) const {
     r = p - mul;  // insert ub r times to reach multiplicity p
     const int lbz = oldr > 0 ? (oldr + 2) / 2 : 1;
     const int rbz = r > 0 ? ph - (r + 1) / 2 : ph;
-    if (r > 0) {  // knot insertion to get the Bezier segment [ua, ub]
-      const double numer = ub - ua;
-      for (int k = p; k > mul; --k) alfs[k - mul - 1] = numer / (U[a + k] - ua);
-      for (int j = 1; j <= r; ++j) {
-        const int save = r - j, s = mul + j;
-        for (int k = p; k >= s; --k)
-          bpts.col(k) = alfs[k - s] * bpts.col(k) + (1.0 - alfs[k - s]) * bpts.col(k - 1);
-        next_bpts.col(save) = bpts.col(p);
-      }
-    }
+    if (r > 0) insert_to_bezier(U, p, a, mul, r, ua, ub, alfs, bpts, next_bpts);
     for (int i = lbz; i <= ph; ++i) {  // degree-elevate the Bezier segment
       ebpts.col(i).setZero();
       for (int j = std::max(0, i - t); j <= std::min(p, i); ++j) ebpts.col(i) += bezalfs(i, j) * bpts.col(j);
