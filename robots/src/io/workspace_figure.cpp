@@ -70,8 +70,9 @@ FigureOutcome write_workspace_png(const std::string& png_path, const RobotModel&
          << "set title 'platform positions'\n"
          << "set xlabel 'x [mm]'\nset ylabel 'y [mm]'\nset zlabel 'z [mm]' rotate parallel\n"
          << "set view equal xyz\nset view 62, 32, 1.1\nset xyplane relative 0\n"
+         << "unset colorbox\n"  // the projections carry the colour scale
          << "splot 'points.dat' using 1:2:3:4 with points pt 7 ps 0.35 lc palette\n"
-         << "set size ratio -1\n"
+         << "set colorbox\nset size ratio -1\n"
          << "set title 'top view'\nset xlabel 'x [mm]'\nset ylabel 'y [mm]'\n"
          << "plot 'points.dat' using 1:2:4 with points pt 7 ps 0.35 lc palette\n"
          << "set title 'front view'\nset ylabel 'z [mm]'\nset yrange " << range(2) << "\n"
