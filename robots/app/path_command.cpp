@@ -86,8 +86,10 @@ void write_path_table(std::ostream& out, const pcr::RobotModel& model,
     iterations += s.iterations;
     failed += s.converged() ? 0 : 1;
   }
+  char total[64];
+  std::snprintf(total, sizeof total, "%.3g s", seconds);
   out << "model " << model.name() << ": " << points.size() << " points, " << points.size() - failed
-      << " converged, " << failed << " failed; " << iterations << " iterations in " << seconds << " s\n";
+      << " converged, " << failed << " failed; " << iterations << " iterations in " << total << "\n";
 }
 
 int write_path_outputs(const SolveArguments& args, const pcr::RobotModel& model,
