@@ -1,4 +1,4 @@
-// pcr fk MODEL [--input NAME=VALUE ...] [options]: forward kinematics.
+// pcr fk MODEL [--input NAME=VALUE ...] [--link NAME ...] [options]: forward kinematics.
 #include "solve_command.hpp"
 
 namespace pcr_app {
@@ -10,10 +10,13 @@ int fk_command(int argc, const char* const* argv, std::ostream& out, std::ostrea
     return kConverged;
   }
   const std::shared_ptr<const pcr::RobotModel> model = load_model(args.model_path);
+  for (const std::string& link : args.links) model->link_index(link);  // InputError naming an unknown link
   const pcr::VecX inputs = resolve_inputs(*model, args.inputs);
   pcr::ForwardKinematics fk(model, kinematics_options(args));
   const pcr::RobotSolution solution = fk.solve(inputs);
-  const int written = write_outputs(args, *model, solution, {}, "forward kinematics", out, err);
+  const pcr::SolutionExtras extras =
+      solution_extras(fk, solution, args.links, wants_json(args), err, "pcr fk: ");
+  const int written = write_outputs(args, *model, solution, {}, extras, "forward kinematics", out, err);
   if (!solution.summary.converged()) {
     err << "pcr fk: the solve failed: " << solution.summary.brief_report() << "\n";
     return kSolveFailed;

@@ -18,6 +18,9 @@ void print_usage(std::ostream& out) {
       << "commands:\n"
       << "  fk MODEL [--input NAME=VALUE ...]        forward kinematics (pcr fk --help)\n"
       << "  ik MODEL --target LINK=x,y,z[,qw,qx,qy,qz]  inverse kinematics (pcr ik --help)\n"
+      << "  path MODEL --inputs FILE.csv | --targets FILE.csv   FK or IK along the rows (pcr path --help)\n"
+      << "  workspace MODEL --samples N [--threads T]   reachable poses from random inputs (pcr workspace\n"
+      << "                     --help)\n"
       << "  demo [--out DIR]   spline basis tables and a sample curve; with --out also DIR/basis.csv\n"
       << "exit codes: 0 success, 1 solve failed, 2 bad usage or input, 3 an output could not be written,\n"
       << "            4 out of memory or an internal error (a message on stderr)\n";
@@ -45,14 +48,17 @@ int main(int argc, char** argv) {
     return argc < 2 ? pcr_app::kBadUsage : 0;
   }
   const std::string command = argv[1];
-  if (command != "fk" && command != "ik" && command != "demo") {
-    std::cerr << "pcr: unknown command '" << command << "' (commands: fk, ik, demo)\n";
+  if (command != "fk" && command != "ik" && command != "path" && command != "workspace" &&
+      command != "demo") {
+    std::cerr << "pcr: unknown command '" << command << "' (commands: fk, ik, path, workspace, demo)\n";
     return pcr_app::kBadUsage;
   }
   try {
     if (command == "demo") return demo_command(argc, argv);
-    return command == "fk" ? pcr_app::fk_command(argc, argv, std::cout, std::cerr)
-                           : pcr_app::ik_command(argc, argv, std::cout, std::cerr);
+    if (command == "fk") return pcr_app::fk_command(argc, argv, std::cout, std::cerr);
+    if (command == "ik") return pcr_app::ik_command(argc, argv, std::cout, std::cerr);
+    if (command == "path") return pcr_app::path_command(argc, argv, std::cout, std::cerr);
+    return pcr_app::workspace_command(argc, argv, std::cout, std::cerr);
   } catch (const pcr_app::UsageError& e) {
     std::cerr << "pcr " << command << ": " << e.what() << "\n";
   } catch (const pcr::InputError& e) {  // bad model file, target link, ...

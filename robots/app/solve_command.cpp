@@ -67,31 +67,68 @@ pcr::KinematicsOptions kinematics_options(const SolveArguments& args) {
   return options;
 }
 
+bool wants_json(const SolveArguments& args) {
+  return args.json || !args.json_file.empty();
+}
+
+pcr::SolutionExtras solution_extras(const pcr::ForwardKinematics& fk, const pcr::RobotSolution& solution,
+                                    const std::vector<std::string>& links, bool derivatives,
+                                    std::ostream& err, const std::string& prefix) {
+  const pcr::RobotModel& model = fk.assembly().model();
+  pcr::SolutionExtras extras;
+  extras.links = pcr::link_poses(model, solution, links);
+  if (!derivatives || !solution.summary.converged() || !fk.has_solution()) return extras;
+  try {
+    extras.input_jacobian = fk.input_jacobian();
+    for (size_t p = 0; p < model.platforms().size(); ++p)
+      extras.compliance.push_back(fk.compliance(static_cast<int>(p)));
+  } catch (const pcr::InputError& e) {  // a singular Jacobian: no derivative there
+    extras.input_jacobian.resize(0, 0);
+    extras.compliance.clear();
+    err << prefix << "no input_jacobian and compliance in the JSON: " << e.what() << "\n";
+  }
+  return extras;
+}
+
+void make_parent_directories(const std::string& file) {
+  const std::filesystem::path parent = std::filesystem::path(file).parent_path();
+  std::error_code ignored;  // a directory that cannot be made shows up when the file is written
+  if (!file.empty() && !parent.empty()) std::filesystem::create_directories(parent, ignored);
+}
+
+std::ofstream open_output(const std::string& option, const std::string& file) {
+  make_parent_directories(file);
+  std::ofstream stream(file);
+  if (!stream) throw pcr::InputError(option + ": cannot write '" + file + "'");
+  return stream;
+}
+
+void close_output(std::ofstream& stream, const std::string& option, const std::string& file) {
+  stream.close();
+  if (stream.fail()) throw pcr::InputError(option + ": error while writing '" + file + "'");
+}
+
 int write_outputs(const SolveArguments& args, const pcr::RobotModel& model,
                   const pcr::RobotSolution& solution, const std::vector<pcr::LinkTarget>& targets,
-                  const std::string& title, std::ostream& out, std::ostream& err) {
+                  const pcr::SolutionExtras& extras, const std::string& title, std::ostream& out,
+                  std::ostream& err) {
   const std::string prefix = "pcr " + args.command + ": ";
   int code = kConverged;
-  for (const std::string* file : {&args.json_file, &args.vtk_path, &args.png_path}) {
-    const std::filesystem::path parent = std::filesystem::path(*file).parent_path();
-    std::error_code ignored;  // a directory that cannot be made shows up when the file is written
-    if (!file->empty() && !parent.empty()) std::filesystem::create_directories(parent, ignored);
-  }
+  for (const std::string* file : {&args.vtk_path, &args.png_path}) make_parent_directories(*file);
   try {
     if (args.json) {
-      const int non_finite = pcr::write_solution_json(out, model, solution, targets);
+      const int non_finite = pcr::write_solution_json(out, model, solution, targets, extras);
       if (non_finite > 0) err << prefix << non_finite << " non-finite values written as null\n";
     } else {
       pcr::write_solution_table(out, model, solution);
+      pcr::write_link_table(out, extras.links);
     }
     if (!args.json_file.empty()) {
-      std::ofstream file(args.json_file);
-      if (!file) throw pcr::InputError("--json-file: cannot write '" + args.json_file + "'");
-      pcr::write_solution_json(file, model, solution, targets);
-      file.close();
-      if (file.fail()) throw pcr::InputError("--json-file: error while writing '" + args.json_file + "'");
+      std::ofstream file = open_output("--json-file", args.json_file);
+      pcr::write_solution_json(file, model, solution, targets, extras);
+      close_output(file, "--json-file", args.json_file);
     }
-    if (!args.csv_dir.empty()) pcr::write_solution_csv(args.csv_dir, model, solution);
+    if (!args.csv.empty()) pcr::write_solution_csv(args.csv, model, solution);
     if (!args.vtk_path.empty()) pcr::write_solution_vtk(args.vtk_path, model, solution);
   } catch (const pcr::InputError& e) {
     err << prefix << e.what() << "\n";

@@ -122,6 +122,16 @@ void JsonWriter::value(int number) {
   out_ << number;
 }
 
+void JsonWriter::value(std::int64_t number) {
+  before_value();
+  out_ << number;
+}
+
+void JsonWriter::value(std::uint64_t number) {
+  before_value();
+  out_ << number;
+}
+
 void JsonWriter::value(bool flag) {
   before_value();
   out_ << (flag ? "true" : "false");

@@ -1,3 +1,4 @@
+#include "pcr/math/so3.hpp"
 #include "pcr/robots/io/json_writer.hpp"
 #include "pcr/robots/io/solution_writers.hpp"
 #include "pcr/solve/solve_summary.hpp"
@@ -22,6 +23,85 @@ void write_wrench(JsonWriter& json, const char* name, const Vec3& force, const V
   json.key("moment");
   json.array(moment);
   json.end_object();
+}
+
+void write_pose_members(JsonWriter& json, const Pose& pose) {
+  json.key("position");
+  json.array(pose.position);
+  json.key("quaternion_wxyz");
+  json.array(VecX(pose.orientation));
+  json.key("rpy");
+  json.array(pose.rpy());
+}
+
+/// A matrix as an array of its rows.
+void write_matrix(JsonWriter& json, const MatX& matrix) {
+  json.begin_array();
+  for (int r = 0; r < matrix.rows(); ++r) json.array(VecX(matrix.row(r).transpose()));
+  json.end_array();
+}
+
+/// Names of the pose components a target selects: x, y, z (world), rx, ry, rz (target frame).
+std::vector<std::string> selected_component_names(const LinkTarget& target) {
+  static const char* const names[6] = {"x", "y", "z", "rx", "ry", "rz"};
+  std::vector<std::string> out;
+  for (int i = 0; i < 6; ++i) {
+    const bool position = i < 3;
+    if (target.components[i] &&
+        (position ? target.mode != LinkTarget::Mode::Orientation : target.mode != LinkTarget::Mode::Position))
+      out.push_back(names[i]);
+  }
+  return out;
+}
+
+/// One target as given, its link's reached pose and the distance between them.
+void write_target(JsonWriter& json, const LinkTarget& target, const Pose& reached) {
+  json.begin_object();
+  json.key("mode");
+  json.value(mode_name(target.mode));
+  json.key("components");
+  json.begin_array();
+  for (const std::string& name : selected_component_names(target)) json.value(name);
+  json.end_array();
+  if (target.mode != LinkTarget::Mode::Orientation) {
+    json.key("position");
+    json.array(target.pose.position);
+  }
+  if (target.mode != LinkTarget::Mode::Position) {
+    json.key("quaternion_wxyz");
+    json.array(VecX(target.pose.orientation));
+  }
+  json.key("reached_position");
+  json.array(reached.position);
+  json.key("reached_quaternion_wxyz");
+  json.array(VecX(reached.orientation));
+  json.key("position_error");
+  json.value((reached.position - target.pose.position).norm());
+  json.key("orientation_error");
+  json.value(rotation_angle_between(reached.rotation(), target.pose.rotation()));
+  json.end_object();
+}
+
+void write_derivatives(JsonWriter& json, const RobotModel& model, const SolutionExtras& extras) {
+  const size_t np = model.platforms().size();
+  if (extras.input_jacobian.size() > 0 && extras.input_jacobian.rows() == 6 * static_cast<int>(np)) {
+    json.key("input_jacobian");
+    json.begin_object();
+    for (size_t p = 0; p < np; ++p) {
+      json.key(model.platforms()[p].name);
+      write_matrix(json, extras.input_jacobian.middleRows(6 * static_cast<int>(p), 6));
+    }
+    json.end_object();
+  }
+  if (!extras.compliance.empty() && extras.compliance.size() == np) {
+    json.key("compliance");
+    json.begin_object();
+    for (size_t p = 0; p < np; ++p) {
+      json.key(model.platforms()[p].name);
+      write_matrix(json, extras.compliance[p]);
+    }
+    json.end_object();
+  }
 }
 
 void write_summary(JsonWriter& json, const SolveSummary& s) {
@@ -54,7 +134,20 @@ void write_summary(JsonWriter& json, const SolveSummary& s) {
 
 int write_solution_json(std::ostream& out, const RobotModel& model, const RobotSolution& solution,
                         const std::vector<LinkTarget>& targets) {
+  return write_solution_json(out, model, solution, targets, SolutionExtras{});
+}
+
+int write_solution_json(std::ostream& out, const RobotModel& model, const RobotSolution& solution,
+                        const std::vector<LinkTarget>& targets, const SolutionExtras& extras) {
   JsonWriter json(out);
+  write_solution_object(json, model, solution, targets, extras);
+  out << "\n";
+  return json.non_finite_count();
+}
+
+void write_solution_object(JsonWriter& json, const RobotModel& model, const RobotSolution& solution,
+                           const std::vector<LinkTarget>& targets, const SolutionExtras& extras) {
+  const bool top_level = json.depth() == 0;
   json.begin_object();
   json.key("model");
   json.value(model.name());
@@ -72,35 +165,32 @@ int write_solution_json(std::ostream& out, const RobotModel& model, const RobotS
   for (size_t p = 0; p < solution.platforms.size() && p < model.platforms().size(); ++p) {
     json.key(model.platforms()[p].name);
     json.begin_object();
-    json.key("position");
-    json.array(solution.platforms[p].position);
-    json.key("quaternion_wxyz");
-    json.array(VecX(solution.platforms[p].orientation));
-    json.key("rpy");
-    json.array(solution.platforms[p].rpy());
+    write_pose_members(json, solution.platforms[p]);
     json.end_object();
   }
   json.end_object();
-  if (!targets.empty()) {
-    json.key("targets");
+  if (!extras.links.empty()) {
+    json.key("links");
     json.begin_object();
-    for (const LinkTarget& target : targets) {
-      json.key(target.link);
+    for (const LinkPose& link : extras.links) {
+      json.key(link.link);
       json.begin_object();
-      json.key("mode");
-      json.value(mode_name(target.mode));
-      if (target.mode != LinkTarget::Mode::Orientation) {
-        json.key("position");
-        json.array(target.pose.position);
-      }
-      if (target.mode != LinkTarget::Mode::Position) {
-        json.key("quaternion_wxyz");
-        json.array(VecX(target.pose.orientation));
-      }
+      write_pose_members(json, link.pose);
       json.end_object();
     }
     json.end_object();
   }
+  if (!targets.empty()) {
+    json.key("targets");
+    json.begin_object();
+    const VecX q = joint_values_of_solution(model, solution);
+    for (const LinkTarget& target : targets) {
+      json.key(target.link);
+      write_target(json, target, model.link_pose(model.link_index(target.link), q, solution.platforms));
+    }
+    json.end_object();
+  }
+  write_derivatives(json, model, extras);
   json.key("rods");
   json.begin_object();
   for (const RodResult& rod : solution.rods) {
@@ -123,12 +213,12 @@ int write_solution_json(std::ostream& out, const RobotModel& model, const RobotS
   json.end_object();
   json.key("summary");
   write_summary(json, solution.summary);
-  // Counted before this member is written: the nulls above stand for NaN or infinite values.
-  json.key("non_finite_values");
-  json.value(json.non_finite_count());
+  if (top_level) {
+    // Counted before this member is written: the nulls above stand for NaN or infinite values.
+    json.key("non_finite_values");
+    json.value(json.non_finite_count());
+  }
   json.end_object();
-  out << "\n";
-  return json.non_finite_count();
 }
 
 }  // namespace pcr

@@ -35,7 +35,26 @@ VecX tidy(VecX v, double half_unit) {
   return v;
 }
 
+/// One pose row of the platforms' and links' tables.
+std::string pose_row(const std::string& name, const Pose& pose) {
+  const Vec3 x = tidy(pose.position * kMillimetre, 5e-4), rpy = tidy(pose.rpy() * kDegree, 5e-4);
+  const VecX q = tidy(pose.orientation, 5e-7);
+  return format("  %-14s %9.3f %9.3f %9.3f   %8.3f %8.3f %8.3f   %.6f %.6f %.6f %.6f\n", name.c_str(), x[0],
+                x[1], x[2], rpy[0], rpy[1], rpy[2], q[0], q[1], q[2], q[3]);
+}
+
+std::string pose_header(const char* title) {
+  return format("%-16s %9s %9s %9s   %8s %8s %8s   %s\n", title, "x [mm]", "y [mm]", "z [mm]", "roll",
+                "pitch", "yaw [deg]", "quaternion [w x y z]");
+}
+
 }  // namespace
+
+void write_link_table(std::ostream& out, const std::vector<LinkPose>& links) {
+  if (links.empty()) return;
+  out << pose_header("links:");
+  for (const LinkPose& link : links) out << pose_row(link.link, link.pose);
+}
 
 void write_solution_table(std::ostream& out, const RobotModel& model, const RobotSolution& solution) {
   const SolveSummary& s = solution.summary;
@@ -52,16 +71,9 @@ void write_solution_table(std::ostream& out, const RobotModel& model, const Robo
     }
   }
   if (!solution.platforms.empty()) {
-    out << format("%-16s %9s %9s %9s   %8s %8s %8s   %s\n", "platforms:", "x [mm]", "y [mm]", "z [mm]",
-                  "roll", "pitch", "yaw [deg]", "quaternion [w x y z]");
-    for (size_t p = 0; p < solution.platforms.size(); ++p) {
-      const Pose& pose = solution.platforms[p];
-      const Vec3 x = tidy(pose.position * kMillimetre, 5e-4), rpy = tidy(pose.rpy() * kDegree, 5e-4);
-      const VecX q = tidy(pose.orientation, 5e-7);
-      out << format("  %-14s %9.3f %9.3f %9.3f   %8.3f %8.3f %8.3f   %.6f %.6f %.6f %.6f\n",
-                    model.platforms()[p].name.c_str(), x[0], x[1], x[2], rpy[0], rpy[1], rpy[2], q[0], q[1],
-                    q[2], q[3]);
-    }
+    out << pose_header("platforms:");
+    for (size_t p = 0; p < solution.platforms.size(); ++p)
+      out << pose_row(model.platforms()[p].name, solution.platforms[p]);
   }
   out << format("%-16s %12s %15s %15s\n", "rods:", "length [mm]", "axial force [N]", "|n(0)| [N]");
   for (const RodResult& rod : solution.rods)

@@ -2,6 +2,7 @@
 // A small streaming JSON writer (RFC 8259) for results: objects, arrays, strings with full escaping,
 // numbers with 17 significant digits (round-trip exact for double). JSON has no NaN or infinity: a
 // non-finite number is written as null and counted (non_finite_count()), so callers can report it.
+#include <cstdint>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -29,12 +30,16 @@ class JsonWriter {
   void value(const char* text);
   void value(double number);  ///< null when not finite
   void value(int number);
+  void value(std::int64_t number);   ///< exact (JSON readers into doubles round past 2^53)
+  void value(std::uint64_t number);  ///< exact, as above
   void value(bool flag);
   void null();
   /// An array of numbers on one line, e.g. [1, 2, 3].
   void array(const VecX& numbers);
   void array(const Vec3& numbers) { array(VecX(numbers)); }
 
+  /// Objects and arrays open around the next value (0: it is the top-level value).
+  int depth() const { return static_cast<int>(stack_.size()); }
   /// Numbers written as null because they were NaN or infinite.
   int non_finite_count() const { return non_finite_; }
   /// Whether every opened object/array was closed and one top-level value was written.

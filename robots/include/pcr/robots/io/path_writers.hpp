@@ -1,0 +1,27 @@
+#pragma once
+// Writers of a path: solutions at consecutive points (`pcr path`, forward kinematics along input rows or
+// inverse kinematics along target rows). SI units, world frame; formats in docs/results_format.md.
+#include <ostream>
+#include <vector>
+
+#include "pcr/robots/io/solution_writers.hpp"
+
+namespace pcr {
+
+struct PathPoint {
+  RobotSolution solution;
+  std::vector<LinkTarget> targets;  ///< this point's targets (a path of targets); empty along inputs
+  SolutionExtras extras;
+};
+
+/// CSV, one row per point: point (from 0), the inputs by name, NAME.x, .y, .z, .qw, .qx, .qy, .qz per
+/// platform and per link of the first point's extras.links, LINK.position_error and
+/// LINK.orientation_error per target of the first point, then status, iterations, residual_max_abs,
+/// wall_time_seconds and message (quoted). Non-finite numbers are empty fields.
+void write_path_csv(std::ostream& out, const RobotModel& model, const std::vector<PathPoint>& points);
+
+/// JSON object {model, command: "path", points, failures, results: [one write_solution_object per
+/// point], non_finite_values}; returns how many numbers were not finite (written as null).
+int write_path_json(std::ostream& out, const RobotModel& model, const std::vector<PathPoint>& points);
+
+}  // namespace pcr

@@ -1,0 +1,75 @@
+#include "pcr/robots/io/path_writers.hpp"
+
+#include "csv_fields.hpp"
+#include "pcr/math/so3.hpp"
+#include "pcr/robots/io/json_writer.hpp"
+
+namespace pcr {
+
+using io_detail::csv_number;
+using io_detail::csv_pose;
+using io_detail::csv_pose_header;
+
+void write_path_csv(std::ostream& out, const RobotModel& model, const std::vector<PathPoint>& points) {
+  const std::vector<LinkPose> no_links;
+  const std::vector<LinkTarget> no_targets;
+  const std::vector<LinkPose>& links = points.empty() ? no_links : points.front().extras.links;
+  const std::vector<LinkTarget>& targets = points.empty() ? no_targets : points.front().targets;
+  out << "point";
+  for (const ActuationInput& input : model.inputs()) out << ',' << input.name;
+  for (const Platform& platform : model.platforms()) out << csv_pose_header(platform.name);
+  for (const LinkPose& link : links) out << csv_pose_header(link.link);
+  for (const LinkTarget& target : targets)
+    out << ',' << target.link << ".position_error," << target.link << ".orientation_error";
+  out << ",status,iterations,residual_max_abs,wall_time_seconds,message\n";
+  for (size_t k = 0; k < points.size(); ++k) {
+    const RobotSolution& s = points[k].solution;
+    out << k;
+    for (size_t i = 0; i < model.inputs().size(); ++i)
+      out << ',' << (static_cast<int>(i) < s.inputs.size() ? csv_number(s.inputs[static_cast<int>(i)]) : "");
+    for (size_t p = 0; p < model.platforms().size(); ++p)
+      out << (p < s.platforms.size() ? csv_pose(s.platforms[p]) : ",,,,,,");
+    for (size_t l = 0; l < links.size(); ++l)
+      out << (l < points[k].extras.links.size() ? csv_pose(points[k].extras.links[l].pose) : ",,,,,,");
+    const VecX q = joint_values_of_solution(model, s);
+    for (const LinkTarget& target : points[k].targets) {
+      const Pose reached = model.link_pose(model.link_index(target.link), q, s.platforms);
+      const bool position = target.mode != LinkTarget::Mode::Orientation;
+      const bool orientation = target.mode != LinkTarget::Mode::Position;
+      out << ',' << (position ? csv_number((reached.position - target.pose.position).norm()) : "") << ','
+          << (orientation ? csv_number(rotation_angle_between(reached.rotation(), target.pose.rotation()))
+                          : "");
+    }
+    out << ',' << to_string(s.summary.status) << ',' << s.summary.iterations << ','
+        << csv_number(s.summary.residual_max_abs) << ',' << csv_number(s.summary.wall_time_seconds) << ','
+        << io_detail::csv_quote(s.summary.message) << '\n';
+  }
+}
+
+int write_path_json(std::ostream& out, const RobotModel& model, const std::vector<PathPoint>& points) {
+  int failures = 0;
+  for (const PathPoint& point : points) failures += point.solution.summary.converged() ? 0 : 1;
+  JsonWriter json(out);
+  json.begin_object();
+  json.key("model");
+  json.value(model.name());
+  json.key("command");
+  json.value("path");
+  json.key("points");
+  json.value(static_cast<int>(points.size()));
+  json.key("failures");
+  json.value(failures);
+  json.key("results");
+  json.begin_array();
+  for (const PathPoint& point : points)
+    write_solution_object(json, model, point.solution, point.targets, point.extras);
+  json.end_array();
+  // Counted before this member is written: the nulls above stand for NaN or infinite values.
+  json.key("non_finite_values");
+  json.value(json.non_finite_count());
+  json.end_object();
+  out << "\n";
+  return json.non_finite_count();
+}
+
+}  // namespace pcr

@@ -1,0 +1,93 @@
+// CSV and JSON of a sampled workspace (workspace_writers.hpp).
+#include "pcr/robots/io/workspace_writers.hpp"
+#include "csv_fields.hpp"
+#include "pcr/robots/io/json_writer.hpp"
+
+namespace pcr {
+
+using io_detail::csv_number;
+
+void write_workspace_csv(std::ostream& out, const RobotModel& model, const WorkspaceResult& result) {
+  out << "sample";
+  for (const ActuationInput& input : model.inputs()) out << ',' << input.name;
+  for (const Platform& platform : model.platforms()) out << io_detail::csv_pose_header(platform.name);
+  out << ",status,iterations,residual_max_abs,wall_time_seconds,message\n";
+  for (const WorkspaceSample& s : result.samples) {
+    out << s.index;
+    for (int i = 0; i < s.inputs.size(); ++i) out << ',' << csv_number(s.inputs[i]);
+    for (size_t p = 0; p < model.platforms().size(); ++p)
+      out << (s.converged() && p < s.platforms.size() ? io_detail::csv_pose(s.platforms[p]) : ",,,,,,,");
+    out << ',' << to_string(s.status) << ',' << s.iterations << ',' << csv_number(s.residual_max_abs) << ','
+        << csv_number(s.wall_time_seconds) << ',' << io_detail::csv_quote(s.message) << '\n';
+  }
+}
+
+namespace {
+
+void write_sample(JsonWriter& json, const RobotModel& model, const WorkspaceSample& s) {
+  json.begin_object();
+  json.key("index");
+  json.value(s.index);
+  json.key("status");
+  json.value(to_string(s.status));
+  json.key("inputs");
+  json.array(s.inputs);
+  if (s.converged()) {
+    json.key("platforms");
+    json.begin_object();
+    for (size_t p = 0; p < model.platforms().size() && p < s.platforms.size(); ++p) {
+      json.key(model.platforms()[p].name);
+      json.begin_object();
+      json.key("position");
+      json.array(s.platforms[p].position);
+      json.key("quaternion_wxyz");
+      json.array(VecX(s.platforms[p].orientation));
+      json.end_object();
+    }
+    json.end_object();
+  }
+  json.key("iterations");
+  json.value(s.iterations);
+  json.key("residual_max_abs");
+  json.value(s.residual_max_abs);
+  json.key("message");
+  json.value(s.message);
+  json.end_object();
+}
+
+}  // namespace
+
+int write_workspace_json(std::ostream& out, const RobotModel& model, const WorkspaceResult& result) {
+  JsonWriter json(out);
+  json.begin_object();
+  json.key("model");
+  json.value(model.name());
+  json.key("seed");
+  json.value(result.seed);
+  json.key("first_sample");
+  json.value(result.first_sample);
+  json.key("samples");
+  json.value(static_cast<std::int64_t>(result.samples.size()));
+  json.key("failures");
+  json.value(result.failures);
+  json.key("threads");
+  json.value(result.threads);
+  json.key("wall_time_seconds");
+  json.value(result.wall_time_seconds);
+  json.key("inputs");
+  json.begin_array();
+  for (const ActuationInput& input : model.inputs()) json.value(input.name);
+  json.end_array();
+  json.key("points");
+  json.begin_array();
+  for (const WorkspaceSample& s : result.samples) write_sample(json, model, s);
+  json.end_array();
+  // Counted before this member is written: the nulls above stand for NaN or infinite values.
+  json.key("non_finite_values");
+  json.value(json.non_finite_count());
+  json.end_object();
+  out << "\n";
+  return json.non_finite_count();
+}
+
+}  // namespace pcr

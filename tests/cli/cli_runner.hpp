@@ -1,0 +1,72 @@
+#pragma once
+// Running the built pcr tool from the CLI tests (test_cli, test_cli_tools): each test executable defines
+// PCR_CLI_WORK_DIRECTORY, its own directory under the system's temporary one (emptied at the first use),
+// so that the executables can run at the same time.
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#ifndef PCR_CLI_WORK_DIRECTORY
+#error "define PCR_CLI_WORK_DIRECTORY (a directory name) before including cli_runner.hpp"
+#endif
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Run {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+std::string read_text(const fs::path& path) {
+  std::ifstream file(path);
+  std::ostringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+fs::path work_directory() {
+  static const fs::path dir = [] {
+    const fs::path d = fs::temp_directory_path() / PCR_CLI_WORK_DIRECTORY;
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+  }();
+  return dir;
+}
+
+/// Runs the built pcr tool with the given arguments (shell words), capturing stdout and stderr; `prefix`
+/// is run by the same shell first (e.g. a ulimit for the tool).
+Run run_pcr(const std::string& arguments, const std::string& prefix = "") {
+  const fs::path out = work_directory() / "stdout.txt", err = work_directory() / "stderr.txt";
+  const std::string command =
+      prefix + "'" + PCR_TOOL + "' " + arguments + " > '" + out.string() + "' 2> '" + err.string() + "'";
+  const int status = std::system(command.c_str());
+  Run run;
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  run.out = read_text(out);
+  run.err = read_text(err);
+  return run;
+}
+
+std::string model(const std::string& name) {
+  return std::string("'") + PCR_MODEL_DIR + "/" + name + "'";
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+std::string number(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.17g", x);
+  return buffer;
+}
+
+}  // namespace
