@@ -1,5 +1,5 @@
 # Installs what a downstream user needs: the libraries, public headers and CMake package (find_package(pcr)),
-# the pcr tool, the models and the documentation (README "A five-minute tour").
+# the pcr tool, the models and the documentation (README.md, "A five-minute tour").
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 

@@ -3,7 +3,7 @@
 # fields per row, positive times, and finite errors for the mixed Newton and both shooting methods, the
 # best of each below 1e-8. Bound: the errors are against R1's exact arc and deterministic; the quick
 # sweep's finest settings measured 7.1e-11 (mixed p=5 E=64), 8.7e-12 (RK4 N=640) and 8.1e-13
-# (Dormand-Prince 1e-12), and the orders of the methods (README: mixed p=5 order 6, RK4 order 4) put
+# (Dormand-Prince 1e-12), and the orders of the methods (docs/benchmarks.md "Convergence orders": mixed p=5 order 6, RK4 order 4) put
 # them far below 1e-8 (p=5 E=16 alone gives 7.1e-7 and 4^6 less at E=64): 1e-8 leaves a margin of >100x
 # while a wrong reference, sampling or solve shows as an error of the size of the discretisation or more.
 # usage: smoke_test.sh BENCH_ALL CSV

@@ -56,10 +56,10 @@ void print_solve_usage(std::ostream& out, const std::string& command) {
       << "                     d/L >= 1/4, else mixed solved in the condensed form: n, m from the\n"
       << "                     closed-form balance; mixed keeps the mixed unknowns)\n"
       << "  --mixed-points midpoints|greville   where the mixed form collocates its field equations\n"
-      << "                     (default midpoints; greville: the published scheme, README)\n"
+      << "                     (default midpoints; greville: the published scheme, docs/design.md)\n"
       << "  --tolerance T      max-abs of the dimensionless residuals (default 1e-10); a looser T saves\n"
       << "                     iterations, e.g. for many solves along a path: on the teleoperation\n"
-      << "                     robot (R5b) the solver added about 1e-2 T m to the inputs (README)\n";
+      << "                     robot (R5b) the solver added about 1e-2 T m to the inputs (docs/cli.md)\n";
   if (command != "workspace")
     out << "  --points N         centerline points per rod in the results (default 21)\n";
   out << "  --json             JSON to stdout instead of the table\n"

@@ -357,7 +357,7 @@ BOOST_AUTO_TEST_CASE(condensed_and_mixed_rods_give_the_same_kinematics) {
 BOOST_AUTO_TEST_CASE(condensed_and_mixed_rods_agree_under_gravity) {
   // R5a's rods carry gravity: there the condensed form (exact balance with the integral of p) is not the
   // mixed scheme but converges to the same solution. At the default mesh both are 1.8e-10 m (FK
-  // platform) and 1.7e-8 m (IK inputs) from a fine mixed reference (bench_robots, README "Robots"), so
+  // platform) and 1.7e-8 m (IK inputs) from a fine mixed reference (bench_robots, docs/benchmarks.md "Robots"), so
   // they differ by at most twice that: asserted 1e-9 m and 5e-8 m.
   const auto r5a = load("stewart_gough");
   const CondensedAndMixed both = condensed_and_mixed_fk(r5a, r5a->default_input_values());

@@ -3,7 +3,7 @@
 // under a large lateral tip force, a compressive dead load just below and just above the Euler load of
 // a clamped-free column (R4: P_cr = pi^2 EI / (4 L^2)) with a tiny lateral perturbation, and an end
 // moment rolling the rod into one and two full loops. What converges is printed as a Markdown table
-// (README "Stress tests"). Asserted for every case: a failure is explicit (status + message) and
+// (docs/benchmarks.md "Stress tests"). Asserted for every case: a failure is explicit (status + message) and
 // leaves finite values; a converged result is finite and satisfies the tip boundary condition.
 #define BOOST_TEST_MODULE hard_rods
 #include <boost/test/unit_test.hpp>

@@ -7,8 +7,8 @@ namespace pcr {
 // Natural column order: pcr's unknowns come rod by rod, control point after control point, so the
 // Jacobians are banded per rod with a few coupling columns; in that order the LU keeps the band.
 // COLAMD gave as much fill or more, up to 4x with the mixed form's midpoint collocation at 32-64
-// elements per rod (R5b, 64 elements: 1.44e6 against 0.36e6 factor nonzeros; README "Mixed
-// collocation points").
+// elements per rod (R5b, 64 elements: 1.44e6 against 0.36e6 factor nonzeros; docs/benchmarks.md,
+// "Midpoints against Greville points").
 struct SparseLu::Impl {
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::NaturalOrdering<int>> lu;
   bool factorized = false;

@@ -7,7 +7,7 @@
 // The warm path starts in a deformed state that may be far from the new inputs and fails more often than
 // the cold one (random input sweeps), hence the attempts from the default inputs after it. The direct
 // attempts, which have a continuation to fall back on, and each continuation step get a limited number
-// of fresh Jacobians (random sweeps, README "Stress tests": limited fresh Jacobians per step took 5x less
+// of fresh Jacobians (random sweeps, docs/benchmarks.md "Random FK sweeps": limited fresh Jacobians per step took 5x less
 // time per Stewart-Gough solve than full-budget steps, and more converged).
 #include <string>
 

@@ -8,8 +8,8 @@
 //  - one input at a time: legs that each change a single input, in a few orders. A straight
 //    line through input space can run into a fold of the equilibrium manifold (its end state then lies
 //    on another branch, out of reach of small steps) where a path around it does not: with this fallback the
-//    long random planar sweep converged 97.3 % of its cold FK solves instead of 78.3 % (README, Stress
-//    tests).
+//    long random planar sweep converged 97.3 % of its cold FK solves instead of 78.3 % (docs/benchmarks.md,
+//    "Random FK sweeps").
 #include <functional>
 #include <string>
 

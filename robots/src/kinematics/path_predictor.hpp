@@ -13,7 +13,7 @@
 // the start is x_k. Going back along the path interpolates between stored solutions (exact where the
 // target was solved before). Saves simplified-Newton iterations on smooth paths (teleoperation,
 // trajectories): on the R5b path (p = 6, E = 8, tolerance 1e-6) the cubic starts within a residual of
-// about 1e-6 (the quadratic about 2e-5, the last solution about 1e-3; README, Robots).
+// about 1e-6 (the quadratic about 2e-5, the last solution about 1e-3; docs/benchmarks.md, "Robots").
 // The higher orders amplify the convergence errors of the stored solutions (the cubic's weights on an
 // even path are 4, -6, 4, -1), which is why the order stops at four points.
 #include <array>

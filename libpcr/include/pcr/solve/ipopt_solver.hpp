@@ -38,7 +38,7 @@ struct IpoptOptions {
   int print_level = 0;          ///< "print_level" 0..12
   bool warm_start = true;       ///< seed solves after the first with the previous multipliers
   double warm_start_mu = 1e-6;  ///< "mu_init" for warm-started solves
-  /// Default chosen with bench_solve (README "Solvers"): gradient-based needs 8 instead of 12 iterations
+  /// Default chosen with bench_solve (docs/benchmarks.md "Solvers"): gradient-based needs 8 instead of 12 iterations
   /// on HS071 with its objective scaled by 1e4, and is the same on well-scaled problems.
   IpoptScaling scaling = IpoptScaling::GradientBased;
   std::string linear_solver = "mumps";  ///< "linear_solver"

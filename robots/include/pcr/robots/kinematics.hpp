@@ -57,8 +57,8 @@ struct IkOptions {
   /// inputs): Ipopt over all assembly variables with the equations as constraints instead of the
   /// reduced space. Off by default: on stewart_gough with a position-only target the full-space Ipopt
   /// (L-BFGS) crawled to 3,000 iterations and 142 s without meeting its tolerance, 21 mm from the
-  /// optimum that the reduced space reaches in 22 iterations and 0.4 s (2026-11-22, README "Using the
-  /// pcr tool"). The full space is always used where the reduced one cannot be: as many target rows as
+  /// optimum that the reduced space reaches in 22 iterations and 0.4 s (docs/benchmarks.md,
+  /// "IK objectives"). The full space is always used where the reduced one cannot be: as many target rows as
   /// inputs or more (e.g. a full-pose target on the planar robot, 3 of its rows redundant) when Newton
   /// does not finish (bounds active, or not square).
   bool full_space = false;
@@ -84,7 +84,7 @@ struct KinematicsOptions {
   bool reuse_factorization = true;
   /// LU of the Newton systems: Auto factors each rod's band and condenses onto the platform poses and
   /// inputs (BorderedBlockLu), falling back to the sparse LU where a rod's block is singular;
-  /// NewtonLinearSolver::Sparse always uses the sparse LU (the solver before 2026-11-23).
+  /// NewtonLinearSolver::Sparse always uses the sparse LU (general pattern, natural ordering).
   NewtonLinearSolver linear_solver = NewtonLinearSolver::Auto;
   /// Stability monitoring along the solves (RobotSolution::jacobian_sign), FK and IK (the FK system at
   /// the IK solution's inputs); costs one Jacobian evaluation and one sparse LU factorisation per

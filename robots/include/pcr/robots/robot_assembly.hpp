@@ -26,7 +26,7 @@ struct AssemblyOptions {
   /// Discretisation of rods that carry no hints in the model (the formulation only when
   /// formulation_by_slenderness is off): mixed at the midpoints (MixedPoints; each rod's force balance
   /// holds exactly under gravity at any degree), degree 6, 8 elements. Against degree 5 at 8 elements
-  /// (the default before) in the same bench_robots run (README "Robots"): R5b warm IK inputs 1.9e-7
+  /// in the same bench_robots run (docs/benchmarks.md "Robots"): R5b warm IK inputs 1.9e-7
   /// against 1.0e-6 m at 1.0-1.3x the time per solve (three runs), R5a FK platform
   /// 1.8e-10 against 4.2e-10 m, R5a IK inputs 1.7e-8 against 1.8e-8 m (against 32 elements of degree 5).
   RodDiscretization discretization{RodFormulation::Mixed, 6, 8};

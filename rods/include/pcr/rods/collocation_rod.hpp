@@ -56,7 +56,7 @@ const char* to_string(RodFormulation formulation);
 ///  - Greville (Weeger, Yeung & Dunn 2017; docs/design.md §2): balance laws at the n - 2 interior points,
 ///    constitutive laws at all n. The forces n(u) then have a second mode besides the constant one
 ///    that the balance rows do not see; only the compliant constitutive rows fix it, weakly when
-///    n = p + E is odd. Measured (README "Mixed collocation points"): errors 100-1000x larger at
+///    n = p + E is odd. Measured (docs/benchmarks.md "Midpoints against Greville points"): errors 100-1000x larger at
 ///    p = 5, E = 8. Kept to reproduce the published scheme and as the baseline of that comparison.
 enum class MixedPoints { Midpoints, Greville };
 const char* to_string(MixedPoints points);
