@@ -79,6 +79,15 @@ void JsonWriter::begin_array() {
   stack_.push_back({false, 0, false});
 }
 
+int JsonWriter::end_document() {
+  const int count = non_finite_;  // counted before this member is written
+  key("non_finite_values");
+  value(count);
+  end_object();
+  out_ << "\n";
+  return count;
+}
+
 void JsonWriter::end_object() {
   require(!stack_.empty() && stack_.back().object && !stack_.back().has_key,
           "JsonWriter: end_object without a matching begin_object");

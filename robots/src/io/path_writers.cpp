@@ -64,12 +64,7 @@ int write_path_json(std::ostream& out, const RobotModel& model, const std::vecto
   for (const PathPoint& point : points)
     write_solution_object(json, model, point.solution, point.targets, point.extras);
   json.end_array();
-  // Counted before this member is written: the nulls above stand for NaN or infinite values.
-  json.key("non_finite_values");
-  json.value(json.non_finite_count());
-  json.end_object();
-  out << "\n";
-  return json.non_finite_count();
+  return json.end_document();
 }
 
 }  // namespace pcr

@@ -82,12 +82,7 @@ int write_workspace_json(std::ostream& out, const RobotModel& model, const Works
   json.begin_array();
   for (const WorkspaceSample& s : result.samples) write_sample(json, model, s);
   json.end_array();
-  // Counted before this member is written: the nulls above stand for NaN or infinite values.
-  json.key("non_finite_values");
-  json.value(json.non_finite_count());
-  json.end_object();
-  out << "\n";
-  return json.non_finite_count();
+  return json.end_document();
 }
 
 }  // namespace pcr

@@ -38,6 +38,10 @@ class JsonWriter {
   void array(const VecX& numbers);
   void array(const Vec3& numbers) { array(VecX(numbers)); }
 
+  /// Ends a top-level object: its last member "non_finite_values" (the nulls written so far, which
+  /// stand for NaN or infinite numbers), the closing brace and a newline. Returns that count.
+  int end_document();
+
   /// Objects and arrays open around the next value (0: it is the top-level value).
   int depth() const { return static_cast<int>(stack_.size()); }
   /// Numbers written as null because they were NaN or infinite.
