@@ -12,6 +12,7 @@ packages=(
   libboost-test-dev
   libbenchmark-dev
   gnuplot-nox
+  python3-dev pybind11-dev python3-numpy python3-pytest python3-matplotlib python3-distributed
 )
 # Optional extras: clang for the libFuzzer target (PCR_EXTRA_PACKAGES="clang").
 read -r -a extra <<< "${PCR_EXTRA_PACKAGES:-}"

@@ -21,7 +21,7 @@ stage "Release build done"
 stage "Release tests done"
 
 bash "$root/scripts/build.sh" "$root/build/sanitize" -DPCR_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-Og -g1" -DPCR_BUILD_BENCHMARKS=OFF \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-Og -g1" -DPCR_BUILD_BENCHMARKS=OFF -DPCR_BUILD_PYTHON=OFF \
   -DPCR_SKIP_TESTS="test_hard_rods;test_rod_convergence;test_shooting_crosscheck;test_singular_poses"
 stage "sanitizer build done"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1

@@ -4,7 +4,8 @@
 #     HOME = WORK/home: tour.sh runs with bash (the pcr tool on shipped models), example.cpp and
 #     CMakeLists.txt go to example/, and install.sh runs with bash (cmake --install into
 #     $HOME/opt/pcr, then the example is configured against that prefix, built, and run on an
-#     installed model);
+#     installed model); example.py goes to example/ too and python.sh runs it with the installed
+#     Python package;
 #  3. the installed layout is checked, and the installed pcr tool solves an installed model.
 # Arguments: -DBUILD_DIR -DSOURCE_DIR -DWORK.
 file(REMOVE_RECURSE "${WORK}")
@@ -36,11 +37,11 @@ function(readme_block name out)
   set(${out} "${body}" PARENT_SCOPE)
 endfunction()
 
-foreach(name tour.sh install.sh)
+foreach(name tour.sh install.sh python.sh)
   readme_block(${name} body)
   file(WRITE "${WORK}/${name}" "${body}")
 endforeach()
-foreach(name example.cpp CMakeLists.txt)
+foreach(name example.cpp CMakeLists.txt example.py)
   readme_block(${name} body)
   file(WRITE "${root}/example/${name}" "${body}")
 endforeach()
@@ -55,6 +56,7 @@ function(run)
 endfunction()
 run(${CMAKE_COMMAND} -E env HOME=${home} bash -euo pipefail "${WORK}/tour.sh")
 run(${CMAKE_COMMAND} -E env HOME=${home} bash -euo pipefail "${WORK}/install.sh")
+run(${CMAKE_COMMAND} -E env HOME=${home} bash -euo pipefail "${WORK}/python.sh")
 
 # What the README says the install holds.
 set(prefix "${home}/opt/pcr")

@@ -1,0 +1,78 @@
+// Python bindings of the results: SolveSummary, RodResult, RobotSolution (read-only values).
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include "bindings.hpp"
+
+namespace py = pybind11;
+
+namespace pcr::python {
+namespace {
+
+using Points = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
+// n x 3 array of points, one row per point.
+Points point_rows(const std::vector<Vec3>& points) {
+  Points rows(static_cast<int>(points.size()), 3);
+  for (size_t i = 0; i < points.size(); ++i) rows.row(static_cast<int>(i)) = points[i].transpose();
+  return rows;
+}
+
+void bind_summary(py::module_& m) {
+  py::class_<SolveSummary>(m, "SolveSummary", "What a solve did: status, iterations, residual, time.")
+      .def_property_readonly(
+          "status", [](const SolveSummary& s) { return to_string(s.status); },
+          "'converged', 'max_iterations', 'infeasible', 'singular', 'diverged', "
+          "'invalid_input' or 'failed'")
+      .def_property_readonly("converged", &SolveSummary::converged)
+      .def_readonly("solver", &SolveSummary::solver)
+      .def_readonly("iterations", &SolveSummary::iterations)
+      .def_readonly("jacobian_evaluations", &SolveSummary::jacobian_evaluations)
+      .def_readonly("residual_max_abs", &SolveSummary::residual_max_abs)
+      .def_readonly("residual_by_kind", &SolveSummary::residual_by_kind)
+      .def_readonly("objective", &SolveSummary::objective)
+      .def_readonly("wall_time_seconds", &SolveSummary::wall_time_seconds)
+      .def_readonly("message", &SolveSummary::message)
+      .def("__repr__", [](const SolveSummary& s) { return "<pcr.SolveSummary " + s.brief_report() + ">"; });
+}
+
+void bind_rod_result(py::module_& m) {
+  py::class_<RodResult>(m, "RodResult", "One rod of a robot solution (world frame, SI units).")
+      .def_readonly("name", &RodResult::name)
+      .def_readonly("length", &RodResult::length, "[m]")
+      .def_readonly("base_force", &RodResult::base_force, "n(0) [N]: the rod's force on its start link")
+      .def_readonly("base_moment", &RodResult::base_moment, "m(0) [N m], about the end point")
+      .def_readonly("tip_force", &RodResult::tip_force, "n(L) [N]: the end link's force on the rod")
+      .def_readonly("tip_moment", &RodResult::tip_moment, "m(L) [N m]")
+      .def_readonly("axial_force", &RodResult::axial_force, "n(0) . d3(0) [N], positive in tension")
+      .def_readonly("min_axial_stretch", &RodResult::min_axial_stretch)
+      .def_property_readonly(
+          "centerline", [](const RodResult& r) { return point_rows(r.centerline); },
+          "n x 3 array of centerline points [m], base first");
+}
+
+void bind_robot_solution(py::module_& m) {
+  py::class_<RobotSolution>(m, "RobotSolution", "Inputs, platform poses, rods and the summary of one solve.")
+      .def_readonly("summary", &RobotSolution::summary)
+      .def_property_readonly("converged", [](const RobotSolution& s) { return s.summary.converged(); })
+      .def_readonly("inputs", &RobotSolution::inputs, "model input order [m or rad]")
+      .def_readonly("platforms", &RobotSolution::platforms, "world poses, model platform order")
+      .def_readonly("rods", &RobotSolution::rods)
+      .def_readonly("passive_joints", &RobotSolution::passive_joints, "model passive-joint order")
+      .def_readonly("jacobian_sign", &RobotSolution::jacobian_sign)
+      .def_readonly("jacobian_sign_changed", &RobotSolution::jacobian_sign_changed)
+      .def("__repr__", [](const RobotSolution& s) {
+        return "<pcr.RobotSolution " + std::string(to_string(s.summary.status)) + ", " +
+               std::to_string(s.platforms.size()) + " platforms, " + std::to_string(s.rods.size()) + " rods>";
+      });
+}
+
+}  // namespace
+
+void bind_results(py::module_& m) {
+  bind_summary(m);
+  bind_rod_result(m);
+  bind_robot_solution(m);
+}
+
+}  // namespace pcr::python
