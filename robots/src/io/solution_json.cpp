@@ -67,6 +67,14 @@ int write_solution_json(std::ostream& out, const RobotModel& model, const RobotS
     json.value(solution.inputs[static_cast<int>(i)]);
   }
   json.end_object();
+  json.key("passive_joints");
+  json.begin_object();
+  const std::vector<int>& passive = model.passive_joints();
+  for (size_t i = 0; i < passive.size() && static_cast<int>(i) < solution.passive_joints.size(); ++i) {
+    json.key(model.joints()[passive[i]].name);
+    json.value(solution.passive_joints[static_cast<int>(i)]);
+  }
+  json.end_object();
   json.key("platforms");
   json.begin_object();
   for (size_t p = 0; p < solution.platforms.size() && p < model.platforms().size(); ++p) {
