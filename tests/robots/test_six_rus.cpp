@@ -7,12 +7,14 @@
 
 #include <algorithm>
 #include <fstream>
+#include <random>
 #include <sstream>
 
 #include "pcr/math/quaternion.hpp"
 #include "pcr/math/so3.hpp"
 #include "pcr/robots/kinematics.hpp"
 #include "pcr/robots/urdf_loader.hpp"
+#include "pcr/solve/jacobian_check.hpp"
 
 using namespace pcr;
 
@@ -66,7 +68,34 @@ double rotation_distance(const Pose& a, const Pose& b) {
 // IK_PCR_ROD.py): platform at (0, 0, 0.5) m, roll 10 deg, massless, motor angles [rad].
 const double kPublishedIk[6] = {0.48785652, 0.48785652, 0.42037453, 0.28121425, 0.28121425, 0.42037453};
 
+/// The state x moved by a relative 1e-3 (quaternions no longer unit), as test_kinematics does.
+VecX perturbed(VecX x, std::mt19937& rng) {
+  std::normal_distribution<double> noise(0.0, 1.0);
+  for (int i = 0; i < x.size(); ++i) x[i] += 1e-3 * (std::abs(x[i]) + 1e-2) * noise(rng);
+  return x;
+}
+
 }  // namespace
+
+BOOST_AUTO_TEST_CASE(every_block_matches_finite_differences) {
+  // Universal couplings on crank links moved by revolute inputs, spherical ends, pre-curved rods under
+  // gravity, the platform balance (FK) and the pose target (IK), near a tilted solution. Default
+  // checker tolerances (1e-6 abs + rel; central differences with relative step 1e-6).
+  std::mt19937 rng(7);
+  const auto model = load_six_rus();
+  ForwardKinematics fk(model);
+  const RobotSolution s = fk.solve(inputs({0.5, 0.3, 0.45, 0.2, 0.35, 0.6}));
+  BOOST_REQUIRE_MESSAGE(s.summary.converged(), s.summary.brief_report());
+  const JacobianCheckResult r = check_problem_jacobian(fk.assembly().problem(), perturbed(fk.state(), rng));
+  BOOST_TEST(r.passed, "FK: " << r.to_string());
+  LinkTarget target;
+  target.link = "platform";
+  target.pose = s.platforms[0];
+  InverseKinematics ik(model, {target});
+  BOOST_REQUIRE(ik.solve({s.platforms[0]}).summary.converged());
+  const JacobianCheckResult q = check_problem_jacobian(ik.problem(), perturbed(ik.state(), rng));
+  BOOST_TEST(q.passed, "IK: " << q.to_string());
+}
 
 // The model is invariant under the rotation by 120 deg about z that maps motor i to motor i + 2 and
 // joint C_i to C_(i+2) (indices mod 6), and under the mirror x -> -x that swaps motors and joints
