@@ -8,3 +8,5 @@ pcr_add_test(NAME test_stability_monitor LABELS robots
 find_package(Threads REQUIRED)
 pcr_add_test(NAME test_concurrent_solves LABELS robots
              SOURCES ${CMAKE_CURRENT_LIST_DIR}/robots/test_concurrent_solves.cpp LIBS Threads::Threads)
+# The 6-RUS robot (models/six_rus.urdf): symmetries, round trips, mesh, their published example.
+pcr_add_test(NAME test_six_rus LABELS robots SOURCES ${CMAKE_CURRENT_LIST_DIR}/robots/test_six_rus.cpp)

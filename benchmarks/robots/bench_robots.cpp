@@ -10,7 +10,8 @@
 // MixedPoints). Scenes:
 // benchmarks/common/robot_scenes.hpp. CSV columns as the other
 // benchmarks: scene,method,settings,error,time_median_s,time_min_s,time_max_s,iterations,time_mean_s.
-// usage: bench_robots [out.csv]
+// R6 (models/six_rus.urdf, the 6-RUS robot): benchmarks/robots/six_rus_rows.hpp.
+// usage: bench_robots [out.csv] [six_rus]   (six_rus: only the R6 rows)
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -24,6 +25,7 @@
 #include "pcr/solve/bordered_block_lu.hpp"
 #include "pcr/solve/free_jacobian.hpp"
 #include "pcr/solve/sparse_lu.hpp"
+#include "six_rus_rows.hpp"
 
 using namespace pcr;
 using namespace pcr::bench;
@@ -228,6 +230,7 @@ int main(int argc, char** argv) {
     std::cerr << "bench_robots: cannot write " << csv.path() << "\n";
     return 2;
   }
+  if (argc > 2 && std::string(argv[2]) == "six_rus") return bench_six_rus(csv);
   const auto r5a = load_r5a();
   const auto r5b = load_r5b();
   // The default degree (AssemblyOptions) over the element counts, and at 8 elements the baselines of
@@ -298,6 +301,7 @@ int main(int argc, char** argv) {
       {5, 14, mid, false, 1e-7, condensed},
       {5, 16, mid, false, 1e-7, condensed}};
   for (const Mesh& mesh : path_meshes) run_r5b_path(csv, r5b, path, reference, mesh);
+  if (bench_six_rus(csv) != 0) return 1;
   std::cout << "wrote " << csv.path() << "\n";
   return 0;
 }

@@ -7,6 +7,7 @@
 #include "pcr/core/error.hpp"
 #include "pcr/math/quaternion.hpp"
 #include "pcr/robots/platform_hold_check.hpp"
+#include "pcr/rods/end_axes.hpp"
 
 namespace pcr {
 namespace {
@@ -26,6 +27,18 @@ int find_name(const std::map<std::string, int>& table, const char* kind, const s
   const auto it = table.find(name);
   if (it == table.end()) throw_input_error("unknown ", kind, " '", name, "'");
   return it->second;
+}
+
+// The joint axis of a universal or revolute attachment: finite, non-zero (normalised here), a universal
+// one not along the attachment z axis (the rod tangent).
+void check_joint_axis(const std::string& rod, const char* which, RodAttachment& end) {
+  if (end.coupling != RodEndKind::Universal && end.coupling != RodEndKind::Revolute) return;
+  require(end.axis.allFinite() && end.axis.norm() > 1e-12, "pcr_rod '", rod, "': ", which, " ",
+          to_string(end.coupling), " axis = [", end.axis.transpose(), "] must be a finite non-zero vector");
+  end.axis.normalize();
+  require(end.coupling != RodEndKind::Universal || sine_to_tangent(end.axis) >= kMinJointAxisSine, "pcr_rod '",
+          rod, "': ", which, " universal axis = [", end.axis.transpose(),
+          "] lies along the attachment z axis (the rod tangent); the first joint axis must be normal to it");
 }
 
 // Child frame in the joint frame for a moving joint.
@@ -73,6 +86,14 @@ int kinematic_constraint_count(RodEndKind coupling) {
   return 0;
 }
 
+std::string twist_rule_violation(const RodElement& rod) {
+  if (holds_twist(rod.start.coupling, rod.start.axis) || holds_twist(rod.end.coupling, rod.end.axis)) return {};
+  return std::string("couplings start = ") + to_string(rod.start.coupling) + ", end = " +
+         to_string(rod.end.coupling) +
+         " leave the rod free to move or twist about its tangent; clamp at least one end, or hold one by a "
+         "universal coupling or a revolute coupling whose axis is not along the rod";
+}
+
 RobotModel::RobotModel(std::string name, std::vector<Link> links, std::vector<Joint> joints,
                        std::vector<Platform> platforms, std::vector<RodElement> rods,
                        std::vector<ExternalLoad> loads, const Vec3& gravity)
@@ -86,6 +107,7 @@ RobotModel::RobotModel(std::string name, std::vector<Link> links, std::vector<Jo
   require(gravity_.allFinite(), "gravity is not finite: [", gravity_.transpose(), "]");
   build_tables();
   build_rods();
+  check_passive_joints_loaded();
   check_platforms_held(*this);
 }
 
@@ -129,6 +151,12 @@ void RobotModel::build_tables() {
     }
   }
 
+  for (const Link& link : links_) {
+    require(finite(link.mass) && link.mass >= 0.0, "link '", link.name, "': mass = ", link.mass,
+            " must be non-negative and finite");
+    require(link.center_of_mass.allFinite(), "link '", link.name, "': center of mass is not finite");
+  }
+
   // Joints: axes, limits, defaults, value indices.
   joint_value_count_ = 0;
   const double inf = std::numeric_limits<double>::infinity();
@@ -138,7 +166,16 @@ void RobotModel::build_tables() {
             "joint '", joint.name, "': origin is not a finite pose");
     joint.origin.orientation.normalize();
     joint.value_index = -1;
-    if (joint.type == JointType::Fixed || joint.type == JointType::Floating) continue;
+    if (joint.type == JointType::Fixed || joint.type == JointType::Floating) {
+      require(!joint.passive, "joint '", joint.name, "': a ", to_string(joint.type),
+              " joint cannot be passive (it has no value)");
+      continue;
+    }
+    if (joint.passive) {
+      require(finite(joint.stiffness) && joint.stiffness >= 0.0, "passive joint '", joint.name,
+              "': stiffness = ", joint.stiffness, " must be non-negative and finite");
+      require(finite(joint.rest), "passive joint '", joint.name, "': rest = ", joint.rest, " is not finite");
+    }
     require(joint.axis.allFinite() && joint.axis.norm() > 1e-12, "joint '", joint.name, "': axis = [",
             joint.axis.transpose(), "] is not a non-zero vector");
     joint.axis.normalize();
@@ -189,6 +226,19 @@ void RobotModel::build_tables() {
     }
   }
 
+  for (const Joint& joint : joints_) {
+    const int carrier = carrying_platform_[joint.child_link];
+    require(!joint.passive || carrier < 0, "passive joint '", joint.name, "': it is carried by platform '",
+            carrier >= 0 ? platforms_[carrier].name : "",
+            "'; passive joints are supported between the world and rod attachments, not below a platform");
+  }
+  passive_ancestor_.assign(n_links, false);
+  for (int i = 0; i < n_links; ++i) {
+    for (int link = i; link != base_link_ && carrying_platform_[i] < 0;
+         link = joints_[links_[link].parent_joint].parent_link)
+      if (joints_[links_[link].parent_joint].passive) passive_ancestor_[i] = true;
+  }
+
   // Initial platform poses, parents first: platform p's parent pose depends only on platforms above it.
   std::vector<bool> done(platforms_.size(), false);
   const VecX q0 = default_joint_values();
@@ -207,8 +257,10 @@ void RobotModel::build_tables() {
   // Loads on links carried by a platform.
   for (const ExternalLoad& load : loads_) {
     require(load.link >= 0 && load.link < n_links, "pcr_load: link index ", load.link, " out of range");
-    require(carrying_platform_[load.link] >= 0, "pcr_load on link '", links_[load.link].name,
-            "': the link is not carried by a platform, so the load would act on the fixed world");
+    require(carrying_platform_[load.link] >= 0 || passive_ancestor_[load.link], "pcr_load on link '",
+            links_[load.link].name,
+            "': the link is not carried by a platform or moved by a passive joint, so the load would act "
+            "on the fixed world");
     require(load.point.allFinite() && load.force.allFinite() && load.torque.allFinite(), "pcr_load on link '",
             links_[load.link].name, "': point, force or torque is not finite");
   }
@@ -237,11 +289,10 @@ void RobotModel::build_rods() {
                 "pcr_rod '", name, "': ", which, " frame is not a finite pose");
         end->frame.orientation.normalize();
       }
+      check_joint_axis(name, which, *end);
     }
-    require(element.start.coupling == RodEndKind::Clamped || element.end.coupling == RodEndKind::Clamped,
-            "pcr_rod '", name, "': couplings start = ", to_string(element.start.coupling),
-            ", end = ", to_string(element.end.coupling),
-            " leave the rod free to move or twist; clamp at least one end");
+    const std::string twist = twist_rule_violation(element);
+    require(twist.empty(), "pcr_rod '", name, "': ", twist);
     require(element.start.link < 0 || element.start.link != element.end.link, "pcr_rod '", name,
             "': both ends are on link '", element.start.link >= 0 ? links_[element.start.link].name : "",
             "'; a rod must join two different links");
@@ -270,6 +321,8 @@ void RobotModel::build_rods() {
     rod.loads.gravity = gravity_;
     rod.base.kind = element.start.coupling;
     rod.tip.kind = element.end.coupling;
+    rod.base.axis = element.start.axis;
+    rod.tip.axis = element.end.axis;
     const std::pair<const RodAttachment*, RodEnd*> rod_ends[] = {{&element.start, &rod.base},
                                                                  {&element.end, &rod.tip}};
     for (const auto& [attachment, rod_end] : rod_ends) {
@@ -305,6 +358,36 @@ void RobotModel::build_rods() {
     require(input_names_.emplace(inputs_[i].name, i).second, "actuation input name '", inputs_[i].name,
             "' is used by both a rod and a joint; rename one");
   }
+}
+
+void RobotModel::check_passive_joints_loaded() const {
+  for (int j : passive_joints_) {
+    bool loaded = false;
+    for (const RodElement& rod : rods_)
+      for (const RodAttachment* end : {&rod.start, &rod.end})
+        loaded = loaded || (end->link >= 0 && joint_moves_link(j, end->link));
+    for (const ExternalLoad& load : loads_) loaded = loaded || joint_moves_link(j, load.link);
+    for (int l = 0; l < static_cast<int>(links_.size()); ++l)
+      loaded = loaded || (links_[l].mass > 0.0 && !gravity_.isZero(0.0) && joint_moves_link(j, l));
+    require(loaded, "passive joint '", joints_[j].name, "': nothing is attached beyond it (no rod end, pcr_load ",
+            "or link mass under gravity on link '", links_[joints_[j].child_link].name,
+            "' or the links it carries), so nothing determines its value");
+  }
+}
+
+bool RobotModel::joint_moves_link(int joint, int link) const {
+  require(joint >= 0 && joint < static_cast<int>(joints_.size()), "joint index ", joint, " out of range");
+  require(link >= 0 && link < static_cast<int>(links_.size()), "link index ", link, " out of range");
+  for (int l = link; l != base_link_; l = joints_[links_[l].parent_joint].parent_link) {
+    if (links_[l].parent_joint == joint) return true;
+    if (joints_[links_[l].parent_joint].type == JointType::Floating) return false;
+  }
+  return false;
+}
+
+bool RobotModel::moved_by_passive_joint(int link) const {
+  require(link >= 0 && link < static_cast<int>(links_.size()), "link index ", link, " out of range");
+  return passive_ancestor_[link];
 }
 
 int RobotModel::link_index(const std::string& name) const {

@@ -4,6 +4,7 @@
 
 #include "pcr/core/error.hpp"
 #include "pcr/robots/robot_assembly.hpp"
+#include "pcr/rods/end_axes.hpp"
 #include "xml_element_reader.hpp"
 
 namespace pcr {
@@ -14,8 +15,28 @@ RodEndKind parse_coupling(XmlElementReader& reader) {
   if (coupling == "clamped") return RodEndKind::Clamped;
   if (coupling == "collar") return RodEndKind::Collar;
   if (coupling == "spherical") return RodEndKind::Spherical;
+  if (coupling == "universal") return RodEndKind::Universal;
+  if (coupling == "revolute") return RodEndKind::Revolute;
   if (coupling == "free") return RodEndKind::Free;
-  reader.fail("coupling", coupling, "is not a coupling (clamped, collar, spherical or free)");
+  reader.fail("coupling", coupling, "is not a coupling (clamped, collar, spherical, universal, revolute or free)");
+}
+
+// The joint axis of a universal or revolute end (attachment frame, default x), normalised; rejected on
+// the other couplings.
+Vec3 read_joint_axis(XmlElementReader& reader, RodEndKind coupling) {
+  if (coupling != RodEndKind::Universal && coupling != RodEndKind::Revolute) {
+    if (reader.has("axis"))
+      reader.fail("axis", reader.text("axis"), "is only allowed on universal and revolute couplings");
+    return Vec3::UnitX();
+  }
+  const Vec3 axis = reader.vec3_or("axis", Vec3::UnitX());
+  if (!(axis.norm() > 1e-12)) reader.fail("axis", reader.text("axis"), "is zero");
+  if (coupling == RodEndKind::Universal && sine_to_tangent(axis) < kMinJointAxisSine) {
+    reader.fail("axis", reader.text("axis"),
+                "lies along the attachment z axis (the rod tangent); a universal joint's first axis must be "
+                "normal to it");
+  }
+  return axis.normalized();
 }
 
 void read_rod_end(const TiXmlElement& e, const std::string& source, const std::string& label,
@@ -40,6 +61,8 @@ void read_rod_end(const TiXmlElement& e, const std::string& source, const std::s
     attachment.frame =
         Pose::from_xyz_rpy(reader.vec3_or("xyz", Vec3::Zero()), reader.vec3_or("rpy", Vec3::Zero()));
   }
+  attachment.axis = read_joint_axis(reader, attachment.coupling);
+  rod_end.axis = attachment.axis;
   reader.finish();
 }
 
@@ -148,11 +171,8 @@ RodElement read_rod(const TiXmlElement& e, const std::string& source, const Urdf
   auto child = [&](const char* name, bool required) { return single_child(element, e, name, required); };
   read_rod_end(*child("start", true), source, label + " <start>", tree, rod.start, rod.rod.base);
   read_rod_end(*child("end", true), source, label + " <end>", tree, rod.end, rod.rod.tip);
-  if (rod.start.coupling != RodEndKind::Clamped && rod.end.coupling != RodEndKind::Clamped) {
-    element.fail(std::string("couplings start = ") + to_string(rod.start.coupling) +
-                 ", end = " + to_string(rod.end.coupling) +
-                 " leave the rod free to move or twist; clamp at least one end");
-  }
+  const std::string twist = twist_rule_violation(rod);
+  if (!twist.empty()) element.fail(twist);
   if (rod.start.link >= 0 && rod.start.link == rod.end.link) {
     element.fail("both ends are on link '" + tree.link_names[rod.start.link] +
                  "'; a rod must join two different links");

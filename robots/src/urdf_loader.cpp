@@ -15,6 +15,55 @@
 namespace pcr {
 namespace {
 
+// Whether a passive joint lies on the link's path from the world (no floating joint between them).
+bool moved_by_passive_joint(const UrdfTree& tree, const std::vector<Joint>& joints, int link) {
+  for (; tree.parent_joint[link] >= 0; link = tree.joint_parent[tree.parent_joint[link]]) {
+    const Joint& joint = joints[tree.parent_joint[link]];
+    if (joint.type == JointType::Floating) return false;
+    if (joint.passive) return true;
+  }
+  return false;
+}
+
+// <pcr_joint name default passive stiffness rest>: the default (initial) value of a moving joint, and
+// whether it is passive (an unknown of the assembly balanced by its spring, docs/model_format.md).
+void read_pcr_joint(const TiXmlElement& e, const std::string& source, const UrdfTree& tree,
+                    std::vector<Joint>& joints) {
+  XmlElementReader reader(e, source, "pcr_joint");
+  const std::string name = reader.text("name");
+  int j = 0;
+  while (j < static_cast<int>(joints.size()) && joints[j].name != name) ++j;
+  if (j == static_cast<int>(joints.size())) reader.fail("name", name, "is not a joint of the robot");
+  Joint& joint = joints[j];
+  if (joint.type == JointType::Fixed || joint.type == JointType::Floating) {
+    reader.fail("name", name, std::string("is a ") + to_string(joint.type) + " joint, which has no value");
+  }
+  joint.passive = reader.boolean_or("passive", false);
+  if (joint.passive) {
+    if (carrying_floating_link(tree, joint.child_link) >= 0) {
+      reader.fail("passive", reader.text("passive"),
+                  "is not supported below a platform: joint '" + name + "' is carried by platform '" +
+                      tree.link_names[carrying_floating_link(tree, joint.child_link)] +
+                      "' (passive joints go between the world and rod attachments)");
+    }
+    joint.stiffness = reader.has("stiffness") ? reader.non_negative("stiffness") : 0.0;
+    joint.rest = reader.number_or("rest", 0.0);
+  } else {
+    for (const char* a : {"stiffness", "rest"})
+      if (reader.has(a)) reader.fail(a, reader.text(a), "is only allowed with passive=\"true\"");
+  }
+  if (!joint.passive || reader.has("default")) {
+    const double value = reader.number("default");
+    if (joint.type != JointType::Continuous && (value < joint.lower || value > joint.upper)) {
+      std::ostringstream bounds;
+      bounds << "is outside the joint limits [" << joint.lower << ", " << joint.upper << "]";
+      reader.fail("default", reader.text("default"), bounds.str());
+    }
+    joint.default_value = value;
+  }
+  reader.finish();
+}
+
 RobotModel parse_document(const std::string& xml, const std::string& source) {
   // No parser (pcr's TinyXML pass, then urdfdom's) sees text that is not UTF-8 XML characters.
   check_model_text(xml, source);
@@ -40,6 +89,7 @@ RobotModel parse_document(const std::string& xml, const std::string& source) {
   std::vector<RodElement> rods;
   std::vector<ExternalLoad> loads;
   std::map<std::string, int> rod_lines;
+  std::vector<const TiXmlElement*> load_elements;  // per load
   bool has_gravity = false;
   for (const TiXmlElement* e = robot->FirstChildElement(); e; e = e->NextSiblingElement()) {
     const std::string tag = e->ValueStr();
@@ -62,9 +112,7 @@ RobotModel parse_document(const std::string& xml, const std::string& source) {
       const std::string link = reader.text("link");
       const auto it = tree.link_index.find(link);
       if (it == tree.link_index.end()) reader.fail("link", link, "is not a link of the robot");
-      if (carrying_floating_link(tree, it->second) < 0) {
-        reader.fail("link", link, "is not carried by a platform (a load there acts on the fixed world)");
-      }
+      load_elements.push_back(e);  // where the link must be movable is checked once the joints are known
       load.link = it->second;
       load.point = reader.vec3_or("xyz", Vec3::Zero());
       load.force = reader.vec3_or("force", Vec3::Zero());
@@ -72,28 +120,19 @@ RobotModel parse_document(const std::string& xml, const std::string& source) {
       reader.finish();
       loads.push_back(load);
     } else if (tag == "pcr_joint") {
-      XmlElementReader reader(*e, source, "pcr_joint");
-      const std::string name = reader.text("name");
-      int j = 0;
-      while (j < static_cast<int>(joints.size()) && joints[j].name != name) ++j;
-      if (j == static_cast<int>(joints.size())) reader.fail("name", name, "is not a joint of the robot");
-      Joint& joint = joints[j];
-      if (joint.type == JointType::Fixed || joint.type == JointType::Floating) {
-        reader.fail("name", name,
-                    std::string("is a ") + to_string(joint.type) + " joint, which has no value");
-      }
-      const double value = reader.number("default");
-      if (joint.type != JointType::Continuous && (value < joint.lower || value > joint.upper)) {
-        std::ostringstream bounds;
-        bounds << "is outside the joint limits [" << joint.lower << ", " << joint.upper << "]";
-        reader.fail("default", reader.text("default"), bounds.str());
-      }
-      joint.default_value = value;
-      reader.finish();
+      read_pcr_joint(*e, source, tree, joints);
     } else if (tag.compare(0, 4, "pcr_") == 0) {
       XmlElementReader reader(*e, source, "<" + tag + ">");
       reader.fail("unknown pcr element (pcr_rod, pcr_gravity, pcr_load or pcr_joint)");
     }
+  }
+  for (std::size_t i = 0; i < loads.size(); ++i) {
+    if (carrying_floating_link(tree, loads[i].link) >= 0 || moved_by_passive_joint(tree, joints, loads[i].link))
+      continue;
+    XmlElementReader reader(*load_elements[i], source, "pcr_load");
+    reader.fail("link", tree.link_names[loads[i].link],
+                "is not carried by a platform or moved by a passive joint (a load there acts on the fixed "
+                "world)");
   }
   for (const Platform& platform : platforms) {
     bool has_rod = false;

@@ -195,8 +195,9 @@ UrdfPart read_urdf_part(const std::string& xml, const UrdfTree& tree, const std:
   part.joints = read_joints(tree, source);
 
   // Platforms (children of floating joints, file order) and their mass; mass elsewhere on a platform's
-  // subtree would be ignored silently, so it is rejected. Every <inertial> is checked, also on links
-  // whose mass is unused (fixed to the world: the base carries it).
+  // subtree would be ignored silently, so it is rejected. The other links keep theirs: it loads the
+  // passive joints that move them (RobotModel), and is unused on links fixed to the world or moved
+  // only by actuated joints (the base or the actuators carry it). Every <inertial> is checked.
   for (std::size_t i = 0; i < links.size(); ++i) {
     const std::string label = quoted("link", links[i].name);
     const LinkInertial inertial = read_inertial(*tree.links[i], source, label);
@@ -212,6 +213,9 @@ UrdfPart read_urdf_part(const std::string& xml, const UrdfTree& tree, const std:
                         " <inertial> <mass>: attribute 'value' = ", inertial.mass,
                         ": only the platform link '", tree.link_names[carrier],
                         "' may carry mass (move it into the platform's <inertial>)");
+    } else if (carrier < 0) {
+      links[i].mass = inertial.mass;
+      links[i].center_of_mass = inertial.center_of_mass;
     }
   }
   require_urdfdom_accepts(xml, source);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "link_frame.hpp"
+#include "passive_joint_block.hpp"
 #include "pcr/core/error.hpp"
 #include "pcr/rods/rod_end.hpp"
 #include "robot_blocks.hpp"
@@ -139,7 +140,7 @@ struct RobotAssembly::Builder {
     LinkFrame frame = LinkFrame::of(m, at.link, at.frame, a.platform_variables_, a.joint_variables_);
     a.rod_couplings_.back()[at_tip ? 1 : 0] =
         a.problem_.add_residual_block(std::make_shared<assembly::CouplingBlock>(
-            e.name + (at_tip ? ".end" : ".start"), end, frame, at.coupling, scales));
+            e.name + (at_tip ? ".end" : ".start"), end, frame, at.coupling, at.axis, scales));
     const int platform = m.carrying_platform(at.link);
     if (platform >= 0) platform_ends[platform].push_back({end, at_tip ? 1.0 : -1.0});
   }
@@ -164,8 +165,33 @@ struct RobotAssembly::Builder {
     }
   }
 
+  /// Passive joint balances: the rod ends, loads and link weights on the links each joint moves.
+  void add_passive_joint_balances() {
+    for (int j : m.passive_joints()) {
+      std::vector<assembly::PlatformRodEnd> ends;
+      for (int r = 0; r < a.num_rods(); ++r) {
+        const RodElement& e = m.rods()[r];
+        for (bool at_tip : {false, true}) {
+          const RodAttachment& at = at_tip ? e.end : e.start;
+          if (attached(at) && m.joint_moves_link(j, at.link))
+            ends.push_back({RodEndEvaluator(*a.rods_[r], a.rod_variables_[r], at_tip), at_tip ? 1.0 : -1.0});
+        }
+      }
+      std::vector<assembly::LinkLoad> loads;
+      for (const ExternalLoad& l : m.loads())
+        if (m.joint_moves_link(j, l.link)) loads.push_back({l.link, l.point, l.force, l.torque});
+      for (int l = 0; l < static_cast<int>(m.links().size()); ++l) {
+        const Link& link = m.links()[l];
+        if (link.mass > 0.0 && m.joint_moves_link(j, l))
+          loads.push_back({l, link.center_of_mass, link.mass * m.gravity(), Vec3::Zero()});
+      }
+      a.passive_joint_balances_.push_back(a.problem_.add_residual_block(std::make_shared<assembly::PassiveJointBlock>(
+          m, j, a.joint_variables_, std::move(ends), std::move(loads), a.force_scale_, a.moment_scale_)));
+    }
+  }
+
   /// Inputs (rod lengths and joint values) fixed, initial values their defaults; the other joints fixed
-  /// at their defaults.
+  /// at their defaults, except the passive ones (unknowns).
   void fix_inputs_and_joints() {
     for (const ActuationInput& in : m.inputs()) {
       a.input_variables_.push_back(in.kind == ActuationInput::Kind::RodLength
@@ -177,7 +203,7 @@ struct RobotAssembly::Builder {
     for (size_t i = 0; i < a.input_variables_.size(); ++i)
       a.problem_.fix_variable(a.input_variables_[i], VecX::Constant(1, u0[i]));
     for (const Joint& j : m.joints())
-      if (j.value_index >= 0 && !a.problem_.variable_fixed(a.joint_variables_[j.value_index]))
+      if (j.value_index >= 0 && !j.passive && !a.problem_.variable_fixed(a.joint_variables_[j.value_index]))
         a.problem_.fix_variable(a.joint_variables_[j.value_index], VecX::Constant(1, q0[j.value_index]));
   }
 };
@@ -190,6 +216,7 @@ RobotAssembly::RobotAssembly(std::shared_ptr<const RobotModel> model, const Asse
   length_scale_ = force_scale_ = moment_scale_ = 0.0;
   for (size_t i = 0; i < model_->rods().size(); ++i) build.add_rod(static_cast<int>(i));
   build.add_platform_balances();
+  build.add_passive_joint_balances();
   build.fix_inputs_and_joints();
   int free_unknowns = 0;
   for (int v = 0; v < problem_.num_variable_blocks(); ++v)
@@ -203,6 +230,19 @@ ResidualId RobotAssembly::platform_balance(int platform) const {
   require(platform >= 0 && platform < static_cast<int>(platform_balances_.size()),
           "platform_balance: platform ", platform, " out of range [0, ", platform_balances_.size(), ")");
   return platform_balances_[platform];
+}
+
+VariableId RobotAssembly::passive_joint_variable(int passive) const {
+  const std::vector<int>& passive_joints = model_->passive_joints();
+  require(passive >= 0 && passive < static_cast<int>(passive_joints.size()), "passive_joint_variable: ", passive,
+          " out of range [0, ", passive_joints.size(), ")");
+  return joint_variables_[model_->joints()[passive_joints[passive]].value_index];
+}
+
+ResidualId RobotAssembly::passive_joint_balance(int passive) const {
+  require(passive >= 0 && passive < static_cast<int>(passive_joint_balances_.size()), "passive_joint_balance: ",
+          passive, " out of range [0, ", passive_joint_balances_.size(), ")");
+  return passive_joint_balances_[passive];
 }
 
 ResidualId RobotAssembly::rod_coupling(int rod, bool at_tip) const {

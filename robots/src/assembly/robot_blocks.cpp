@@ -5,6 +5,7 @@
 #include "pcr/math/dual.hpp"
 #include "pcr/math/so3.hpp"
 #include "pcr/rods/collocation/end_equations.hpp"
+#include "pcr/rods/end_axes.hpp"
 
 namespace pcr::assembly {
 using namespace collocation;
@@ -22,12 +23,13 @@ using RowMap = Eigen::Map<RowMajorMatX>;
 
 // ---------------------------------------------------------------------------------------------------
 CouplingBlock::CouplingBlock(const std::string& name, RodEndEvaluator end, LinkFrame frame, RodEndKind kind,
-                             const PointConstants& scales)
+                             const Vec3& axis, const PointConstants& scales)
     : ResidualBlock(std::string("coupling.") + to_string(kind), name, 7,
                     concat(end.variables(), frame.variables)),
       end_(std::move(end)),
       frame_(std::move(frame)),
       kind_(kind),
+      axes_(joint_axes(axis)),
       scales_(scales),
       end_blocks_(static_cast<int>(end_.variables().size())) {}
 
@@ -35,7 +37,7 @@ namespace {
 
 // The 7 coupling equations from z = [y (13): p, q, n, m of the rod end; x (3), Q (4): link frame].
 template <typename T>
-void coupling_residual(const Eigen::Matrix<T, 20, 1>& z, const Pose& offset, RodEndKind kind,
+void coupling_residual(const Eigen::Matrix<T, 20, 1>& z, const Pose& offset, RodEndKind kind, const Mat3& axes,
                        const PointConstants& scales, T* r) {
   const V3<T> x = z.template segment<3>(13);
   const V4<T> Q = z.template segment<4>(16);
@@ -44,6 +46,7 @@ void coupling_residual(const Eigen::Matrix<T, 20, 1>& z, const Pose& offset, Rod
   t.position = x + RQ * offset.position.cast<T>();
   t.orientation = quat_product<T>(Q, offset.orientation.cast<T>());
   t.frame = RQ * offset.rotation().cast<T>();
+  t.axes = axes;
   end_conditions<T>(kind, t, EndLoads{}, scales, z.template segment<3>(0), z.template segment<4>(3),
                     z.template segment<3>(7), z.template segment<3>(10), r);
 }
@@ -60,7 +63,7 @@ void CouplingBlock::evaluate(const double* const* values, double* residual, doub
   if (!jacobians) {
     Eigen::Matrix<double, 20, 1> z;
     z << y, zl;
-    coupling_residual<double>(z, frame_.offset, kind_, scales_, residual);
+    coupling_residual<double>(z, frame_.offset, kind_, axes_, scales_, residual);
     return;
   }
   using D = Dual<20>;
@@ -68,7 +71,7 @@ void CouplingBlock::evaluate(const double* const* values, double* residual, doub
   for (int k = 0; k < 13; ++k) z[k] = D::variable(y[k], k);
   for (int k = 0; k < 7; ++k) z[13 + k] = D::variable(zl[k], 13 + k);
   D r[7];
-  coupling_residual<D>(z, frame_.offset, kind_, scales_, r);
+  coupling_residual<D>(z, frame_.offset, kind_, axes_, scales_, r);
   for (int i = 0; i < 7; ++i) residual[i] = r[i].a;
   Eigen::Matrix<double, 7, 20> dr;
   for (int i = 0; i < 7; ++i) dr.row(i) = r[i].v.transpose();

@@ -15,7 +15,8 @@ namespace pcr::assembly {
 
 class CouplingBlock final : public ResidualBlock {
  public:
-  CouplingBlock(const std::string& name, RodEndEvaluator end, LinkFrame frame, RodEndKind kind,
+  /// axis: the joint axis of a universal or revolute coupling in the attachment frame (else unused).
+  CouplingBlock(const std::string& name, RodEndEvaluator end, LinkFrame frame, RodEndKind kind, const Vec3& axis,
                 const collocation::PointConstants& scales);
   void evaluate(const double* const* values, double* residual, double* const* jacobians) const override;
 
@@ -23,6 +24,7 @@ class CouplingBlock final : public ResidualBlock {
   RodEndEvaluator end_;
   LinkFrame frame_;
   RodEndKind kind_;
+  Mat3 axes_;  ///< joint_axes(axis), end_axes.hpp
   collocation::PointConstants scales_;
   int end_blocks_;
   std::vector<int> sizes_;

@@ -55,7 +55,11 @@ std::vector<Outline> robot_outlines(const RobotModel& model, const RobotSolution
   require(solution.platforms.size() == model.platforms().size(),
           "robot_outlines: ", solution.platforms.size(), " platform poses for ", model.platforms().size(),
           " platforms");
-  const VecX q = joint_values_of_inputs(model, solution.inputs);
+  VecX q = joint_values_of_inputs(model, solution.inputs);
+  const std::vector<int>& passive = model.passive_joints();
+  if (solution.passive_joints.size() == static_cast<int>(passive.size()))
+    for (size_t i = 0; i < passive.size(); ++i)
+      q[model.joints()[passive[i]].value_index] = solution.passive_joints[static_cast<int>(i)];
   std::vector<Outline> outlines(model.platforms().size() + 1);
   outlines[0].name = "base";
   for (size_t p = 0; p < model.platforms().size(); ++p) {

@@ -160,6 +160,14 @@ void write_solution_object(JsonWriter& json, const RobotModel& model, const Robo
     json.value(solution.inputs[static_cast<int>(i)]);
   }
   json.end_object();
+  json.key("passive_joints");
+  json.begin_object();
+  const std::vector<int>& passive = model.passive_joints();
+  for (size_t i = 0; i < passive.size() && static_cast<int>(i) < solution.passive_joints.size(); ++i) {
+    json.key(model.joints()[passive[i]].name);
+    json.value(solution.passive_joints[static_cast<int>(i)]);
+  }
+  json.end_object();
   json.key("platforms");
   json.begin_object();
   for (size_t p = 0; p < solution.platforms.size() && p < model.platforms().size(); ++p) {

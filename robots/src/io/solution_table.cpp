@@ -27,6 +27,12 @@ std::pair<double, const char*> display_input(const RobotModel& model, const Actu
   return {value * kDegree, "deg"};
 }
 
+/// Value and unit of a joint value for display: prismatic in mm, angles in degrees.
+std::pair<double, const char*> display_joint(const Joint& joint, double value) {
+  if (joint.type == JointType::Prismatic) return {value * kMillimetre, "mm"};
+  return {value * kDegree, "deg"};
+}
+
 /// Values that print as zero at the table's precision (half a unit of the last digit) set to +0, so
 /// the table shows no "-0.000".
 VecX tidy(VecX v, double half_unit) {
@@ -68,6 +74,22 @@ void write_solution_table(std::ostream& out, const RobotModel& model, const Robo
       const ActuationInput& input = model.inputs()[i];
       const auto shown = display_input(model, input, solution.inputs[static_cast<int>(i)]);
       out << format("  %-16s %12.4f %s\n", input.name.c_str(), shown.first, shown.second);
+    }
+  }
+  const std::vector<int>& passive = model.passive_joints();
+  if (!passive.empty() && solution.passive_joints.size() == static_cast<int>(passive.size())) {
+    // Their limits are not enforced by the solve: a value beyond them is flagged.
+    out << "passive joints:\n";
+    for (size_t i = 0; i < passive.size(); ++i) {
+      const Joint& joint = model.joints()[passive[i]];
+      const double value = solution.passive_joints[static_cast<int>(i)];
+      const auto shown = display_joint(joint, value);
+      out << format("  %-16s %12.4f %s", joint.name.c_str(), shown.first, shown.second);
+      if (value < joint.lower || value > joint.upper) {
+        out << format("   (outside its limits [%g, %g] %s)", display_joint(joint, joint.lower).first,
+                      display_joint(joint, joint.upper).first, shown.second);
+      }
+      out << "\n";
     }
   }
   if (!solution.platforms.empty()) {

@@ -25,6 +25,9 @@ RobotSolution read_solution(const RobotAssembly& a, const VecX& x,
   s.inputs = a.inputs(x);
   for (size_t p = 0; p < a.model().platforms().size(); ++p)
     s.platforms.push_back(a.platform_pose(x, static_cast<int>(p)));
+  s.passive_joints.resize(static_cast<int>(a.model().passive_joints().size()));
+  for (int j = 0; j < s.passive_joints.size(); ++j)
+    s.passive_joints[j] = x[a.problem().variable(a.passive_joint_variable(j)).offset];
   for (int i = 0; i < a.num_rods(); ++i) {
     const CollocationRod& rod = a.rod(i);
     const RodVariables& v = a.rod_variables(i);

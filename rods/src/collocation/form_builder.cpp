@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "pcr/math/quaternion.hpp"
+#include "pcr/rods/end_axes.hpp"
 #include "pcr/splines/basis.hpp"
 
 namespace pcr::collocation {
@@ -72,6 +73,7 @@ EndData FormBuilder::end_data(bool at_tip) const {
   e.target.position = end.position;
   e.target.orientation = end.orientation.normalized();
   e.target.frame = rotation_matrix(e.target.orientation);
+  e.target.axes = joint_axes(end.axis);
   // n, m are the force and moment of the part s+ on s-: an applied load is -(F, M) at the base.
   const double sign = at_tip ? 1.0 : -1.0;
   e.loads.n_bar = sign * load_factor_ * end.force;

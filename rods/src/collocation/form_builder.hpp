@@ -52,7 +52,7 @@ struct EndData {
 
 template <typename T>
 EndTarget<T> cast_target(const EndTarget<double>& t) {
-  return {t.position.cast<T>(), t.orientation.cast<T>(), t.frame.cast<T>()};
+  return {t.position.cast<T>(), t.orientation.cast<T>(), t.frame.cast<T>(), t.axes};
 }
 
 class FormBuilder {

@@ -4,7 +4,8 @@
 //               URDF joint: its value;
 //   equations — per rod: its collocation equations; per attached rod end: the 7 coupling equations
 //               of its kind (the rod end frame = link pose * attachment frame); per free rod end: its
-//               dead loads; per platform: force and moment balance + |Q|^2 = 1.
+//               dead loads; per platform: force and moment balance + |Q|^2 = 1; per passive joint: the
+//               balance of the generalised force beyond it and its spring (its value is free).
 // Actuation inputs (rod lengths, joint values) are variable blocks too, fixed in the assembly's problem
 // (the forward kinematics system: their values are whatever x holds); inverse kinematics builds its own
 // problems from it with the inputs free (IkModel, robots/src/kinematics/ik_data.hpp).
@@ -81,6 +82,12 @@ class RobotAssembly {
   ResidualId platform_balance(int platform) const;
   /// Residual block coupling rod i's end (at_tip: s = L, else s = 0) to its link; -1 for a free end.
   ResidualId rod_coupling(int rod, bool at_tip) const;
+  /// Variable block (size 1) of passive joint i (RobotModel::passive_joints() order): free, not an input.
+  VariableId passive_joint_variable(int passive) const;
+  /// Residual block (1 row) of passive joint i's balance: (Q - k (q - rest)) / scale, Q the generalised
+  /// force of everything beyond it, scale the moment scale (revolute, continuous) or the force scale
+  /// (prismatic).
+  ResidualId passive_joint_balance(int passive) const;
   /// Representative scales: the longest rod [m], and the largest rod force / moment scale.
   double length_scale() const { return length_scale_; }
   double force_scale() const { return force_scale_; }
@@ -104,7 +111,7 @@ class RobotAssembly {
   std::vector<std::shared_ptr<const CollocationRod>> rods_;
   std::vector<RodVariables> rod_variables_;
   std::vector<VariableId> platform_variables_, joint_variables_, input_variables_;
-  std::vector<ResidualId> platform_balances_;
+  std::vector<ResidualId> platform_balances_, passive_joint_balances_;
   std::vector<std::array<ResidualId, 2>> rod_couplings_;  // per rod: start, end (-1 when free)
   double length_scale_ = 1.0, force_scale_ = 1.0, moment_scale_ = 1.0;
 };

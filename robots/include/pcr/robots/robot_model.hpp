@@ -16,8 +16,9 @@ namespace pcr {
 struct Link {
   std::string name;
   int parent_joint = -1;  ///< index into RobotModel::joints(); -1 for the base (root) link
-  /// URDF <inertial> of a link that is not a platform [kg], centre of mass in the link frame [m]: its
-  /// weight loads the passive joints between it and the world (and the platform carrying it, if any).
+  /// URDF <inertial> of a link that is neither a platform nor carried by one [kg], centre of mass in the
+  /// link frame [m]: its weight loads the passive joints between it and the world. Unused on links no
+  /// passive joint moves (the base or the actuators carry that weight).
   double mass = 0.0;
   Vec3 center_of_mass = Vec3::Zero();
 };
@@ -84,8 +85,8 @@ struct RodElement {
   int elements = 0;
 };
 
-/// A dead wrench on a link carried by a platform: force and torque in the world frame, force applied
-/// at `point` (link frame).
+/// A dead wrench on a link carried by a platform or moved by a passive joint: force and torque in the
+/// world frame, force applied at `point` (link frame).
 struct ExternalLoad {
   int link = -1;
   Vec3 point = Vec3::Zero();
@@ -105,6 +106,10 @@ struct ActuationInput {
 /// (the Dirichlet part of its 7 end equations, docs/design.md §1): clamped 6, collar 5, revolute 5,
 /// universal 4, spherical 3, free 0.
 int kinematic_constraint_count(RodEndKind coupling);
+
+/// Empty when one end of the rod holds its twist about the tangent (clamped, universal, or revolute
+/// with the pin axis not along the tangent), else the reason, naming both couplings.
+std::string twist_rule_violation(const RodElement& rod);
 
 class RobotModel {
  public:
@@ -141,6 +146,12 @@ class RobotModel {
   /// -1 for links fixed to the world (possibly through actuated joints).
   int carrying_platform(int link) const;
 
+  /// Whether the value of `joint` moves `link`: the joint lies on the link's path from the world with no
+  /// floating joint between them (a platform is not moved by the joints above it).
+  bool joint_moves_link(int joint, int link) const;
+  /// Whether a passive joint moves `link` (loads and link masses there load that joint).
+  bool moved_by_passive_joint(int link) const;
+
   /// Joint-value vector: one entry per moving (prismatic, revolute, continuous) joint, see
   /// Joint::value_index.
   int joint_value_count() const { return joint_value_count_; }
@@ -164,6 +175,7 @@ class RobotModel {
  private:
   void build_tables();
   void build_rods();
+  void check_passive_joints_loaded() const;
 
   std::string name_;
   std::vector<Link> links_;
@@ -178,6 +190,7 @@ class RobotModel {
   int joint_value_count_ = 0;
   std::vector<int> platform_of_link_;
   std::vector<int> carrying_platform_;
+  std::vector<bool> passive_ancestor_;  ///< per link: a passive joint on its path from the world
   std::map<std::string, int> link_names_, joint_names_, rod_names_, input_names_;
 };
 

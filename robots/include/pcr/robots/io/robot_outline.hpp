@@ -19,7 +19,8 @@ struct Outline {
   bool closed = false;
 };
 
-/// Joint values (model's joint-value vector) for the given inputs (model input order).
+/// Joint values (model's joint-value vector) for the given inputs (model input order); passive joints
+/// at their defaults.
 VecX joint_values_of_inputs(const RobotModel& model, const VecX& inputs);
 
 /// The base outline first, then one per platform, from the solution's inputs and platform poses.

@@ -4,18 +4,20 @@
 // pose * attachment, itself unknown). Dirichlet (kinematic) conditions fix p and q (or parts of them);
 // Neumann conditions fix n and m. Sign: n, m are the force and moment that the part s+ exerts on s-,
 // so an external load (F, M) on the rod gives n = F, m = M at s = L and n = -F, m = -M at s = 0.
-#include "pcr/core/error.hpp"
 #include "pcr/rods/collocation/equations.hpp"
 #include "pcr/rods/rod_model.hpp"
 
 namespace pcr::collocation {
 
-/// The frame an end is held in: position, quaternion (unit) and its rotation matrix.
+/// The frame an end is held in: position, quaternion (unit) and its rotation matrix R_T; for universal
+/// and revolute ends the joint axes [a, c1, c2] in that frame (joint_axes, end_axes.hpp: a the joint
+/// axis, c1 = b the universal's second axis, c1, c2 the directions a pin blocks).
 template <typename T>
 struct EndTarget {
   V3<T> position;
   V4<T> orientation;
   M3<T> frame;
+  Mat3 axes = Mat3::Identity();
 };
 
 /// Prescribed n, m at an end (load factor and signs applied); used by collar (torsion), spherical and
@@ -23,6 +25,46 @@ struct EndTarget {
 struct EndLoads {
   Vec3 n_bar = Vec3::Zero(), m_bar = Vec3::Zero();
 };
+
+/// Hooke joint (universal), 7 rows: (p - p_T) / L0 (3); (R_T a) . (R b) (1); (m - m_bar) . (R_T a) / M0,
+/// (m - m_bar) . (R b) / M0 (2); |q|^2 - 1 (1); a the first axis (fixed in the end frame), b = e3 x a /
+/// |e3 x a| the second (fixed in the rod's body frame), R = R(q) the rod frame at the end.
+/// The orientation row's zero set is exactly the joint's configurations R = R_T R_a(t1) R_b(t2): these
+/// give R b = R_T R_a(t1) b, and a . R_a(t1) b = a . b = 0. Conversely, with R' = R_T^T R and
+/// a . (R' b) = 0, R' b is a unit vector normal to a, so R' b = R_a(t1) b for some t1 (the unit vectors
+/// normal to a are the circle R_a(t) b); then R_a(-t1) R' fixes b, so it is R_b(t2) for some t2. The
+/// row's gradient in the rotation, R b x R_T a, never vanishes there (the two axes stay perpendicular):
+/// no gimbal singularity in these equations. Torsion (the moment about R_T a x R b) is transmitted.
+template <typename T>
+void universal_conditions(const EndTarget<T>& target, const EndLoads& loads, const PointConstants& c,
+                          const V3<T>& p, const V4<T>& q, const V3<T>& m, T* r) {
+  const Mat3 axes = target.axes;                              // [a, b, a x b], end frame
+  const V3<T> first = target.frame * axes.col(0).cast<T>();   // R_T a
+  const V3<T> second = rotation(q) * axes.col(1).cast<T>();   // R b
+  const V3<T> moment = m - loads.m_bar.cast<T>();
+  for (int i = 0; i < 3; ++i) r[i] = (p[i] - target.position[i]) / c.length_scale;
+  r[3] = first.dot(second);
+  r[4] = moment.dot(first) / c.moment_scale;
+  r[5] = moment.dot(second) / c.moment_scale;
+  r[6] = q.squaredNorm() - 1.0;
+}
+
+/// Pin (revolute), 7 rows: (p - p_T) / L0 (3); (R a) . (R_T c1), (R a) . (R_T c2) (2): the rod frame
+/// turns only about a, R a = R_T a; (m - m_bar) . (R_T a) / M0 (1); |q|^2 - 1 (1). Like the collar's,
+/// the orientation rows also vanish on the flipped branch R a = -R_T a (the rod turned half a turn
+/// about an axis normal to a); Newton from the attachment frame stays on R a = R_T a.
+template <typename T>
+void revolute_conditions(const EndTarget<T>& target, const EndLoads& loads, const PointConstants& c,
+                         const V3<T>& p, const V4<T>& q, const V3<T>& m, T* r) {
+  const Mat3 axes = target.axes;                                // [a, c1, c2], end frame
+  const V3<T> pin_rod = rotation(q) * axes.col(0).cast<T>();    // R a
+  const V3<T> pin = target.frame * axes.col(0).cast<T>();       // R_T a
+  for (int i = 0; i < 3; ++i) r[i] = (p[i] - target.position[i]) / c.length_scale;
+  r[3] = pin_rod.dot(target.frame * axes.col(1).cast<T>());
+  r[4] = pin_rod.dot(target.frame * axes.col(2).cast<T>());
+  r[5] = (m - loads.m_bar.cast<T>()).dot(pin) / c.moment_scale;
+  r[6] = q.squaredNorm() - 1.0;
+}
 
 /// r[0..7) from p, q, n, m at the end (all world frame), scaled by the rod's reference scales.
 template <typename T>
@@ -32,8 +74,11 @@ void end_conditions(RodEndKind kind, const EndTarget<T>& target, const EndLoads&
   const double L0 = c.length_scale, F0 = c.force_scale, M0 = c.moment_scale;
   switch (kind) {
     case RodEndKind::Universal:
+      universal_conditions(target, loads, c, p, q, m, r);
+      return;
     case RodEndKind::Revolute:
-      throw_input_error("collocation rod end: the ", to_string(kind), " coupling is not implemented yet");
+      revolute_conditions(target, loads, c, p, q, m, r);
+      return;
     case RodEndKind::Clamped:
       for (int i = 0; i < 3; ++i) r[i] = (p[i] - target.position[i]) / L0;
       for (int i = 0; i < 4; ++i) r[3 + i] = q[i] - target.orientation[i];
