@@ -321,6 +321,32 @@ std::string one_rod(const std::string& start, const std::string& end) {
 
 }  // namespace
 
+BOOST_AUTO_TEST_CASE(a_spring_less_hinge_carrying_only_a_rod_pinned_on_its_axis_is_rejected) {
+  // planar_pinned with the middle rod's base pin on a link that turns about the pin's own line (a passive
+  // hinge without spring): the hinge is a free motion of the rigid-rod rank check.
+  std::string xml = read_file(model_path("planar_pinned"));
+  const std::string base_pin = R"(<start link="base" xyz="-0.08 0 0" rpy="0 0.278299659005 0")";
+  xml.replace(xml.find(base_pin), base_pin.size(), R"(<start link="hinge" rpy="0 0.278299659005 0")");
+  xml.replace(xml.find("<pcr_gravity"), 12, R"(<link name="hinge"/>
+  <joint name="hinge" type="revolute"><parent link="base"/><child link="hinge"/><origin xyz="-0.08 0 0" rpy="0 0 0"/>
+    <axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="0" velocity="1"/></joint>
+  <pcr_joint name="hinge" passive="true"/>
+  <pcr_gravity)");
+  try {
+    parse_robot_model(xml, "pinned_hinge.urdf");
+    BOOST_ERROR("accepted");
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    for (const char* part :
+         {"pinned_hinge.urdf", "passive joint 'hinge'", "pcr_rod 'middle'", "free to move"})
+      BOOST_TEST(what.find(part) != std::string::npos, "'" << part << "' not in: " << what);
+  }
+  // With a spring it is held.
+  const std::string spring = R"(<pcr_joint name="hinge" passive="true"/>)";
+  xml.replace(xml.find(spring), spring.size(), R"(<pcr_joint name="hinge" passive="true" stiffness="0.1"/>)");
+  BOOST_CHECK_NO_THROW(parse_robot_model(xml, "pinned_hinge.urdf"));
+}
+
 BOOST_AUTO_TEST_CASE(malformed_joint_input_is_rejected_with_file_line_element_and_value) {
   const std::string pinned = read_file(model_path("planar_pinned")),
                     pair = read_file(model_path("universal_pair")),
