@@ -16,6 +16,7 @@
 #include "pcr/math/so3.hpp"
 #include "pcr/robots/io/solution_writers.hpp"
 #include "pcr/robots/kinematics.hpp"
+#include "pcr/robots/platform_hold_check.hpp"
 #include "pcr/robots/urdf_loader.hpp"
 #include "pcr/solve/jacobian_check.hpp"
 
@@ -119,10 +120,15 @@ BOOST_AUTO_TEST_CASE(joint_coupling_and_passive_balance_blocks_match_finite_diff
       const Problem& p = fk.assembly().problem();
       BOOST_TEST(count_blocks(p, "joint.passive_balance") ==
                  static_cast<int>(model->passive_joints().size()));
-      BOOST_TEST(count_blocks(p, "coupling.universal") + count_blocks(p, "coupling.revolute") +
-                         count_blocks(p, "joint.passive_balance") >
-                     0,
-                 name);
+      int universal = 0, revolute = 0;
+      for (const RodElement& rod : model->rods())
+        for (RodEndKind kind : {rod.start.coupling, rod.end.coupling}) {
+          universal += kind == RodEndKind::Universal;
+          revolute += kind == RodEndKind::Revolute;
+        }
+      BOOST_TEST(count_blocks(p, "coupling.universal") == universal, name);
+      BOOST_TEST(count_blocks(p, "coupling.revolute") == revolute, name);
+      BOOST_TEST(universal + revolute + static_cast<int>(model->passive_joints().size()) > 0, name);
       // A perturbed state (relative 1e-3, quaternions no longer unit, joint values moved).
       VecX x = fk.state();
       for (int i = 0; i < x.size(); ++i) x[i] += 1e-3 * (std::abs(x[i]) + 1e-2) * noise(rng);
@@ -320,6 +326,42 @@ std::string one_rod(const std::string& start, const std::string& end) {
 }
 
 }  // namespace
+
+BOOST_AUTO_TEST_CASE(rank_check_counts_universal_4_and_revolute_5_constraints) {
+  BOOST_TEST(kinematic_constraint_count(RodEndKind::Universal) == 4);
+  BOOST_TEST(kinematic_constraint_count(RodEndKind::Revolute) == 5);
+  // Rows: both couplings of a rod without a clamped end, the other coupling of a clamped rod. Columns:
+  // the platform (6), each spring-less passive joint (1), each rod without a clamped end (6). Each model
+  // is held: full column rank.
+  struct Case {
+    const char* model;
+    int rows, columns;
+  };
+  for (const Case& c :
+       {Case{"planar_pinned", 3 * (5 + 5), 6 + 3 * 6}, Case{"universal_pair", 6 * (4 + 3), 6 + 6 * 6},
+        Case{"universal_passive", 6 * 3, 6 + 6 * 2}, Case{"passive_hinge", 3 * 3, 6}}) {
+    const auto model = load(c.model);
+    const MatX C =
+        coupling_constraint_matrix(*model, model->default_joint_values(), model->initial_platform_poses());
+    BOOST_TEST(C.rows() == c.rows, c.model);
+    BOOST_TEST(C.cols() == c.columns, c.model);
+    const Eigen::JacobiSVD<MatX> svd(C);
+    // Held: the smallest singular value is a lever-arm ratio, far above round-off (1e-16 of the largest).
+    BOOST_TEST(svd.singularValues().minCoeff() > 1e-3 * svd.singularValues().maxCoeff(), c.model);
+  }
+  // One rod pinned at both ends holds a platform by 10 constraints: 12 motions, so it is rejected.
+  std::string one = read_file(model_path("planar_pinned"));
+  for (const char* rod : {"middle", "right"}) {
+    const size_t from = one.find(std::string("<pcr_rod name=\"") + rod + "\"");
+    one.erase(from, one.find("</pcr_rod>", from) + 10 - from);
+  }
+  try {
+    parse_robot_model(one, "one_pinned_rod.urdf");
+    BOOST_ERROR("accepted");
+  } catch (const InputError& e) {
+    BOOST_TEST(std::string(e.what()).find("platform 'platform'") != std::string::npos, e.what());
+  }
+}
 
 BOOST_AUTO_TEST_CASE(a_spring_less_hinge_carrying_only_a_rod_pinned_on_its_axis_is_rejected) {
   // planar_pinned with the middle rod's base pin on a link that turns about the pin's own line (a passive
