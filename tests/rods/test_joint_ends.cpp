@@ -190,6 +190,40 @@ BOOST_AUTO_TEST_CASE(pinned_tip_gives_the_propped_cantilever) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(rod_pinned_at_both_ends_is_the_simply_supported_beam) {
+  // Pins about y at both ends (or universal joints with first axis y: their second axis is world z, free
+  // too), uniform load w along -z: the simply supported beam. Reactions w L / 2 at each end (statics);
+  // end section rotations -+ w L^3 / (24 EI) (the section rotation of a Timoshenko beam, which shear
+  // does not change for this statically determinate beam); midpoint deflection 5 w L^4 / (384 EI) +
+  // w L^2 / (8 GA) (bending + shear: the shear term is 1e-4 of the total here, so it is included);
+  // no moment about the pins. Tolerance kBeam (1e-4 relative; the membrane tension of the two held
+  // ends is ~EA (deflection / L)^2 ~ 4e-4 N, a relative change N L^2 / (pi^2 EI) ~ 1e-5).
+  const double L = 0.5, EI = 1.0, GA = 4e5, w = 1e-3 * EI / (L * L * L);
+  for (RodEndKind kind : {RodEndKind::Revolute, RodEndKind::Universal}) {
+    RodModel m = beam(kind, Vec3::UnitY());
+    m.base.kind = kind;
+    m.base.axis = Vec3::UnitY();
+    m.loads.force_per_length = Vec3(0, 0, -w);
+    const RodSolution s = solve_beam(m, RodFormulation::Condensed);
+    const RodState base = s.base(), tip = s.tip(), mid = s.at(L / 2);
+    const std::string label = to_string(kind);
+    BOOST_TEST(close(tip.force.z(), w * L / 2), label << ": tip reaction " << tip.force.z());
+    BOOST_TEST(close(base.force.z(), -w * L / 2), label << ": base reaction " << base.force.z());
+    const Vec3 d3_base = base.rotation.col(2), d3_tip = tip.rotation.col(2);
+    BOOST_TEST(close(std::atan2(d3_base.z(), d3_base.x()), -w * L * L * L / (24 * EI)),
+               label << ": base slope");
+    BOOST_TEST(close(std::atan2(d3_tip.z(), d3_tip.x()), w * L * L * L / (24 * EI)), label << ": tip slope");
+    const double deflection = 5 * w * std::pow(L, 4) / (384 * EI) + w * L * L / (8 * GA);
+    BOOST_TEST_MESSAGE(label << " pinned-pinned midpoint deflection relative error "
+                             << (-mid.position.z() - deflection) / deflection);
+    BOOST_TEST(close(mid.position.z(), -deflection),
+               label << ": midpoint " << mid.position.z() << " vs " << -deflection);
+    // The pin rows: zero moment about y (solver tolerance 1e-12 x moment scale 2 N m).
+    BOOST_TEST(std::abs(base.moment.y()) < 1e-11, label);
+    BOOST_TEST(std::abs(tip.moment.y()) < 1e-11, label);
+  }
+}
+
 BOOST_AUTO_TEST_CASE(universal_and_revolute_ends_hold_torsion_and_differ_in_the_second_bending_plane) {
   // A distributed torque l about the rod axis (x): with the twist held at both ends (universal or pin
   // normal to the rod), GJ phi'' = -l with phi(0) = phi(L) = 0: each support takes l L / 2, so the tip
