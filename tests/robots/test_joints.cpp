@@ -212,6 +212,58 @@ BOOST_AUTO_TEST_CASE(bar_on_a_passive_hinge_with_a_torsion_spring_meets_the_mome
   BOOST_TEST((tip - L * Vec3(std::cos(q), 0, -std::sin(q))).norm() < 2e-6, "tip " << tip.transpose());
 }
 
+BOOST_AUTO_TEST_CASE(continuous_and_prismatic_passive_joints_in_a_chain_balance_their_loads) {
+  // A swivel (continuous, about the world z axis, spring k2, rest r2) carries a slider (prismatic along
+  // the swivel link's x axis x1 = Rz(q2) e_x, 2 cm up, spring k1, rest r1); on the slider link a rod
+  // clamped at its origin with a free tip loaded by a vertical force and a moment Mz about z, a
+  // horizontal load F at the slider link's origin (q1 x1 + 2 cm z from the swivel axis), link masses,
+  // gravity along -z. Vertical forces have no component along x1 and no moment about z, so whatever the
+  // rod's deformation the balances are
+  //   k1 (q1 - r1) = x1 . F = cos q2 Fx + sin q2 Fy,
+  //   k2 (q2 - r2) = Mz + (q1 x1 x F) . z = Mz + q1 (cos q2 Fy - sin q2 Fx).
+  // Tolerance 1e-9 (m, rad): the solve's 1e-12 dimensionless residual x the moment and force scales
+  // (~1 N m, ~1 N) over the springs (0.2 N m/rad, 50 N/m) is <= 5e-12.
+  const double k1 = 50, r1 = 0.01, k2 = 0.2, r2 = 0.1, Fx = 0.3, Fy = 0.2, Mz = 0.004;
+  std::ostringstream x;
+  x << R"(<?xml version="1.0"?>
+<robot name="swivel_slider">
+  <link name="base"/>
+  <link name="turntable"><inertial><origin xyz="0.01 0.02 0" rpy="0 0 0"/><mass value="0.05"/>)"
+    << kInertia << R"(</inertial></link>
+  <link name="carriage"><inertial><origin xyz="0.01 0 0.01" rpy="0 0 0"/><mass value="0.03"/>)"
+    << kInertia << R"(</inertial></link>
+  <joint name="swivel" type="continuous"><parent link="base"/><child link="turntable"/>
+    <origin xyz="0 0 0" rpy="0 0 0"/><axis xyz="0 0 1"/></joint>
+  <joint name="slider" type="prismatic"><parent link="turntable"/><child link="carriage"/>
+    <origin xyz="0 0 0.02" rpy="0 0 0"/><axis xyz="1 0 0"/><limit lower="-0.1" upper="0.1" effort="0" velocity="1"/></joint>
+  <pcr_joint name="swivel" passive="true" stiffness=")"
+    << k2 << "\" rest=\"" << r2 << R"("/>
+  <pcr_joint name="slider" passive="true" stiffness=")"
+    << k1 << "\" rest=\"" << r1 << R"("/>
+  <pcr_gravity xyz="0 0 -9.81"/>
+  <pcr_load link="carriage" xyz="0 0 0" force=")"
+    << Fx << " " << Fy << R"( 0" torque="0 0 0"/>
+  <pcr_rod name="arm"><start link="carriage" rpy="0 1.2 0" coupling="clamped"/>
+    <end coupling="free" force="0 0 -0.2" moment="0 0 )"
+    << Mz << "\"/>" << kSteel << R"(<section type="circle" radius="0.001"/><length value="0.2"/></pcr_rod>
+</robot>)";
+  const auto model = std::make_shared<const RobotModel>(parse_robot_model(x.str(), "swivel_slider.urdf"));
+  BOOST_REQUIRE(model->passive_joints().size() == 2);  // file order: swivel, slider
+  ForwardKinematics fk(model, tight());
+  const RobotSolution s = fk.solve(model->default_input_values());
+  BOOST_REQUIRE_MESSAGE(s.summary.converged(), s.summary.brief_report());
+  double q1 = r1, q2 = r2;  // fixed point (a contraction: the coupling q1 Fy / k2 ~ 0.01)
+  for (int i = 0; i < 200; ++i) {
+    q2 = r2 + (Mz + q1 * (std::cos(q2) * Fy - std::sin(q2) * Fx)) / k2;
+    q1 = r1 + (std::cos(q2) * Fx + std::sin(q2) * Fy) / k1;
+  }
+  BOOST_TEST(std::abs(k2 * (q2 - r2) - Mz - q1 * (std::cos(q2) * Fy - std::sin(q2) * Fx)) < 1e-15);
+  BOOST_TEST_MESSAGE("swivel " << q2 << " rad, error " << s.passive_joints[0] - q2 << "; slider " << q1
+                               << " m, error " << s.passive_joints[1] - q1);
+  BOOST_TEST(std::abs(s.passive_joints[0] - q2) < 1e-9, "swivel " << s.passive_joints[0] << " vs " << q2);
+  BOOST_TEST(std::abs(s.passive_joints[1] - q1) < 1e-9, "slider " << s.passive_joints[1] << " vs " << q1);
+}
+
 BOOST_AUTO_TEST_CASE(fk_then_ik_round_trip_on_the_joint_models) {
   // As test_kinematics' round trip: FK at moved inputs, IK to the reached pose (the components each
   // robot's inputs control), then FK at the IK's inputs reaches the target to 1e-9 (m, rad: solver
