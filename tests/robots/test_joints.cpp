@@ -1,8 +1,9 @@
 // Robots with universal and revolute rod couplings and passive URDF joints: the coupling and passive
 // joint balance blocks against finite differences (the shipped joint models, chains of 1-3 passive
-// joints), the universal coupling against its construction from two passive revolute joints, a rod on
-// a passive hinge with a torsion spring against its closed-form moment balance, FK -> IK round trips
-// on the joint models, passive joint values in the table and JSON, and malformed joint input.
+// joints), the universal coupling against its construction from two passive revolute joints, closed-form
+// balances (a bar on a passive hinge with a torsion spring under gravity; a passive swivel carrying a
+// passive slider), FK -> IK round trips on the joint models, passive joint values in the table and JSON,
+// the rank check's constraint counts, and malformed joint input.
 #define BOOST_TEST_MODULE joints
 #include <boost/test/unit_test.hpp>
 
