@@ -61,8 +61,8 @@ void add_twist(MatX& C, const CouplingRows& c, double coefficient, int col, cons
 // Adds coefficient * (the rows for the motion of `link` at the coupling): its platform's twist, or the
 // rates of the free passive joints that move it (revolute: v = w x (P - o), angular velocity w;
 // prismatic: v = w), w the joint axis and o its origin in the world.
-void add_link(MatX& C, const CouplingRows& c, double coefficient, int link, const RobotModel& m, const Bodies& b,
-              const VecX& q, const std::vector<Pose>& poses) {
+void add_link(MatX& C, const CouplingRows& c, double coefficient, int link, const RobotModel& m,
+              const Bodies& b, const VecX& q, const std::vector<Pose>& poses) {
   const int platform = m.carrying_platform(link);
   if (platform >= 0) {
     add_twist(C, c, coefficient, 6 * platform, poses[platform].position);
@@ -110,7 +110,8 @@ std::string on_platform(const RobotModel& model, int platform) {
 // end carries the rod), or, with no clamped end, those of both ends less the rod's own 6 degrees of
 // freedom (exact when the rod alone is held, RodModel::validate).
 int rod_constraint_count(const RodElement& rod) {
-  const int start = kinematic_constraint_count(rod.start.coupling), end = kinematic_constraint_count(rod.end.coupling);
+  const int start = kinematic_constraint_count(rod.start.coupling),
+            end = kinematic_constraint_count(rod.end.coupling);
   if (rod.start.coupling == RodEndKind::Clamped) return end;
   if (rod.end.coupling == RodEndKind::Clamped) return start;
   return std::max(0, start + end - 6);
@@ -132,10 +133,12 @@ void check_constraint_counts(const RobotModel& model) {
   for (int p = 0; p < n; ++p) {
     const std::string& name = model.platforms()[p].name;
     require(attached[p] > 0, "platform '", name, "' has no rods attached: its pose would be undetermined");
-    require(constraints[p] >= 6, "platform '", name, "' is under-constrained: its rods ", on_platform(model, p),
-            " put ", constraints[p],
-            " kinematic constraints on it (clamped 6, collar 5, revolute 5, universal 4, spherical 3, free 0 per ",
-            "rod joining it to another body; a rod without a clamped end: both ends' less 6), it needs at least 6");
+    require(constraints[p] >= 6, "platform '", name, "' is under-constrained: its rods ",
+            on_platform(model, p), " put ", constraints[p],
+            " kinematic constraints on it (clamped 6, collar 5, revolute 5, universal 4, spherical 3, free 0 "
+            "per ",
+            "rod joining it to another body; a rod without a clamped end: both ends' less 6), it needs at "
+            "least 6");
   }
 }
 
@@ -201,9 +204,11 @@ VecX tidy(VecX v) {
   for (std::size_t p = 0; p < model.platforms().size(); ++p)
     parts.push_back({"platform '" + model.platforms()[p].name + "'", 0.0, 6 * static_cast<int>(p), 6});
   for (std::size_t j = 0; j < b.joint_column.size(); ++j)
-    if (b.joint_column[j] >= 0) parts.push_back({"passive joint '" + model.joints()[j].name + "'", 0.0, b.joint_column[j], 1});
+    if (b.joint_column[j] >= 0)
+      parts.push_back({"passive joint '" + model.joints()[j].name + "'", 0.0, b.joint_column[j], 1});
   for (std::size_t r = 0; r < b.rod_column.size(); ++r)
-    if (b.rod_column[r] >= 0) parts.push_back({"pcr_rod '" + model.rods()[r].name + "'", 0.0, b.rod_column[r], 6});
+    if (b.rod_column[r] >= 0)
+      parts.push_back({"pcr_rod '" + model.rods()[r].name + "'", 0.0, b.rod_column[r], 6});
   std::size_t worst = 0;
   for (std::size_t k = 0; k < parts.size(); ++k) {
     parts[k].size = motion.segment(parts[k].column, parts[k].width).norm();
@@ -231,8 +236,8 @@ VecX tidy(VecX v) {
                       twist.tail<3>().transpose(), "] unconstrained", others.str());
   }
   throw_input_error(part.name, " is not held: its couplings leave it free to move as a rigid body, v = [",
-                    twist.head<3>().transpose(), "] (at its first attached end), w = [", twist.tail<3>().transpose(),
-                    "]", others.str());
+                    twist.head<3>().transpose(), "] (at its first attached end), w = [",
+                    twist.tail<3>().transpose(), "]", others.str());
 }
 
 }  // namespace

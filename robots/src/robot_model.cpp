@@ -36,8 +36,8 @@ void check_joint_axis(const std::string& rod, const char* which, RodAttachment& 
   require(end.axis.allFinite() && end.axis.norm() > 1e-12, "pcr_rod '", rod, "': ", which, " ",
           to_string(end.coupling), " axis = [", end.axis.transpose(), "] must be a finite non-zero vector");
   end.axis.normalize();
-  require(end.coupling != RodEndKind::Universal || sine_to_tangent(end.axis) >= kMinJointAxisSine, "pcr_rod '",
-          rod, "': ", which, " universal axis = [", end.axis.transpose(),
+  require(end.coupling != RodEndKind::Universal || sine_to_tangent(end.axis) >= kMinJointAxisSine,
+          "pcr_rod '", rod, "': ", which, " universal axis = [", end.axis.transpose(),
           "] lies along the attachment z axis (the rod tangent); the first joint axis must be normal to it");
 }
 
@@ -87,9 +87,10 @@ int kinematic_constraint_count(RodEndKind coupling) {
 }
 
 std::string twist_rule_violation(const RodElement& rod) {
-  if (holds_twist(rod.start.coupling, rod.start.axis) || holds_twist(rod.end.coupling, rod.end.axis)) return {};
-  return std::string("couplings start = ") + to_string(rod.start.coupling) + ", end = " +
-         to_string(rod.end.coupling) +
+  if (holds_twist(rod.start.coupling, rod.start.axis) || holds_twist(rod.end.coupling, rod.end.axis))
+    return {};
+  return std::string("couplings start = ") + to_string(rod.start.coupling) +
+         ", end = " + to_string(rod.end.coupling) +
          " leave the rod free to move or twist about its tangent; clamp at least one end, or hold one by a "
          "universal coupling or a revolute coupling whose axis is not along the rod";
 }
@@ -369,8 +370,9 @@ void RobotModel::check_passive_joints_loaded() const {
     for (const ExternalLoad& load : loads_) loaded = loaded || joint_moves_link(j, load.link);
     for (int l = 0; l < static_cast<int>(links_.size()); ++l)
       loaded = loaded || (links_[l].mass > 0.0 && !gravity_.isZero(0.0) && joint_moves_link(j, l));
-    require(loaded, "passive joint '", joints_[j].name, "': nothing is attached beyond it (no rod end, pcr_load ",
-            "or link mass under gravity on link '", links_[joints_[j].child_link].name,
+    require(loaded, "passive joint '", joints_[j].name,
+            "': nothing is attached beyond it (no rod end, pcr_load ", "or link mass under gravity on link '",
+            links_[joints_[j].child_link].name,
             "' or the links it carries), so nothing determines its value");
   }
 }

@@ -18,7 +18,8 @@ RodEndKind parse_coupling(XmlElementReader& reader) {
   if (coupling == "universal") return RodEndKind::Universal;
   if (coupling == "revolute") return RodEndKind::Revolute;
   if (coupling == "free") return RodEndKind::Free;
-  reader.fail("coupling", coupling, "is not a coupling (clamped, collar, spherical, universal, revolute or free)");
+  reader.fail("coupling", coupling,
+              "is not a coupling (clamped, collar, spherical, universal, revolute or free)");
 }
 
 // The joint axis of a universal or revolute end (attachment frame, default x), normalised; rejected on
@@ -173,6 +174,16 @@ RodElement read_rod(const TiXmlElement& e, const std::string& source, const Urdf
   read_rod_end(*child("end", true), source, label + " <end>", tree, rod.end, rod.rod.tip);
   const std::string twist = twist_rule_violation(rod);
   if (!twist.empty()) element.fail(twist);
+  // A universal or revolute end with the other end free leaves the rod a pendulum about the joint.
+  for (const auto& [held, other] : {std::pair(&rod.start, &rod.end), std::pair(&rod.end, &rod.start)}) {
+    if (other->coupling == RodEndKind::Free &&
+        (held->coupling == RodEndKind::Universal || held->coupling == RodEndKind::Revolute)) {
+      element.fail(std::string("couplings start = ") + to_string(rod.start.coupling) +
+                   ", end = " + to_string(rod.end.coupling) + ": a " + to_string(held->coupling) +
+                   " coupling with the other end free lets the rod swing about the joint as a rigid body; "
+                   "clamp that end, or attach the free one");
+    }
+  }
   if (rod.start.link >= 0 && rod.start.link == rod.end.link) {
     element.fail("both ends are on link '" + tree.link_names[rod.start.link] +
                  "'; a rod must join two different links");

@@ -25,6 +25,37 @@ bool moved_by_passive_joint(const UrdfTree& tree, const std::vector<Joint>& join
   return false;
 }
 
+// Whether the value of joint j moves the link (j on its path from the world, no floating joint between).
+bool joint_moves_link(const UrdfTree& tree, const std::vector<Joint>& joints, int j, int link) {
+  for (; tree.parent_joint[link] >= 0; link = tree.joint_parent[tree.parent_joint[link]]) {
+    if (tree.parent_joint[link] == j) return true;
+    if (joints[tree.parent_joint[link]].type == JointType::Floating) return false;
+  }
+  return false;
+}
+
+// A passive joint needs something beyond it that determines its value: a rod end, a pcr_load, or a
+// link mass under gravity on a link it moves. Fails at the joint's <pcr_joint> element.
+void check_passive_joint_loaded(const TiXmlElement& e, const std::string& source, const UrdfTree& tree,
+                                const std::vector<Joint>& joints, const std::vector<Link>& links,
+                                const std::vector<RodElement>& rods, const std::vector<ExternalLoad>& loads,
+                                const Vec3& gravity, int j) {
+  bool loaded = false;
+  for (const RodElement& rod : rods)
+    for (int link : {rod.start.link, rod.end.link})
+      loaded = loaded || (link >= 0 && joint_moves_link(tree, joints, j, link));
+  for (const ExternalLoad& load : loads) loaded = loaded || joint_moves_link(tree, joints, j, load.link);
+  for (int l = 0; l < static_cast<int>(links.size()); ++l)
+    loaded = loaded || (links[l].mass > 0.0 && !gravity.isZero(0.0) && joint_moves_link(tree, joints, j, l));
+  if (loaded) return;
+  XmlElementReader reader(e, source, "pcr_joint");
+  reader.fail("name", joints[j].name,
+              "is a passive joint with nothing attached beyond it (no rod end, pcr_load, or link mass under "
+              "gravity on link '" +
+                  tree.link_names[joints[j].child_link] +
+                  "' or the links it carries), so nothing determines its value");
+}
+
 // <pcr_joint name default passive stiffness rest>: the default (initial) value of a moving joint, and
 // whether it is passive (an unknown of the assembly balanced by its spring, docs/model_format.md).
 void read_pcr_joint(const TiXmlElement& e, const std::string& source, const UrdfTree& tree,
@@ -89,7 +120,8 @@ RobotModel parse_document(const std::string& xml, const std::string& source) {
   std::vector<RodElement> rods;
   std::vector<ExternalLoad> loads;
   std::map<std::string, int> rod_lines;
-  std::vector<const TiXmlElement*> load_elements;  // per load
+  std::vector<const TiXmlElement*> load_elements;   // per load
+  std::vector<const TiXmlElement*> joint_elements;  // per pcr_joint
   bool has_gravity = false;
   for (const TiXmlElement* e = robot->FirstChildElement(); e; e = e->NextSiblingElement()) {
     const std::string tag = e->ValueStr();
@@ -121,18 +153,26 @@ RobotModel parse_document(const std::string& xml, const std::string& source) {
       loads.push_back(load);
     } else if (tag == "pcr_joint") {
       read_pcr_joint(*e, source, tree, joints);
+      joint_elements.push_back(e);
     } else if (tag.compare(0, 4, "pcr_") == 0) {
       XmlElementReader reader(*e, source, "<" + tag + ">");
       reader.fail("unknown pcr element (pcr_rod, pcr_gravity, pcr_load or pcr_joint)");
     }
   }
   for (std::size_t i = 0; i < loads.size(); ++i) {
-    if (carrying_floating_link(tree, loads[i].link) >= 0 || moved_by_passive_joint(tree, joints, loads[i].link))
+    if (carrying_floating_link(tree, loads[i].link) >= 0 ||
+        moved_by_passive_joint(tree, joints, loads[i].link))
       continue;
     XmlElementReader reader(*load_elements[i], source, "pcr_load");
     reader.fail("link", tree.link_names[loads[i].link],
                 "is not carried by a platform or moved by a passive joint (a load there acts on the fixed "
                 "world)");
+  }
+  for (const TiXmlElement* e : joint_elements) {
+    const std::string name = e->Attribute("name") ? e->Attribute("name") : "";
+    for (int j = 0; j < static_cast<int>(joints.size()); ++j)
+      if (joints[j].name == name && joints[j].passive)
+        check_passive_joint_loaded(*e, source, tree, joints, links, rods, loads, gravity, j);
   }
   for (const Platform& platform : platforms) {
     bool has_rod = false;

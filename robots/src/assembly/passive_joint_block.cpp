@@ -59,7 +59,8 @@ PassiveJointBlock::Layout PassiveJointBlock::layout_of(const RobotModel& model, 
   return layout;
 }
 
-PassiveJointBlock::PassiveJointBlock(const RobotModel& model, int joint, const std::vector<VariableId>& joint_variables,
+PassiveJointBlock::PassiveJointBlock(const RobotModel& model, int joint,
+                                     const std::vector<VariableId>& joint_variables,
                                      std::vector<PlatformRodEnd> ends, std::vector<LinkLoad> loads,
                                      double force_scale, double moment_scale)
     : PassiveJointBlock(model, joint, layout_of(model, joint, joint_variables, ends, loads), std::move(ends),
@@ -68,7 +69,8 @@ PassiveJointBlock::PassiveJointBlock(const RobotModel& model, int joint, const s
 
 // ends and loads by reference: layout_of reads them before they are moved into the members.
 PassiveJointBlock::PassiveJointBlock(const RobotModel& model, int joint, Layout layout,
-                                     std::vector<PlatformRodEnd>&& ends, std::vector<LinkLoad>&& loads, double scale)
+                                     std::vector<PlatformRodEnd>&& ends, std::vector<LinkLoad>&& loads,
+                                     double scale)
     : ResidualBlock("joint.passive_balance", model.joints()[joint].name, 1, std::move(layout.variables)),
       model_(&model),
       joint_(joint),
@@ -78,7 +80,8 @@ PassiveJointBlock::PassiveJointBlock(const RobotModel& model, int joint, Layout 
       loads_(std::move(loads)),
       scale_(scale) {}
 
-void PassiveJointBlock::evaluate(const double* const* values, double* residual, double* const* jacobians) const {
+void PassiveJointBlock::evaluate(const double* const* values, double* residual,
+                                 double* const* jacobians) const {
   const RobotModel& m = *model_;
   const Joint& joint = m.joints()[joint_];
   VecX q = m.default_joint_values();

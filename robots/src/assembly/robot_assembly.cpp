@@ -185,8 +185,9 @@ struct RobotAssembly::Builder {
         if (link.mass > 0.0 && m.joint_moves_link(j, l))
           loads.push_back({l, link.center_of_mass, link.mass * m.gravity(), Vec3::Zero()});
       }
-      a.passive_joint_balances_.push_back(a.problem_.add_residual_block(std::make_shared<assembly::PassiveJointBlock>(
-          m, j, a.joint_variables_, std::move(ends), std::move(loads), a.force_scale_, a.moment_scale_)));
+      a.passive_joint_balances_.push_back(
+          a.problem_.add_residual_block(std::make_shared<assembly::PassiveJointBlock>(
+              m, j, a.joint_variables_, std::move(ends), std::move(loads), a.force_scale_, a.moment_scale_)));
     }
   }
 
@@ -234,14 +235,14 @@ ResidualId RobotAssembly::platform_balance(int platform) const {
 
 VariableId RobotAssembly::passive_joint_variable(int passive) const {
   const std::vector<int>& passive_joints = model_->passive_joints();
-  require(passive >= 0 && passive < static_cast<int>(passive_joints.size()), "passive_joint_variable: ", passive,
-          " out of range [0, ", passive_joints.size(), ")");
+  require(passive >= 0 && passive < static_cast<int>(passive_joints.size()),
+          "passive_joint_variable: ", passive, " out of range [0, ", passive_joints.size(), ")");
   return joint_variables_[model_->joints()[passive_joints[passive]].value_index];
 }
 
 ResidualId RobotAssembly::passive_joint_balance(int passive) const {
-  require(passive >= 0 && passive < static_cast<int>(passive_joint_balances_.size()), "passive_joint_balance: ",
-          passive, " out of range [0, ", passive_joint_balances_.size(), ")");
+  require(passive >= 0 && passive < static_cast<int>(passive_joint_balances_.size()),
+          "passive_joint_balance: ", passive, " out of range [0, ", passive_joint_balances_.size(), ")");
   return passive_joint_balances_[passive];
 }
 

@@ -37,8 +37,8 @@ namespace {
 
 // The 7 coupling equations from z = [y (13): p, q, n, m of the rod end; x (3), Q (4): link frame].
 template <typename T>
-void coupling_residual(const Eigen::Matrix<T, 20, 1>& z, const Pose& offset, RodEndKind kind, const Mat3& axes,
-                       const PointConstants& scales, T* r) {
+void coupling_residual(const Eigen::Matrix<T, 20, 1>& z, const Pose& offset, RodEndKind kind,
+                       const Mat3& axes, const PointConstants& scales, T* r) {
   const V3<T> x = z.template segment<3>(13);
   const V4<T> Q = z.template segment<4>(16);
   const M3<T> RQ = rotation(Q);

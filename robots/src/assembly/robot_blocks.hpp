@@ -16,8 +16,8 @@ namespace pcr::assembly {
 class CouplingBlock final : public ResidualBlock {
  public:
   /// axis: the joint axis of a universal or revolute coupling in the attachment frame (else unused).
-  CouplingBlock(const std::string& name, RodEndEvaluator end, LinkFrame frame, RodEndKind kind, const Vec3& axis,
-                const collocation::PointConstants& scales);
+  CouplingBlock(const std::string& name, RodEndEvaluator end, LinkFrame frame, RodEndKind kind,
+                const Vec3& axis, const collocation::PointConstants& scales);
   void evaluate(const double* const* values, double* residual, double* const* jacobians) const override;
 
  private:

@@ -84,7 +84,8 @@ void write_solution_table(std::ostream& out, const RobotModel& model, const Robo
       const Joint& joint = model.joints()[passive[i]];
       const double value = solution.passive_joints[static_cast<int>(i)];
       const auto shown = display_joint(joint, value);
-      out << format("  %-16s %12.4f %s", joint.name.c_str(), shown.first, shown.second);
+      out << format("  %-16s %12.4f %s", joint.name.c_str(), tidy(VecX::Constant(1, shown.first), 5e-5)[0],
+                    shown.second);
       if (value < joint.lower || value > joint.upper) {
         out << format("   (outside its limits [%g, %g] %s)", display_joint(joint, joint.lower).first,
                       display_joint(joint, joint.upper).first, shown.second);

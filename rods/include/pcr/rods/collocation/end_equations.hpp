@@ -38,9 +38,9 @@ struct EndLoads {
 template <typename T>
 void universal_conditions(const EndTarget<T>& target, const EndLoads& loads, const PointConstants& c,
                           const V3<T>& p, const V4<T>& q, const V3<T>& m, T* r) {
-  const Mat3 axes = target.axes;                              // [a, b, a x b], end frame
-  const V3<T> first = target.frame * axes.col(0).cast<T>();   // R_T a
-  const V3<T> second = rotation(q) * axes.col(1).cast<T>();   // R b
+  const Mat3 axes = target.axes;                             // [a, b, a x b], end frame
+  const V3<T> first = target.frame * axes.col(0).cast<T>();  // R_T a
+  const V3<T> second = rotation(q) * axes.col(1).cast<T>();  // R b
   const V3<T> moment = m - loads.m_bar.cast<T>();
   for (int i = 0; i < 3; ++i) r[i] = (p[i] - target.position[i]) / c.length_scale;
   r[3] = first.dot(second);
@@ -56,9 +56,9 @@ void universal_conditions(const EndTarget<T>& target, const EndLoads& loads, con
 template <typename T>
 void revolute_conditions(const EndTarget<T>& target, const EndLoads& loads, const PointConstants& c,
                          const V3<T>& p, const V4<T>& q, const V3<T>& m, T* r) {
-  const Mat3 axes = target.axes;                                // [a, c1, c2], end frame
-  const V3<T> pin_rod = rotation(q) * axes.col(0).cast<T>();    // R a
-  const V3<T> pin = target.frame * axes.col(0).cast<T>();       // R_T a
+  const Mat3 axes = target.axes;                              // [a, c1, c2], end frame
+  const V3<T> pin_rod = rotation(q) * axes.col(0).cast<T>();  // R a
+  const V3<T> pin = target.frame * axes.col(0).cast<T>();     // R_T a
   for (int i = 0; i < 3; ++i) r[i] = (p[i] - target.position[i]) / c.length_scale;
   r[3] = pin_rod.dot(target.frame * axes.col(1).cast<T>());
   r[4] = pin_rod.dot(target.frame * axes.col(2).cast<T>());
@@ -73,12 +73,8 @@ void end_conditions(RodEndKind kind, const EndTarget<T>& target, const EndLoads&
                     T* r) {
   const double L0 = c.length_scale, F0 = c.force_scale, M0 = c.moment_scale;
   switch (kind) {
-    case RodEndKind::Universal:
-      universal_conditions(target, loads, c, p, q, m, r);
-      return;
-    case RodEndKind::Revolute:
-      revolute_conditions(target, loads, c, p, q, m, r);
-      return;
+    case RodEndKind::Universal: universal_conditions(target, loads, c, p, q, m, r); return;
+    case RodEndKind::Revolute: revolute_conditions(target, loads, c, p, q, m, r); return;
     case RodEndKind::Clamped:
       for (int i = 0; i < 3; ++i) r[i] = (p[i] - target.position[i]) / L0;
       for (int i = 0; i < 4; ++i) r[3 + i] = q[i] - target.orientation[i];
