@@ -9,3 +9,5 @@ if(PCR_BUILD_TESTS AND TARGET bench_all)
                                         ${CMAKE_CURRENT_BINARY_DIR}/bench_all_smoke.csv)
   set_tests_properties(bench_all_smoke PROPERTIES LABELS bench)
 endif()
+# One bench_all workload in a function of its own, for callgrind profiles (docs/benchmarks.md, Time split).
+pcr_add_benchmark(NAME bench_time_split SOURCES ${CMAKE_CURRENT_LIST_DIR}/all/time_split.cpp)

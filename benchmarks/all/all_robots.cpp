@@ -4,7 +4,9 @@
 //    both cold: a new solver object per solve (collocation: assembly included);
 //  - R5b_ik_path: IK along the teleoperation path, each solve warm-started from the previous; time per
 //    warm solve (the first, cold, solve excluded), error = max input error along the path,
-//    iterations = mean per warm solve.
+//    iterations = mean per warm solve;
+//  - R5b_helix_path: the same along a helix of new targets (robot_scenes.hpp r5b_helix_path), no pose
+//    visited twice.
 // References (independent method): collocation runs against shooting (Dormand-Prince 1e-12, residual
 // 1e-12), shooting runs against collocation (mixed, p = 8, 32 elements, tolerance 1e-11; at 16
 // elements it already agrees with that shooting reference to 2e-11 m (platform) / 5e-11 m (inputs),
@@ -13,6 +15,7 @@
 #include <chrono>
 #include <cmath>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "all/all_runs.hpp"
@@ -28,7 +31,7 @@ namespace {
 struct References {
   Vec3 fk_platform = Vec3::Zero();
   VecX ik_inputs;
-  std::vector<VecX> path_inputs;
+  std::vector<VecX> path_inputs, helix_inputs;
   bool ok = false;
 };
 
@@ -36,8 +39,21 @@ struct Scenes {
   std::shared_ptr<const RobotModel> r5a = load_r5a(), r5b = load_r5b();
   VecX fk_inputs;
   Pose target;
-  std::vector<Pose> path;
+  std::vector<Pose> path, helix;
 };
+
+/// A warm-started IK path scene: its name, poses and the reference inputs at each pose.
+struct PathScene {
+  std::string name;
+  const std::vector<Pose>& poses;
+  const std::vector<VecX>& reference;
+};
+std::vector<PathScene> path_scenes(const Scenes& sc, const References& ref, const AllConfig& config) {
+  std::vector<PathScene> scenes;
+  if (config.selected("R5b_ik_path")) scenes.push_back({"R5b_ik_path", sc.path, ref.path_inputs});
+  if (config.selected("R5b_helix_path")) scenes.push_back({"R5b_helix_path", sc.helix, ref.helix_inputs});
+  return scenes;
+}
 
 double input_error(const VecX& a, const VecX& b) {
   return (a - b).lpNorm<Eigen::Infinity>();
@@ -83,8 +99,9 @@ PathRun run_path(const std::vector<Pose>& path, const std::vector<VecX>& referen
   return run;
 }
 
-void record_path(const PathRun& run, const std::string& method, const std::string& settings, Recorder& out) {
-  out.record("R5b_ik_path", method, settings, run.failed ? NAN : run.error, summarise(run.times),
+void record_path(const std::string& scene, const PathRun& run, const std::string& method,
+                 const std::string& settings, Recorder& out) {
+  out.record(scene, method, settings, run.failed ? NAN : run.error, summarise(run.times),
              run.iterations / run.times.size(), run.failed ? "failed" : "converged");
 }
 
@@ -115,11 +132,13 @@ References shooting_references(const Scenes& sc, const AllConfig& config, Record
     if (!ik.summary.converged()) return ref;
     ref.ik_inputs = ik.inputs;
   }
-  if (config.selected("R5b_ik_path")) {
+  for (auto [scene, poses, inputs] : {std::tuple{"R5b_ik_path", &sc.path, &ref.path_inputs},
+                                      std::tuple{"R5b_helix_path", &sc.helix, &ref.helix_inputs}}) {
+    if (!config.selected(scene)) continue;
     ShootingRobotSolver b(sc.r5b, shooting_reference_options());
     if (!reference_path(
-            sc.path, "R5b path reference (shooting, Dormand-Prince 1e-12)",
-            [&](const Pose& p) { return b.ik({p}); }, out, ref.path_inputs))
+            *poses, std::string(scene) + " reference (shooting, Dormand-Prince 1e-12)",
+            [&](const Pose& p) { return b.ik({p}); }, out, *inputs))
       return ref;
   }
   ref.ok = true;
@@ -143,11 +162,13 @@ References collocation_references(const Scenes& sc, const AllConfig& config, Rec
     if (!s.summary.converged()) return ref;
     ref.ik_inputs = s.inputs;
   }
-  if (config.selected("R5b_ik_path")) {
+  for (auto [scene, poses, inputs] : {std::tuple{"R5b_ik_path", &sc.path, &ref.path_inputs},
+                                      std::tuple{"R5b_helix_path", &sc.helix, &ref.helix_inputs}}) {
+    if (!config.selected(scene)) continue;
     InverseKinematics ik(sc.r5b, {platform_target()}, o);
     if (!reference_path(
-            sc.path, "R5b path reference (collocation, mixed p=8 E=32)",
-            [&](const Pose& p) { return ik.solve({p}); }, out, ref.path_inputs))
+            *poses, std::string(scene) + " reference (collocation, mixed p=8 E=32)",
+            [&](const Pose& p) { return ik.solve({p}); }, out, *inputs))
       return ref;
   }
   ref.ok = true;
@@ -196,15 +217,15 @@ void collocation_setting(const Scenes& sc, const References& ref, const AllConfi
     out.record("R5a_ik_cold", form + (s.summary.solver.empty() ? to_string(solver) : s.summary.solver),
                settings, error, t, s.summary.iterations, to_string(s.summary.status));
   }
-  if (path && config.selected("R5b_ik_path")) {
+  for (const PathScene& scene : path ? path_scenes(sc, ref, config) : std::vector<PathScene>{}) {
     InverseKinematics ik(sc.r5b, {platform_target()}, o);
     std::string used = to_string(solver);
-    const PathRun run = run_path(sc.path, ref.path_inputs, [&](const Pose& p) {
+    const PathRun run = run_path(scene.poses, scene.reference, [&](const Pose& p) {
       RobotSolution s = ik.solve({p});
       if (!s.summary.solver.empty()) used = s.summary.solver;
       return s;
     });
-    record_path(run, form + used, settings, out);
+    record_path(scene.name, run, form + used, settings, out);
   }
 }
 
@@ -292,9 +313,10 @@ void shooting_sweep(const Scenes& sc, const References& ref, const AllConfig& co
       out.record("R5a_ik_cold", run.method, run.settings, error, t, s.summary.iterations,
                  to_string(s.summary.status));
     }
-    if (config.selected("R5b_ik_path")) {
+    for (const PathScene& scene : path_scenes(sc, ref, config)) {
       ShootingRobotSolver solver(sc.r5b, run.options);
-      record_path(run_path(sc.path, ref.path_inputs, [&](const Pose& p) { return solver.ik({p}); }),
+      record_path(scene.name,
+                  run_path(scene.poses, scene.reference, [&](const Pose& p) { return solver.ik({p}); }),
                   run.method, run.settings, out);
     }
   }
@@ -303,13 +325,16 @@ void shooting_sweep(const Scenes& sc, const References& ref, const AllConfig& co
 }  // namespace
 
 bool run_robot_scenes(const AllConfig& config, Recorder& out) {
-  if (!config.selected("R5a_fk_cold") && !config.selected("R5a_ik_cold") && !config.selected("R5b_ik_path"))
+  if (!config.selected("R5a_fk_cold") && !config.selected("R5a_ik_cold") && !config.selected("R5b_ik_path") &&
+      !config.selected("R5b_helix_path"))
     return true;
   Scenes sc;
   sc.fk_inputs = r5a_moved_inputs(*sc.r5a);
   sc.target = r5a_target();
   // The scene's path has 100 steps out and back; the quick run takes the first 20 of them.
   sc.path = r5b_path(config.quick ? 20 : 100);
+  // The helix: 400 new targets (quick: 40).
+  sc.helix = r5b_helix_path(config.quick ? 40 : 400);
   bool ok = true;
   const References by_shooting = shooting_references(sc, config, out);
   if (by_shooting.ok)

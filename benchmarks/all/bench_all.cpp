@@ -1,16 +1,18 @@
 // bench_all (issue #7): run time against error of every method on every scene, into ONE CSV
 //   scene,method,settings,error,time_median_s,time_min_s,time_max_s,iterations,time_mean_s
-// Methods: collocation (primal and mixed form, Newton and Ipopt paths, degree p and E elements per rod)
+// Methods: collocation (primal, mixed and condensed form, Newton and Ipopt paths, degree p and E elements
+// per rod)
 // and shooting (RK4 with N steps per rod, adaptive Dormand-Prince 5(4) with tolerance tol).
 // Scenes: R1_phi_2pi, R2_alpha_10, R3_helix, spring_20deg (single rods, cold solves), R5a_fk_cold,
 // R5a_ik_cold (Stewart-Gough, cold: a new solver object per solve), R5b_ik_path (teleoperation path,
-// time per warm-started IK solve).
+// time per warm-started IK solve), R5b_helix_path (the same on a helix of 400 new targets).
 // Error of each run against a reference computed in this run by an INDEPENDENT method, never the run's
 // own: the analytic solution where one exists (R1, R3 centerline, R2 elastica tip); otherwise
 // collocation runs against tight shooting (Dormand-Prince 1e-12) and shooting runs against tight
 // collocation (mixed, degree 8). Failed solves have error nan.
 // usage: bench_all [--quick] [--scenes R1,R5b,...] [--out PATH]   (default benchmarks/results/all.csv)
-//   --quick: reduced sweeps for smoke runs; --scenes: name prefixes (R1, R2, R3, spring, R5a, R5a_fk, R5b).
+//   --quick: reduced sweeps for smoke runs; --scenes: name prefixes (R1, R2, R3, spring, R5a, R5a_fk, R5b,
+//   R5b_helix).
 // Reports: scripts/bench_report.sh PATH (PNGs with Pareto fronts, Markdown tables).
 #include <cstdio>
 #include <cstring>

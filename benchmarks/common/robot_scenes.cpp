@@ -44,6 +44,20 @@ std::vector<Pose> r5b_path(int steps) {
   return path;
 }
 
+std::vector<Pose> r5b_helix_path(int targets) {
+  const double radius = 0.02, pitch = 0.01, step = 1.3e-3;
+  const double rise = pitch / (2.0 * M_PI);                               // dz / dtheta
+  const double dtheta = step / std::sqrt(radius * radius + rise * rise);  // |dp / dtheta| dtheta = step
+  std::vector<Pose> path;
+  for (int i = 0; i <= targets; ++i) {
+    const double theta = i * dtheta;
+    Pose p;
+    p.position = Vec3(-radius * std::sin(theta), radius * std::cos(theta), 0.48 + rise * theta);
+    path.push_back(p);
+  }
+  return path;
+}
+
 LinkTarget platform_target() {
   LinkTarget t;
   t.link = "platform";

@@ -23,6 +23,11 @@ Pose r5a_target();
 /// R5b path: (0, 0.02, 0.48) + i (0, 0.001, 0.001) m for i = 0..steps and back to i = 0 (2 steps + 1
 /// poses; the scene has steps = 100), orientation identity.
 std::vector<Pose> r5b_path(int steps = 100);
+/// R5b helical path: `targets` + 1 poses on the helix p(theta) = (-r sin theta, r cos theta, 0.48 m +
+/// h theta / (2 pi)) about the z axis, radius r = 0.02 m, pitch h = 0.01 m per turn, starting at the
+/// model's default platform position (0, 0.02, 0.48) m, consecutive poses 1.3 mm apart along the helix,
+/// orientation identity. No pose is visited twice (400 targets: 4.1 turns, 0.52 m of path).
+std::vector<Pose> r5b_helix_path(int targets = 400);
 /// Collocation IK target on the link "platform" (full pose).
 LinkTarget platform_target();
 /// Shooting settings of the robot references: Dormand-Prince with integration_relative_tolerance =

@@ -12,7 +12,10 @@
 #include "pcr/rods/collocation_rod.hpp"
 #include "pcr/rods/rod_end.hpp"
 #include "pcr/rods/rod_solve.hpp"
+#include "pcr/solve/bordered_block_lu.hpp"
+#include "pcr/solve/free_jacobian.hpp"
 #include "pcr/solve/jacobian_check.hpp"
+#include "pcr/solve/newton_solver.hpp"
 #include "rod_fixtures.hpp"
 
 using namespace pcr;
@@ -533,8 +536,12 @@ BOOST_AUTO_TEST_CASE(condensed_form_with_loads_has_local_rows_and_a_size_linear_
   // doubles them up to the constant end blocks (ratio (80 + p) / (40 + p) = 1.91 for the per-point part;
   // asserted in [1.75, 2.05], where a dense lower triangle would give about 3.7). A rod's end quantities
   // (RodEndEvaluator at the tip) read the end control point, the wrench and L. Such rods, with more than
-  // kMaxBandedCondensedPoints control points, stay out of the structured solver's groups; a short rod
-  // (8 elements) keeps the summed integral (7 unknowns per point) and its group.
+  // kMaxBandedCondensedPoints control points, keep their group: the structured LU (BorderedBlockLu) moves
+  // the wrench's 6 columns, read by every row, to its border, and Newton with it reaches the root of
+  // Newton with the general sparse LU in as many iterations (the two LUs differ by round-off, amplified in
+  // the steps by cond(J); 1e-8 relative leaves room for cond(J) up to about 1e7 at eps = 2.2e-16 and
+  // residuals <= 1e-10). A short rod (8 elements) keeps the summed integral (7 unknowns per point) and its
+  // group.
   const RodModel m = loaded_rod(RodEndKind::Clamped, RodEndKind::Free);
   const int p = 4;
   long nonzeros[2] = {0, 0};
@@ -585,8 +592,24 @@ BOOST_AUTO_TEST_CASE(condensed_form_with_loads_has_local_rows_and_a_size_linear_
       }
     BOOST_TEST(worst < 1e-7);
     BOOST_TEST(rod.control_point_size() == 10);
-    BOOST_TEST(problem.variable(vars.wrench).group == -1);
-    BOOST_TEST(problem.variable(vars.control_points[0]).group == -1);
+    BOOST_TEST(problem.variable(vars.wrench).group == 0);
+    BOOST_TEST(problem.variable(vars.control_points[0]).group == 0);
+    BorderedBlockLu lu;
+    const FreeJacobian jacobian = free_jacobian(problem, problem.initial_values());
+    BOOST_REQUIRE_MESSAGE(lu.analyze_pattern(jacobian.matrix, jacobian.groups), lu.error_message());
+    BOOST_TEST(lu.wide_columns() == collocation::kWrenchSize);
+    NewtonOptions structured, general;
+    structured.linear_solver = NewtonLinearSolver::BorderedBlocks;
+    general.linear_solver = NewtonLinearSolver::Sparse;
+    structured.tolerance = general.tolerance = 1e-10;
+    NewtonSolver a(problem, structured), b(problem, general);
+    VecX xa = problem.initial_values(), xb = xa;
+    const SolveSummary sa = a.solve(xa), sb = b.solve(xb);
+    BOOST_TEST_REQUIRE(sa.converged(), sa.brief_report());
+    BOOST_TEST_REQUIRE(sb.converged(), sb.brief_report());
+    BOOST_TEST(std::string(a.factorization_kind()) == "bordered blocks");
+    BOOST_TEST(sa.iterations == sb.iterations);
+    BOOST_TEST((xa - xb).lpNorm<Eigen::Infinity>() <= 1e-8 * (1.0 + xb.lpNorm<Eigen::Infinity>()));
   }
   const CollocationRod short_rod(m, {RodFormulation::Condensed, p, 8});
   Problem problem;

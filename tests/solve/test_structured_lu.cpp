@@ -245,3 +245,104 @@ BOOST_AUTO_TEST_CASE(an_ill_conditioned_split_falls_back_to_the_sparse_lu) {
   for (int i = 0; i < n; ++i) grouped.set_variable_group(i, i / 50);
   BOOST_TEST(structured_and_sparse_newton_agree(grouped) == "sparse");
 }
+
+// A tall band matrix (rows = cols + k, full column rank): the pivot rows are solved exactly and the
+// other k rows keep what they leave over, zero for a right-hand side in the range of A.
+BOOST_AUTO_TEST_CASE(band_lu_of_a_tall_matrix_solves_its_pivot_rows) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (const auto& [cols, extra, kl, ku] : {std::array<int, 4>{10, 1, 3, 2}, {30, 6, 10, 4}, {50, 3, 8, 8}}) {
+    const int rows = cols + extra;
+    MatX A = MatX::Zero(rows, cols);
+    for (int j = 0; j < cols; ++j)
+      for (int i = std::max(0, j - ku); i <= std::min(rows - 1, j + kl); ++i) A(i, j) = u(rng);
+    for (int j = 0; j < cols; j += 3) A(j, j) = 0.0;  // pivoting needed
+    BandLu lu;
+    lu.resize(rows, cols, kl, ku);
+    for (int j = 0; j < cols; ++j)
+      for (int i = std::max(0, j - ku); i <= std::min(rows - 1, j + kl); ++i) lu.at(i, j) = A(i, j);
+    BOOST_REQUIRE(lu.factorize());
+    // b in the range: x recovered (bound as for the square solve, with cond from A's singular values)
+    // and nothing left over but the round-off of the elimination, about rows * eps * ||A|| ||x|| (<= 1.3e-14
+    // ||A|| ||x|| here; 1e-13 leaves a factor 8 for the growth of pivoting).
+    const VecX x0 = VecX::Random(cols);
+    VecX b = A * x0;
+    lu.solve_in_place(b.data());
+    BOOST_TEST((b.head(cols) - x0).norm() <= error_bound(A) * x0.norm(), "cols = " << cols);
+    BOOST_TEST(b.tail(extra).norm() <= 1e-13 * A.norm() * x0.norm(), "cols = " << cols);
+    // A general b: the pivot rows (cols of them) are met to round-off (entries <= 1, so a row's misfit is
+    // about rows * eps * ||y|| <= 1.3e-14 ||y||; 1e-12 leaves a factor 80 for pivot growth), so at most
+    // `extra` rows of A x - b are off; the leftover is nonzero.
+    const VecX c = VecX::Random(rows);
+    VecX y = c;
+    lu.solve_in_place(y.data());
+    const VecX misfit = A * y.head(cols) - c;
+    int met = 0;
+    for (int i = 0; i < rows; ++i) met += std::abs(misfit[i]) <= 1e-12 * (1.0 + y.norm()) ? 1 : 0;
+    BOOST_TEST(met >= cols, "cols = " << cols << ": " << met << " rows met");
+    // A random c is not in the range of A (probability 1): what is left over is of the order of c, far
+    // above round-off.
+    BOOST_TEST(y.tail(extra).norm() > 1e-6);
+  }
+}
+
+// Groups shaped like condensed rods: a band (a chain of points) plus wide columns that every row of
+// the group reads (the constant wrench), some rows reading only the wide columns (a free end's force
+// condition), border columns (platform pose) read by the last rows of each group, border rows reading
+// every group's wide columns (a platform balance). The wide columns go to the border, each group keeps
+// its rows; the solve matches dense LU.
+BOOST_AUTO_TEST_CASE(bordered_block_lu_moves_wide_columns_to_the_border) {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const int groups = 3, chain = 40, wide = 3, nb = 3;  // per group: 40 band columns, 3 wide columns
+  const int size = chain + wide, n = groups * size + nb;
+  MatX A = MatX::Zero(n, n);
+  std::vector<int> column_groups(n, -1);
+  for (int g = 0; g < groups; ++g) {
+    const int o = g * size;
+    for (int k = 0; k < size; ++k) column_groups[o + k] = g;
+    // Rows 0 .. chain - 1: a band over the chain (kl = 2, ku = 2) and all wide columns.
+    A.block(o, o, chain, chain) = random_band(chain, 2, 2, rng, 5);
+    for (int i = 0; i < chain; ++i)
+      for (int w = 0; w < wide; ++w) A(o + i, o + chain + w) = u(rng);
+    // Rows chain .. size - 1: the wide columns and the last chain column only (a tip condition), the
+    // first of them also a border column.
+    for (int w = 0; w < wide; ++w) {
+      const int row = o + chain + w;
+      for (int v = 0; v < wide; ++v) A(row, o + chain + v) = u(rng) + (v == w ? 2.0 : 0.0);
+      if (w > 0) A(row, o + chain - 1) = u(rng);
+    }
+    A(o + chain, groups * size + g) = 1.0;
+  }
+  for (int k = 0; k < nb; ++k) {  // border rows: every group's first wide column and the border
+    const int row = groups * size + k;
+    for (int g = 0; g < groups; ++g) A(row, g * size + chain + (k % wide)) = u(rng);
+    for (int c = 0; c < nb; ++c) A(row, groups * size + c) = u(rng) + (c == k ? 3.0 : 0.0);
+  }
+  BOOST_REQUIRE(std::abs(A.partialPivLu().determinant()) > 0.0);
+  const Eigen::SparseMatrix<double> S = sparse(A);
+  BorderedBlockLu lu;
+  BOOST_REQUIRE_MESSAGE(lu.analyze_pattern(S, column_groups), lu.error_message());
+  BOOST_TEST(lu.num_groups() == groups);
+  BOOST_TEST(lu.wide_columns() == groups * wide);
+  BOOST_TEST(lu.border_size() == nb + groups * wide);
+  BOOST_REQUIRE_MESSAGE(lu.factorize(S), lu.error_message());
+  const VecX b = VecX::Random(n);
+  VecX x;
+  lu.solve(b, x);
+  const VecX expected = A.partialPivLu().solve(b);
+  BOOST_TEST((x - expected).norm() <= error_bound(A) * expected.norm());
+  // New values on the kept pattern: the pivoting may leave other rows over.
+  Eigen::SparseMatrix<double> S2 = S;
+  for (int k = 0; k < S2.nonZeros(); ++k) S2.valuePtr()[k] *= 1.0 + 0.3 * std::sin(3.0 * k);
+  BOOST_REQUIRE_MESSAGE(lu.factorize(S2), lu.error_message());
+  lu.solve(b, x);
+  const MatX A2 = MatX(S2);
+  BOOST_TEST((x - A2.partialPivLu().solve(b)).norm() <= error_bound(A2) * x.norm());
+  // A group whose columns are mostly wide (here: a dense 6 x 6 group) keeps them.
+  MatX D = MatX::Random(6, 6) + 4.0 * MatX::Identity(6, 6);
+  BorderedBlockLu small;
+  BOOST_REQUIRE(small.analyze_pattern(sparse(D), std::vector<int>(6, 0)));
+  BOOST_TEST(small.wide_columns() == 0);
+  BOOST_TEST(small.border_size() == 0);
+}

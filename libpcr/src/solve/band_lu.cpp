@@ -6,15 +6,16 @@
 
 namespace pcr {
 
-void BandLu::resize(int n, int kl, int ku) {
-  n_ = n;
+void BandLu::resize(int rows, int cols, int kl, int ku) {
+  rows_ = rows;
+  cols_ = cols;
   kl_ = kl;
   ku_ = ku;
   ld_ = 2 * kl + ku + 1;
-  ab_.assign(static_cast<size_t>(ld_) * n, 0.0);
-  pivot_.assign(n, 0);
-  l_rows_.assign(n, 0);
-  u_first_.assign(n, 0);
+  ab_.assign(static_cast<size_t>(ld_) * cols, 0.0);
+  pivot_.assign(cols, 0);
+  l_rows_.assign(cols, 0);
+  u_first_.assign(cols, 0);
 }
 
 void BandLu::set_zero() {
@@ -24,13 +25,14 @@ void BandLu::set_zero() {
 // dgbtf2: column j picks the largest of its kl entries below the diagonal as pivot, swaps that row
 // into place over the columns the pivot row reaches, scales the multipliers and updates the trailing
 // columns j + 1 .. ju with a rank-one update (skipped where U(j, c) = 0: much of the band is
-// structurally zero for collocation matrices).
+// structurally zero for collocation matrices). A tall matrix: the same over its cols columns, the pivot
+// candidates running down to its last row.
 bool BandLu::factorize() {
   const int kv = kl_ + ku_;
   double* a = ab_.data();
   int ju = 0;  // last column touched by the pivot rows so far
-  for (int j = 0; j < n_; ++j) {
-    const int km = std::min(kl_, n_ - 1 - j);
+  for (int j = 0; j < cols_; ++j) {
+    const int km = std::min(kl_, rows_ - 1 - j);
     double* col = a + j * ld_ + kv;  // col[k] = A(j + k, j)
     int jp = 0;
     double best = std::abs(col[0]);
@@ -42,7 +44,7 @@ bool BandLu::factorize() {
     }
     pivot_[j] = j + jp;
     if (!(best > 0.0) || !std::isfinite(best)) return false;
-    ju = std::max(ju, std::min(j + ku_ + jp, n_ - 1));
+    ju = std::max(ju, std::min(j + ku_ + jp, cols_ - 1));
     if (jp != 0) {
       for (int c = j; c <= ju; ++c) std::swap(a[c * ld_ + kv + j - c], a[c * ld_ + kv + j + jp - c]);
     }
@@ -58,9 +60,9 @@ bool BandLu::factorize() {
     }
   }
   // Actual extents of the factors' columns, for the solves.
-  for (int j = 0; j < n_; ++j) {
+  for (int j = 0; j < cols_; ++j) {
     const double* col = a + j * ld_ + kv;
-    int rows = std::min(kl_, n_ - 1 - j);
+    int rows = std::min(kl_, rows_ - 1 - j);
     while (rows > 0 && col[rows] == 0.0) --rows;
     l_rows_[j] = rows;
     int first = std::max(0, j - kv);
@@ -73,7 +75,7 @@ bool BandLu::factorize() {
 void BandLu::solve_in_place(double* b) const {
   const int kv = kl_ + ku_;
   const double* a = ab_.data();
-  for (int j = 0; j < n_; ++j) {  // L y = P b
+  for (int j = 0; j < cols_; ++j) {  // [L1 0; L2 I] g = P b
     const int p = pivot_[j];
     if (p != j) std::swap(b[j], b[p]);
     const double bj = b[j];
@@ -82,7 +84,7 @@ void BandLu::solve_in_place(double* b) const {
     const int rows = l_rows_[j];
     for (int k = 1; k <= rows; ++k) b[j + k] -= bj * col[k];
   }
-  for (int j = n_ - 1; j >= 0; --j) {          // U x = y
+  for (int j = cols_ - 1; j >= 0; --j) {       // U x = g_1
     const double* col = a + j * ld_ + kv - j;  // col[i] = U(i, j)
     b[j] /= col[j];
     const double bj = b[j];
@@ -94,7 +96,7 @@ void BandLu::solve_in_place(double* b) const {
 int BandLu::determinant_sign() const {
   const int kv = kl_ + ku_;
   int sign = 1;
-  for (int j = 0; j < n_; ++j) {
+  for (int j = 0; j < cols_; ++j) {
     if (pivot_[j] != j) sign = -sign;
     if (ab_[j * ld_ + kv] < 0.0) sign = -sign;
   }
@@ -103,7 +105,7 @@ int BandLu::determinant_sign() const {
 
 long BandLu::factor_nonzeros() const {
   long count = 0;
-  for (int j = 0; j < n_; ++j) count += l_rows_[j] + (j - u_first_[j] + 1);
+  for (int j = 0; j < cols_; ++j) count += l_rows_[j] + (j - u_first_[j] + 1);
   return count;
 }
 

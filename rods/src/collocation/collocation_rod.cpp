@@ -172,7 +172,6 @@ RodVariables CollocationRod::add_to_problem(Problem& problem, const RodEndOption
   require(init.allFinite(), "rod '", name, "': initial guess is not finite");
   set_running_integrals(init);
 
-  if (discretization_.formulation == RodFormulation::Condensed && n > kMaxBandedCondensedPoints) group = -1;
   RodVariables vars;
   for (int i = 0; i < n; ++i) {
     vars.control_points.push_back(

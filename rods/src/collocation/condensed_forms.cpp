@@ -14,8 +14,8 @@
 //   T_0 = 0,   T_{i+1} - T_i - w_i P_i = 0   (i = 0 .. n - 2).
 // This is the same discrete solution as with I(u) summed over all control points, whose rows fill the
 // rod's Jacobian block below the diagonal; here it stays banded (bandwidth about (p + 1) 10). Rods with at
-// most CollocationRod::kMaxBandedCondensedPoints control points, whose band the constant wrench fills
-// anyway, keep the sum over all control points (CondensedSummedForm: 7 unknowns per point, no T rows).
+// most CollocationRod::kMaxBandedCondensedPoints control points, where the square cost of the sum is still
+// small, keep the sum over all control points (CondensedSummedForm: 7 unknowns per point, no T rows).
 #include "form_builder.hpp"
 #include "pcr/splines/basis.hpp"
 

@@ -124,17 +124,12 @@ struct RodEndOptions {
 
 class CollocationRod {
  public:
-  /// The condensed form's constant wrench [n, h] is read by every row of the rod: in the rod's band
-  /// (BorderedBlockLu) it is a dense column that widens the band to the whole rod, at a cost growing with
-  /// the square of the element count. Beyond this many control points add_to_problem leaves a condensed
-  /// rod's variables out of the groups, and Newton factors the system by the general sparse LU (natural
-  /// order: the wrench columns follow the rod's control points, so its supernodal LU fills only them
-  /// beyond the band), linear in the element count. Measured on
-  /// R5a (gravity) and R5b (none), degree 6, one cold FK and 9 warm solves (the driver of
-  /// benchmarks/formulations), band against sparse LU: 93M against 122M and 83M against 108M instructions
-  /// (callgrind) at 8 elements, 279M against 301M and 218M against 273M at 32; CPU time of the cold FK
-  /// on R5a with the band 84 ms, with the sparse LU 44 ms at 64 elements, 274 and 87 ms at 128
-  /// (bench_formulations). The switch sits between: 40 points, 34 elements of degree 6.
+  /// Condensed form with distributed loads: rods with at most this many control points sum I(u) over all
+  /// control points (7 unknowns per point; the sum fills the rod's block below the diagonal, at a cost
+  /// growing with the square of the point count), longer rods carry the running integrals T (10 unknowns
+  /// per point, banded, linear cost). In either case the constant wrench [n, h] is read by every row of
+  /// the rod; BorderedBlockLu moves such wide columns to its border, so every rod keeps its group (a band
+  /// per rod) whatever its length.
   static constexpr int kMaxBandedCondensedPoints = 40;
 
   /// Validates the model and the discretisation (InputError naming the value).
@@ -165,8 +160,7 @@ class CollocationRod {
   /// its P, whatever `initial` holds there) and its residual blocks, with loads and intrinsic strains
   /// multiplied by load_factor (for continuation). The length block is fixed at the model's length unless
   /// free_length. `group` tags the rod's variables for structured solvers (a band per rod,
-  /// BorderedBlockLu), except those of a condensed rod with more than kMaxBandedCondensedPoints control
-  /// points (see there).
+  /// BorderedBlockLu).
   RodVariables add_to_problem(Problem& problem, const RodEndOptions& ends = {}, double load_factor = 1.0,
                               bool free_length = false, int group = -1, const VecX* initial = nullptr) const;
 

@@ -1,0 +1,144 @@
+// bench_time_split: one workload of bench_all in a function of its own (measured_region), for a profile
+// of where a solve's time goes (docs/benchmarks.md, "Time split"):
+//   valgrind --tool=callgrind --toggle-collect='*measured_region*' build/release/benchmarks/bench_time_split
+//       r5b_path --formulation condensed --degree 6 --elements 8 --tolerance 1e-7
+//   callgrind_annotate --inclusive=yes callgrind.out.<pid>
+// Workloads: r5b_path / r5b_helix (warm IK along bench_all's R5b paths, the first, cold, solve outside the
+// region), r5a_fk (one cold FK, assembly included), R1 / R2 / R3 / spring (one cold solve_rod).
+// Prints the wall time of the region, the iterations and the status.
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "common/robot_scenes.hpp"
+#include "common/rod_scenes.hpp"
+#include "pcr/robots/kinematics.hpp"
+
+using namespace pcr;
+using namespace pcr::bench;
+
+namespace {
+
+struct Settings {
+  std::string workload;
+  RodFormulation formulation = RodFormulation::Condensed;
+  int degree = 6, elements = 8, solves = 1;
+  double tolerance = 1e-10;
+};
+
+struct Outcome {
+  int iterations = 0, solves = 0;
+  bool converged = true;
+  std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+  double seconds = 0.0;  ///< wall time of the region
+  Outcome& stop() {
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return *this;
+  }
+};
+
+KinematicsOptions robot_options(const Settings& s) {
+  KinematicsOptions o;
+  o.assembly.discretization = {s.formulation, s.degree, s.elements};
+  o.assembly.use_model_hints = false;
+  o.assembly.formulation_by_slenderness = false;
+  o.assembly.condense_mixed_rods = false;
+  o.tolerance = s.tolerance;
+  return o;
+}
+
+// Warm IK solves along `path` (poses 1 .. end; pose 0 solved before, outside the region).
+__attribute__((noinline)) Outcome measured_region(InverseKinematics& ik, const std::vector<Pose>& path) {
+  Outcome out;
+  for (size_t k = 1; k < path.size(); ++k) {
+    const RobotSolution s = ik.solve({path[k]});
+    out.iterations += s.summary.iterations;
+    out.converged = out.converged && s.summary.converged();
+    ++out.solves;
+  }
+  return out.stop();
+}
+
+__attribute__((noinline)) Outcome measured_region(const std::shared_ptr<const RobotModel>& model,
+                                                  const KinematicsOptions& o, const VecX& inputs,
+                                                  int solves) {
+  Outcome out;
+  for (int k = 0; k < solves; ++k) {
+    ForwardKinematics fk(model, o);
+    const RobotSolution s = fk.solve(inputs);
+    out.iterations += s.summary.iterations;
+    out.converged = out.converged && s.summary.converged();
+    ++out.solves;
+  }
+  return out.stop();
+}
+
+__attribute__((noinline)) Outcome measured_region(const RodModel& model, const RodSolveOptions& o,
+                                                  int solves) {
+  Outcome out;
+  for (int k = 0; k < solves; ++k) {
+    const RodSolution s = solve_rod(model, o);
+    out.iterations += s.summary.iterations;
+    out.converged = out.converged && s.summary.converged();
+    ++out.solves;
+  }
+  return out.stop();
+}
+
+Outcome run(const Settings& s) {
+  if (s.workload == "r5b_path" || s.workload == "r5b_helix") {
+    const std::vector<Pose> path = s.workload == "r5b_path" ? r5b_path(100) : r5b_helix_path(400);
+    InverseKinematics ik(load_r5b(), {platform_target()}, robot_options(s));
+    ik.solve({path[0]});
+    return measured_region(ik, path);
+  }
+  if (s.workload == "r5a_fk") {
+    const std::shared_ptr<const RobotModel> model = load_r5a();
+    return measured_region(model, robot_options(s), r5a_moved_inputs(*model), s.solves);
+  }
+  for (const RodScene& scene :
+       {r1_full_circle(), r2_elastica(1e14), r3_helix(), helical_spring_large_load()}) {
+    if (scene.name.rfind(s.workload, 0) != 0) continue;
+    RodSolveOptions o;
+    o.discretization = {s.formulation, s.degree, s.elements};
+    o.tolerance = s.tolerance;
+    o.max_load_steps = 40;  // as bench_all
+    return measured_region(scene.model, o, s.solves);
+  }
+  std::fprintf(stderr, "bench_time_split: unknown workload '%s'\n", s.workload.c_str());
+  std::exit(2);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr,
+                 "usage: bench_time_split r5b_path|r5b_helix|r5a_fk|R1|R2|R3|spring [--formulation "
+                 "mixed|condensed|primal] [--degree P] [--elements E] [--tolerance T] [--solves N]\n");
+    return 2;
+  }
+  Settings s;
+  s.workload = argv[1];
+  for (int i = 2; i + 1 < argc; i += 2) {
+    const std::string key = argv[i], value = argv[i + 1];
+    if (key == "--formulation")
+      s.formulation = value == "mixed"    ? RodFormulation::Mixed
+                      : value == "primal" ? RodFormulation::Primal
+                                          : RodFormulation::Condensed;
+    else if (key == "--degree")
+      s.degree = std::stoi(value);
+    else if (key == "--elements")
+      s.elements = std::stoi(value);
+    else if (key == "--tolerance")
+      s.tolerance = std::stod(value);
+    else if (key == "--solves")
+      s.solves = std::stoi(value);
+  }
+  const Outcome out = run(s);
+  std::printf("%s %s p=%d E=%d tol=%g: %d solves, %d iterations, %s, %.3f ms per solve\n", s.workload.c_str(),
+              to_string(s.formulation), s.degree, s.elements, s.tolerance, out.solves, out.iterations,
+              out.converged ? "converged" : "FAILED", 1e3 * out.seconds / std::max(1, out.solves));
+  return out.converged ? 0 : 1;
+}
