@@ -7,6 +7,7 @@
 #include "pcr/core/error.hpp"
 #include "pcr/math/quaternion.hpp"
 #include "pcr/robots/platform_hold_check.hpp"
+#include "pcr/rods/end_axes.hpp"
 
 namespace pcr {
 namespace {
@@ -238,10 +239,14 @@ void RobotModel::build_rods() {
         end->frame.orientation.normalize();
       }
     }
-    require(element.start.coupling == RodEndKind::Clamped || element.end.coupling == RodEndKind::Clamped,
-            "pcr_rod '", name, "': couplings start = ", to_string(element.start.coupling),
-            ", end = ", to_string(element.end.coupling),
-            " leave the rod free to move or twist; clamp at least one end");
+    // A clamped end, a universal joint or a pin not along the tangent holds the rod's twist (end_axes.hpp).
+    require(
+        holds_twist(element.start.coupling, element.start.axis) ||
+            holds_twist(element.end.coupling, element.end.axis),
+        "pcr_rod '", name, "': couplings start = ", to_string(element.start.coupling),
+        ", end = ", to_string(element.end.coupling),
+        " leave the rod free to move or twist about its tangent; clamp at least one end, or hold one by a "
+        "universal coupling or a revolute coupling whose axis is not along the rod");
     require(element.start.link < 0 || element.start.link != element.end.link, "pcr_rod '", name,
             "': both ends are on link '", element.start.link >= 0 ? links_[element.start.link].name : "",
             "'; a rod must join two different links");

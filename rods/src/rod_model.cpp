@@ -3,10 +3,16 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/SVD>
+
 #include "pcr/core/error.hpp"
+#include "pcr/math/so3.hpp"
+#include "pcr/rods/end_axes.hpp"
 
 namespace pcr {
 namespace {
+
+using Twist = Eigen::Matrix<double, 6, 1>;
 
 bool positive_finite(double v) { return std::isfinite(v) && v > 0.0; }
 
@@ -19,6 +25,37 @@ void validate_end(const std::string& rod, const char* which, const RodEnd& end) 
   require(end.orientation.allFinite() && end.orientation.norm() > 1e-12, "rod '", rod, "': ", which,
           " orientation quaternion must be finite and non-zero, got [", end.orientation.transpose(), "]");
   require(end.force.allFinite() && end.moment.allFinite(), "rod '", rod, "': ", which, " load is not finite");
+  if (end.kind != RodEndKind::Universal && end.kind != RodEndKind::Revolute) return;
+  require(end.axis.allFinite() && end.axis.norm() > 1e-12, "rod '", rod, "': ", which, " ", to_string(end.kind),
+          " axis = [", end.axis.transpose(), "] must be a finite non-zero vector");
+  require(end.kind != RodEndKind::Universal || sine_to_tangent(end.axis) >= kMinJointAxisSine, "rod '", rod,
+          "': ", which, " universal axis = [", end.axis.transpose(),
+          "] lies along the end frame's z axis (the rod tangent); the first joint axis must be normal to it");
+}
+
+// Rigid motions of the rod (twist [v at the world origin; w]) that the kinematic conditions of its two
+// ends allow: rows [I, -hat(p)] for a held position, [0, B] for the blocked rotations B of the end's
+// kind (blocked_rotations, with the rod frame at its prescribed frame). A non-zero null vector is a
+// mechanism (e.g. a universal or revolute end with the other end free): the equilibrium is not unique.
+Twist free_rigid_motion(const RodModel& m) {
+  MatX C = MatX::Zero(12, 6);  // at most 6 rows per end; unused rows stay zero
+  int row = 0;
+  for (const RodEnd* end : {&m.base, &m.tip}) {
+    if (end->kind == RodEndKind::Free) continue;
+    const MatX B = blocked_rotations(end->kind, rotation_matrix(end->orientation.normalized()), end->axis);
+    C.block<3, 3>(row, 0).setIdentity();
+    C.block<3, 3>(row, 3) = -hat(end->position);
+    C.block(row + 3, 3, B.rows(), 3) = B;
+    row += 3 + static_cast<int>(B.rows());
+  }
+  Eigen::JacobiSVD<MatX> svd(C, Eigen::ComputeFullV);
+  const VecX& sigma = svd.singularValues();
+  // Relative threshold as in the robot's rank check (platform_hold_check.cpp): exact dependencies give
+  // ~1e-16 sigma_max, held rods ~ (shortest lever / longest) sigma_max.
+  if (sigma[5] > 1e-9 * std::max(sigma[0], 1.0)) return Twist::Zero();
+  Twist motion = svd.matrixV().col(5);
+  for (int k = 0; k < 6; ++k) motion[k] = std::abs(motion[k]) < 1e-12 ? 0.0 : motion[k];
+  return motion;
 }
 
 }  // namespace
@@ -108,9 +145,14 @@ void RodModel::validate() const {
           "rod '", name, "': distributed loads are not finite");
   validate_end(name, "base", base);
   validate_end(name, "tip", tip);
-  require(base.kind == RodEndKind::Clamped || tip.kind == RodEndKind::Clamped, "rod '", name,
+  require(holds_twist(base.kind, base.axis) || holds_twist(tip.kind, tip.axis), "rod '", name,
           "': end conditions (base ", to_string(base.kind), ", tip ", to_string(tip.kind),
-          ") leave the rod free to move or twist; clamp at least one end");
+          ") leave the rod free to move or twist about its tangent; clamp at least one end, or hold one by a "
+          "universal coupling or a revolute coupling whose axis is not along the tangent");
+  const Twist motion = free_rigid_motion(*this);
+  require(motion.isZero(0.0), "rod '", name, "': end conditions (base ", to_string(base.kind), ", tip ",
+          to_string(tip.kind), ") leave the rod free to move as a rigid body: v = [", motion.head<3>().transpose(),
+          "] (at the world origin), w = [", motion.tail<3>().transpose(), "]");
 }
 
 double checked_arc_length(double s, double length, const std::string& who) {

@@ -54,8 +54,8 @@ struct RodEnd {
   RodEndKind kind = RodEndKind::Free;
   Vec3 position = Vec3::Zero();         ///< prescribed position (Clamped, Collar, Spherical)
   Quat orientation = Quat(1, 0, 0, 0);  ///< prescribed frame (Clamped, Universal, Revolute) or axis R e3 (Collar)
-  /// Universal: the first joint axis a; Revolute: the pin axis a. A unit vector in the end frame
-  /// (`orientation`), not along its z axis for Universal.
+  /// Universal: the first joint axis a; Revolute: the pin axis a. A vector in the end frame
+  /// (`orientation`), normalised where used (end_axes.hpp), not along its z axis for Universal.
   Vec3 axis = Vec3::UnitX();
   /// External force and moment applied *to the rod* at this end (world frame). With n, m the force
   /// and moment that the part s+ exerts on s-: at s = L, n = force, m = moment; at s = 0,
@@ -99,9 +99,11 @@ struct RodModel {
   /// Distributed force f(s) = rho A g + force_per_length (constant along s).
   Vec3 distributed_force() const;
   /// Throws InputError naming the rod, the parameter and its value when the model is not usable:
-  /// non-positive or non-finite length or stiffness, zero quaternion, or ends that leave the
-  /// equilibrium undetermined (at least one end must be clamped; a collar or spherical end at both
-  /// ends leaves a free twist).
+  /// non-positive or non-finite length or stiffness, zero quaternion, a zero or non-finite joint axis
+  /// (a universal one along the end's z axis), or ends that leave the equilibrium undetermined: one end
+  /// must hold the twist (clamped, universal, or revolute with the pin not along the tangent; collars
+  /// and spherical joints at both ends leave a free twist), and the two ends together must hold the rod
+  /// as a rigid body (e.g. a universal or revolute end with the other end free does not).
   void validate() const;
 };
 
