@@ -525,6 +525,51 @@ BOOST_AUTO_TEST_CASE(universal_joint_holds_the_twist_of_a_rod_in_torsion) {
   BOOST_TEST(rotation_angle_between(sol.tip.R(), R0 * rotation_z(T / GJ)) < kTightIntegration);
 }
 
+BOOST_AUTO_TEST_CASE(pinned_beam_with_end_moment_matches_beam_theory) {
+  // Revolute base about e2 at the origin (pin), spherical tip at L e3 loaded by the moment M e2: the
+  // bending moment grows linearly from 0 at the pin to M, the section rotation is
+  // psi(s) = -M L / (6 EI) + M s^2 / (2 EI L) about e2 (Roark, simply supported beam with an end couple):
+  // the pin turns by -M L / (6 EI), the tip by M L / (3 EI). Bound as for pinned_beam (no distributed
+  // load here; slope M L / (3 EI) = 3.3e-4, geometric nonlinearity O(slope^2) ~ 1e-7 relative; shear
+  // V / kGA = 1e-11): kBeamTheory relative.
+  RodModel rod = pinned_beam(RodEndKind::Revolute, RodEndKind::Spherical);
+  rod.loads.force_per_length.setZero();
+  const double M = 1e-3;  // EI = 1, L = 1
+  rod.tip.moment = Vec3(0.0, M, 0.0);
+  const ShootingSolution sol = solve_rod_shooting(rod, tight_options());
+  BOOST_TEST_REQUIRE(sol.summary.converged(), sol.summary.brief_report());
+  const double pin = rotation_angle_between(sol.base.R(), rotation_y(-M / 6.0));
+  const double tip = rotation_angle_between(sol.tip.R(), rotation_y(M / 3.0));
+  BOOST_TEST(pin < kBeamTheory * M / 6.0 + kTightIntegration, "pin rotation error " << pin);
+  BOOST_TEST(tip < kBeamTheory * M / 3.0 + kTightIntegration, "tip rotation error " << tip);
+  // Exact statics (the tip stays at L e3): e2 . (m(L) - m(0) + L e3 x n) = 0 with m(0) . e2 = 0 gives
+  // n_x = -M / L; nothing out of the plane. Residual rows 1e-12 x F_c, M_c = 1 times the map's condition
+  // (< 100).
+  BOOST_TEST(std::abs(sol.base.n.x() + M) < 1e-10);
+  BOOST_TEST(std::abs(sol.base.n.y()) + std::abs(sol.base.m.y()) < 1e-10);
+}
+
+BOOST_AUTO_TEST_CASE(revolute_rod_in_tension_turns_rigidly_about_its_pin) {
+  // Revolute base at the origin with the default axis (the end frame's x axis), spherical tip at
+  // stretch R_x(theta) e3: a straight two-force member turned rigidly by theta about the pin,
+  // R(s) = R_x(theta), n = N d, m = 0, stretch 1 + N / EA (exact, as for the universal rod below).
+  RodModel rod = cantilever(1.0, Vec3(1.0, 1.2, 0.8), Vec3(60, 70, 100));
+  rod.base.kind = RodEndKind::Revolute;
+  rod.tip.kind = RodEndKind::Spherical;
+  const double theta = 0.5, N = 2.0, stretch = 1.0 + N / 100.0;
+  const Mat3 R = rotation_x(theta);
+  rod.tip.position = stretch * R.col(2);
+  const ShootingSolution sol = solve_rod_shooting(rod, tight_options());
+  BOOST_TEST_REQUIRE(sol.summary.converged(), sol.summary.brief_report());
+  for (int i = 0; i <= 10; ++i) {
+    const ShootingState x = sol.at(0.1 * i);
+    BOOST_TEST(max_abs(x.p - 0.1 * i * stretch * R.col(2)) < kTightIntegration);
+    BOOST_TEST(rotation_angle_between(x.R(), R) < kTightIntegration);
+    BOOST_TEST(max_abs(x.n - N * R.col(2)) < kTightIntegration * N);
+    BOOST_TEST(max_abs(x.m) < kTightIntegration);
+  }
+}
+
 // ---- global equilibrium of a gravity-loaded cantilever ---------------------------------------------
 BOOST_AUTO_TEST_CASE(gravity_cantilever_base_wrench_balances_the_loads) {
   // Steel rod, radius 1 mm, 0.5 m, horizontal (d3 = e1), gravity -9.81 e3, a tip weight 0.05 N.
@@ -797,6 +842,28 @@ BOOST_AUTO_TEST_CASE(bad_input_throws_input_error) {
   } catch (const InputError& e) {
     BOOST_TEST(std::string(e.what()).find("clamp") != std::string::npos, e.what());
   }
+  // A universal base with a free tip: the rod could swing about the joint as a rigid body.
+  rod = bisshopp_drucker(1.0);
+  rod.base.kind = RodEndKind::Universal;
+  try {
+    solve_rod_shooting(rod);
+    BOOST_FAIL("universal-free accepted");
+  } catch (const InputError& e) {
+    BOOST_TEST(std::string(e.what()).find("rigid body") != std::string::npos, e.what());
+  }
+  // A universal axis along the rod tangent (no second axis), and a zero revolute axis.
+  rod = bisshopp_drucker(1.0);
+  rod.tip.kind = RodEndKind::Universal;
+  rod.tip.axis = Vec3(0.0, 0.0, 2.0);
+  try {
+    solve_rod_shooting(rod);
+    BOOST_FAIL("universal axis along the tangent accepted");
+  } catch (const InputError& e) {
+    BOOST_TEST(std::string(e.what()).find("universal axis") != std::string::npos, e.what());
+  }
+  rod.tip.kind = RodEndKind::Revolute;
+  rod.tip.axis = Vec3::Zero();
+  BOOST_CHECK_THROW(solve_rod_shooting(rod), InputError);
   ShootingOptions o;
   o.integrator = IntegratorMethod::RK4;
   o.rk4_steps = 0;

@@ -122,12 +122,9 @@ RodStateVector initial_base_guess(const RodModel& model) {
   } else {
     // The base carries about half the distributed load.
     x.n = 0.5 * L * f;
-    if (joint_end::is_joint(base.kind) && tip.kind == RodEndKind::Free) {
-      // The exact base force, n(0) = n(L) + f L (the rod swings about the joint under its loads: a poor
-      // force guess sends Newton to another equilibrium).
-      x.n = tip.force + L * f;
-    } else if (joint_end::is_joint(base.kind)) {
-      // Turned towards the prescribed tip (then projected onto the joint's motions by enforce_base).
+    if (joint_end::is_joint(base.kind)) {
+      // The tip is held in position (RodModel::validate): turned towards it (then projected onto the joint's
+      // motions by enforce_base).
       const Vec3 chord = tip.position - base.position;
       if (chord.norm() > 1e-12 * L)
         x.q = quat_multiply(quat_between(rotation_matrix(x.q).col(2), chord.normalized()), x.q);

@@ -27,8 +27,8 @@
 //   universal: p(L) - p_bar, (R_bar a) . (R b), (m(L) - moment) . R_bar a, (m(L) - moment) . R b
 //   revolute:  p(L) - p_bar, two components of the smallest rotation from R_bar a to R a (zero only for
 //              R a = R_bar a), (m(L) - moment) . R_bar a
-// Every pairing that RodModel::validate accepts is supported (at least one end clamped, universal or
-// revolute; with a free other end the loads must hold the rod's swing about the joint). A collar
+// Every pairing that RodModel::validate accepts is supported (one end holds the twist: clamped,
+// universal or revolute; the two ends hold the rod as a rigid body). A collar
 // honours the torsional part of its applied moment (m . d3 = moment . d3; docs/design.md's m . d3 = 0 is
 // the unloaded case).
 //
