@@ -26,8 +26,8 @@ void validate_end(const std::string& rod, const char* which, const RodEnd& end) 
           " orientation quaternion must be finite and non-zero, got [", end.orientation.transpose(), "]");
   require(end.force.allFinite() && end.moment.allFinite(), "rod '", rod, "': ", which, " load is not finite");
   if (end.kind != RodEndKind::Universal && end.kind != RodEndKind::Revolute) return;
-  require(end.axis.allFinite() && end.axis.norm() > 1e-12, "rod '", rod, "': ", which, " ", to_string(end.kind),
-          " axis = [", end.axis.transpose(), "] must be a finite non-zero vector");
+  require(end.axis.allFinite() && end.axis.norm() > 1e-12, "rod '", rod, "': ", which, " ",
+          to_string(end.kind), " axis = [", end.axis.transpose(), "] must be a finite non-zero vector");
   require(end.kind != RodEndKind::Universal || sine_to_tangent(end.axis) >= kMinJointAxisSine, "rod '", rod,
           "': ", which, " universal axis = [", end.axis.transpose(),
           "] lies along the end frame's z axis (the rod tangent); the first joint axis must be normal to it");
@@ -151,8 +151,8 @@ void RodModel::validate() const {
           "universal coupling or a revolute coupling whose axis is not along the tangent");
   const Twist motion = free_rigid_motion(*this);
   require(motion.isZero(0.0), "rod '", name, "': end conditions (base ", to_string(base.kind), ", tip ",
-          to_string(tip.kind), ") leave the rod free to move as a rigid body: v = [", motion.head<3>().transpose(),
-          "] (at the world origin), w = [", motion.tail<3>().transpose(), "]");
+          to_string(tip.kind), ") leave the rod free to move as a rigid body: v = [",
+          motion.head<3>().transpose(), "] (at the world origin), w = [", motion.tail<3>().transpose(), "]");
 }
 
 double checked_arc_length(double s, double length, const std::string& who) {
