@@ -434,10 +434,12 @@ BOOST_AUTO_TEST_CASE(unsupported_joint_models_are_rejected_by_name) {
   std::shared_ptr<RobotModel> model = std::make_shared<RobotModel>(*six_rus_like(false));
   std::vector<RodElement> rods = model->rods();
   rods[2].start.axis = Vec3::UnitZ();
-  const RobotModel bad(model->name(), model->links(), model->joints(), model->platforms(), rods,
-                       model->loads(), model->gravity());
-  const std::string axis =
-      message_of([&] { ShootingRobotSolver s(std::make_shared<const RobotModel>(bad)); });
+  // (Rejected by the RobotModel or by the solver: the model is built inside.)
+  const std::string axis = message_of([&] {
+    ShootingRobotSolver s(std::make_shared<const RobotModel>(model->name(), model->links(), model->joints(),
+                                                             model->platforms(), rods, model->loads(),
+                                                             model->gravity()));
+  });
   BOOST_TEST(axis.find("rod3") != std::string::npos, axis);
   BOOST_TEST(axis.find("universal axis") != std::string::npos, axis);
   // A passive joint that carries nothing and has no spring is undetermined.
@@ -453,9 +455,9 @@ BOOST_AUTO_TEST_CASE(unsupported_joint_models_are_rejected_by_name) {
   hinge.child_link = static_cast<int>(links.size()) - 1;
   hinge.passive = true;
   joints.push_back(hinge);
-  const RobotModel idle_model(model->name(), links, joints, model->platforms(), model->rods(), model->loads(),
-                              model->gravity());
-  const std::string idle_message =
-      message_of([&] { ShootingRobotSolver s(std::make_shared<const RobotModel>(idle_model)); });
+  const std::string idle_message = message_of([&] {
+    ShootingRobotSolver s(std::make_shared<const RobotModel>(
+        model->name(), links, joints, model->platforms(), model->rods(), model->loads(), model->gravity()));
+  });
   BOOST_TEST(idle_message.find("idle_hinge") != std::string::npos, idle_message);
 }
