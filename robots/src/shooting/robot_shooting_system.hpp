@@ -1,10 +1,12 @@
 #pragma once
 // Private to the shooting robot solver: the robot's shooting map as a NonlinearSystem for the shared
 // Newton loop (pcr/solve/newton_loop.hpp). Evaluating a point integrates every rod from its base state
-// (with the six tangents for the Jacobian; d y(L)/dL = f(L, y(L)) for fed lengths), then the coupling
-// rows of each rod and the balance rows of each platform (unknown_layout.hpp). The rods' buffers hold
-// the last integration, of the current or of the trial point.
+// (with its six tangents for the Jacobian; d y(L)/dL = f(L, y(L)) for fed lengths; for a base frame moved
+// by an unknown joint value, a second tangent pass on the same steps for its rotation), then the
+// coupling rows of each rod, the balance rows of each platform and passive joint (unknown_layout.hpp).
+// The rods' buffers hold the last integration, of the current or of the trial point.
 #include <string>
+#include <vector>
 
 #include "pcr/robots/shooting/shooting_robot_solver.hpp"
 #include "pcr/solve/dense_system.hpp"
@@ -39,9 +41,18 @@ class RobotShootingSystem : public DenseNonlinearSystem<Eigen::Dynamic> {
   void accept() override;
 
  private:
+  /// An unknown joint value (passive joint, or joint input in IK): its column, joint and scale.
+  struct JointColumn {
+    int column, joint;
+    double scale;
+  };
+  void find_joint_columns();
   bool integrate(const State& s, bool tangents);
+  bool integrate_frame_rotation(RodSetup& r, const joint_end::FrameTangents& dy0_dframe);
   void residual(const State& s, VecX& r) const;
   void jacobian(const State& s, MatX& J);
+  void add_passive_columns(const State& s, MatX& J) const;
+  void add_joint_columns(const State& s, MatX& J) const;
 
   RobotShootingModel& model_;
   const ShootingRobotOptions& options_;
@@ -49,6 +60,10 @@ class RobotShootingSystem : public DenseNonlinearSystem<Eigen::Dynamic> {
   UnknownLayout layout_;
   VecX row_scale_;
   State current_, trial_;
+  std::vector<JointColumn> joint_columns_;
+  std::vector<char> frame_moves_;  // per rod: its base frame moves with an unknown joint value
+  bool any_moving_base_ = false;   // some rod's base frame moves with a joint value (input or passive)
+  std::vector<Eigen::Matrix<double, 6, kRodStateSize>> coupling_rates_, balance_rates_;  // D, E per rod
   bool rods_hold_current_ = false;
   bool frozen_ = false;
   std::string failure_;

@@ -155,24 +155,24 @@ RobotSolution ShootingRobotSolver::Impl::result(const State& s) const {
   RobotSolution out;
   out.inputs = s.inputs;
   out.platforms = s.poses;
+  out.passive_joints = s.passive;
   for (int i = 0; i < shooting.num_rods(); ++i) {
     const RodSetup& r = shooting.rods[i];
     const RodStateVector tip = r.Y.col(0);
+    const RodStateVector& base = r.y0;  // of the same integration
     RodResult rr;
     rr.name = shooting.model->rods()[r.rod].name;
     rr.length = r.model.length;
-    rr.base_force = s.n0[i];
-    rr.base_moment = s.m0[i];
+    rr.base_force = base.segment<3>(RodStateIndex::n);
+    rr.base_moment = base.segment<3>(RodStateIndex::m);
     rr.tip_force = tip.segment<3>(RodStateIndex::n);
     rr.tip_moment = tip.segment<3>(RodStateIndex::m);
-    rr.axial_force = s.n0[i].dot(r.base_frame.rotation().col(2));
+    rr.axial_force = rr.base_force.dot(rotation_matrix(Quat(base.segment<4>(RodStateIndex::q))).col(2));
     rr.centerline.reserve(r.trajectory.y.size() + 2);
-    if (r.trajectory.y.empty()) rr.centerline.push_back(r.base_frame.position);
+    if (r.trajectory.y.empty()) rr.centerline.push_back(base.segment<3>(RodStateIndex::p));
     for (const RodStateVector& y : r.trajectory.y) rr.centerline.push_back(y.segment<3>(RodStateIndex::p));
     if (r.trajectory.y.empty()) rr.centerline.push_back(tip.segment<3>(RodStateIndex::p));
     // At the two ends (an ODE evaluation per point: the steps' points would cost a share of the solve).
-    RodStateVector base;
-    base << r.base_frame.position, r.base_frame.orientation, s.n0[i], s.m0[i];
     rr.min_axial_stretch =
         std::min(axial_stretch(*r.ode, 0.0, base), axial_stretch(*r.ode, r.model.length, tip));
     out.rods.push_back(std::move(rr));

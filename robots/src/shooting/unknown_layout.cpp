@@ -7,13 +7,15 @@ namespace pcr {
 namespace shooting_robot {
 
 UnknownLayout::UnknownLayout(const RobotShootingModel& m, bool ik) : ik_(ik) {
-  add_unknowns(UnknownKind::RodBaseWrench, m.num_rods(), 6);
+  add_unknowns(UnknownKind::RodBase, m.num_rods(), 6);
   if (ik)
     add_unknowns(UnknownKind::InputValue, static_cast<int>(m.model->inputs().size()), 1);
   else
     add_unknowns(UnknownKind::PlatformPose, m.num_platforms(), 6);
+  add_unknowns(UnknownKind::PassiveJoint, m.num_passive(), 1);
   add_rows(ResidualKind::RodCoupling, m.num_rods(), 6);
   add_rows(ResidualKind::PlatformBalance, m.num_platforms(), 6);
+  add_rows(ResidualKind::PassiveBalance, m.num_passive(), 1);
 }
 
 void UnknownLayout::add_unknowns(UnknownKind kind, int count, int size) {
@@ -47,9 +49,8 @@ void UnknownLayout::retract(const RobotShootingModel& m, const State& s, const V
   out = s;
   for (const UnknownBlock& b : unknowns_) {
     switch (b.kind) {
-      case UnknownKind::RodBaseWrench:
-        out.n0[b.index] += m.Fs * dz.segment<3>(b.offset);
-        out.m0[b.index] += m.Ms * dz.segment<3>(b.offset + 3);
+      case UnknownKind::RodBase:
+        out.base[b.index] += m.rods[b.index].unknown_scale.cwiseProduct(dz.segment<6>(b.offset));
         break;
       case UnknownKind::PlatformPose: {
         Pose& pose = out.poses[b.index];
@@ -60,7 +61,10 @@ void UnknownLayout::retract(const RobotShootingModel& m, const State& s, const V
                                .normalized();
         break;
       }
-      case UnknownKind::InputValue: out.inputs[b.index] += m.Ls * dz[b.offset]; break;
+      case UnknownKind::InputValue: out.inputs[b.index] += m.input_scale[b.index] * dz[b.offset]; break;
+      case UnknownKind::PassiveJoint:
+        out.passive[b.index] += m.passive[b.index].unknown_scale * dz[b.offset];
+        break;
     }
   }
 }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "pcr/core/error.hpp"
+#include "pcr/rods/shooting/joint_ends.hpp"
 #include "rod_shooting_system.hpp"
 #include "shooting_ends.hpp"
 
@@ -139,6 +140,9 @@ ShootingSolution solve_rod_shooting(const RodModel& model, const ShootingOptions
                                     const ShootingSolution* warm_start) {
   const auto t_start = std::chrono::steady_clock::now();
   model.validate();
+  for (const auto& [end, which] : {std::make_pair(&model.base, "base"), std::make_pair(&model.tip, "tip")})
+    if (joint_end::is_joint(end->kind))
+      joint_end::axes_of(end->kind, end->axis, "shooting: rod '" + model.name + "' " + which);
   check_options(options);
   const IntegratorOptions integrator = options.integrator_options();
   check_integrator_options(integrator);  // validates the integrator options (throws InputError)

@@ -2,17 +2,17 @@
 
 #include <cmath>
 
-#include "pcr/core/error.hpp"
 #include "pcr/math/quaternion.hpp"
 #include "pcr/math/so3.hpp"
+#include "pcr/rods/shooting/joint_ends.hpp"
 
 namespace pcr {
 namespace shooting {
 namespace {
 
-// Universal and revolute ends: rejected until the shooting reference implements them.
-[[noreturn]] void reject_joint_end() {
-  throw_input_error("shooting: universal and revolute rod ends are not implemented yet");
+// The axes of a universal or revolute end (checked with the rod's name by solve_rod_shooting).
+joint_end::Axes axes_of(const RodEnd& end) {
+  return joint_end::axes_of(end.kind, end.axis, "shooting rod end");
 }
 
 Quat times_pure(const Quat& a, const Vec3& u) {
@@ -89,8 +89,14 @@ void enforce_base(const RodEnd& base, RodStateVector& y0) {
       m = -base.moment;
       break;
     case RodEndKind::Universal:
-    case RodEndKind::Revolute:
-      reject_joint_end();
+    case RodEndKind::Revolute: {
+      // Onto the joint's motions and transmitted moments: y0 from its own projected unknowns.
+      const joint_end::Axes axes = axes_of(base);
+      const RodStateVector y = y0;
+      joint_end::base_state(axes, base.position, base.orientation, base.moment,
+                            joint_end::base_unknowns(axes, base.orientation, base.moment, y), y0);
+      break;
+    }
     case RodEndKind::Free:
       n = -base.force;
       m = -base.moment;
@@ -116,7 +122,13 @@ RodStateVector initial_base_guess(const RodModel& model) {
   } else {
     // The base carries about half the distributed load.
     x.n = 0.5 * L * f;
-    if (base.kind == RodEndKind::Free || base.kind == RodEndKind::Spherical) {
+    if (joint_end::is_joint(base.kind)) {
+      // The tip is held in position (RodModel::validate): turned towards it (then projected onto the joint's
+      // motions by enforce_base).
+      const Vec3 chord = tip.position - base.position;
+      if (chord.norm() > 1e-12 * L)
+        x.q = quat_multiply(quat_between(rotation_matrix(x.q).col(2), chord.normalized()), x.q);
+    } else if (base.kind == RodEndKind::Free || base.kind == RodEndKind::Spherical) {
       // The tip is clamped (RodModel::validate): guess a straight rod ending at the tip pose.
       const Quat q_tip = tip.orientation.normalized();
       const Vec3 d3_tip = rotation_matrix(q_tip).col(2);
@@ -138,6 +150,15 @@ RodStateVector initial_base_guess(const RodModel& model) {
 void base_tangents(const RodEnd& base, const RodStateVector& y0, RodStateWithTangents& Y) {
   Y.setZero();
   Y.col(0) = y0;
+  if (joint_end::is_joint(base.kind)) {
+    const joint_end::Axes axes = axes_of(base);
+    RodStateVector y;
+    joint_end::BaseTangents tangents;
+    joint_end::base_state(axes, base.position, base.orientation, base.moment,
+                          joint_end::base_unknowns(axes, base.orientation, base.moment, y0), y, &tangents);
+    Y.rightCols<kRodTangentCount>() = tangents;
+    return;
+  }
   const Quat q = y0.segment<4>(RodStateIndex::q);
   // Body rotation by theta: dq = 1/2 q (x) [0, theta].
   auto rotation_column = [&](int col, const Vec3& axis) {
@@ -156,8 +177,7 @@ void base_tangents(const RodEnd& base, const RodStateVector& y0, RodStateWithTan
         rotation_column(4 + j, e);
         break;
       case RodEndKind::Universal:
-      case RodEndKind::Revolute:
-        reject_joint_end();
+      case RodEndKind::Revolute: break;  // above
       case RodEndKind::Free:
         Y.col(1 + j).segment<3>(RodStateIndex::p) = e;
         rotation_column(4 + j, e);
@@ -192,8 +212,13 @@ void retract_base(const RodEnd& base, const Vec6& dz, RodStateVector& y0) {
       q = quat_multiply(Quat(q), quat_from_rotation_vector(b)).normalized();
       break;
     case RodEndKind::Universal:
-    case RodEndKind::Revolute:
-      reject_joint_end();
+    case RodEndKind::Revolute: {
+      // The joint angles and transmitted moments move additively (a global parameterisation).
+      const joint_end::Axes axes = axes_of(base);
+      const Vec6 z = joint_end::base_unknowns(axes, base.orientation, base.moment, y0) + dz;
+      joint_end::base_state(axes, base.position, base.orientation, base.moment, z, y0);
+      break;
+    }
     case RodEndKind::Free:
       y0.segment<3>(RodStateIndex::p) += a;
       q = quat_multiply(Quat(q), quat_from_rotation_vector(b)).normalized();
@@ -242,7 +267,9 @@ Vec6 tip_residual(const RodEnd& tip, const RodStateVector& y) {
     case RodEndKind::Spherical: r << p - tip.position, m - tip.moment; break;
     case RodEndKind::Universal:
     case RodEndKind::Revolute:
-      reject_joint_end();
+      r << p - tip.position,
+          joint_end::tip_rows(axes_of(tip), rotation_matrix(tip.orientation), R, m - tip.moment);
+      break;
     case RodEndKind::Free: r << n - tip.force, m - tip.moment; break;
   }
   return r;
@@ -257,6 +284,7 @@ Mat6 tip_residual_jacobian(const RodEnd& tip, const RodStateWithTangents& Y) {
   const Vec3 b = R_bar.transpose() * R.col(2);
   const double g = axis_error_gain(b);
   const Quat q_conj(q[0], -q[1], -q[2], -q[3]);
+  const joint_end::Axes axes = joint_end::is_joint(tip.kind) ? axes_of(tip) : joint_end::Axes();
   Mat6 J;
   for (int j = 0; j < 6; ++j) {
     const auto col = Y.col(1 + j);
@@ -281,7 +309,8 @@ Mat6 tip_residual_jacobian(const RodEnd& tip, const RodStateWithTangents& Y) {
       case RodEndKind::Spherical: dr << dp, dm; break;
       case RodEndKind::Universal:
       case RodEndKind::Revolute:
-        reject_joint_end();
+        dr << dp, joint_end::tip_rows_derivative(axes, R_bar, R, m - tip.moment, omega, dm);
+        break;
       case RodEndKind::Free: dr << dn, dm; break;
     }
     J.col(j) = dr;
@@ -297,8 +326,7 @@ Vec6 residual_scale(const RodEnd& tip, const RodOde& ode) {
     case RodEndKind::Collar: scale << L, L, L, 1, 1, M; break;
     case RodEndKind::Spherical: scale << L, L, L, M, M, M; break;
     case RodEndKind::Universal:
-    case RodEndKind::Revolute:
-      reject_joint_end();
+    case RodEndKind::Revolute: scale << L, L, L, joint_end::tip_row_scale(axes_of(tip), M); break;
     case RodEndKind::Free: scale << F, F, F, M, M, M; break;
   }
   return scale;
@@ -312,8 +340,7 @@ Vec6 unknown_scale(const RodEnd& base, const RodOde& ode) {
     case RodEndKind::Collar: scale << F, F, F, M, M, 1; break;
     case RodEndKind::Spherical: scale << F, F, F, 1, 1, 1; break;
     case RodEndKind::Universal:
-    case RodEndKind::Revolute:
-      reject_joint_end();
+    case RodEndKind::Revolute: scale << F, F, F, joint_end::unknown_scale(axes_of(base), M); break;
     case RodEndKind::Free: scale << L, L, L, 1, 1, 1; break;
   }
   return scale;

@@ -3,17 +3,28 @@
 // continuum robots: modeling, analysis, and actuation-based force sensing", IEEE T-RO 34(1);
 // docs/design.md §6): the independent reference of the collocation solver (kinematics.hpp).
 //
-// Unknowns: for every rod its base wrench n(0), m(0) (world frame; the base is clamped), for FK every
-// platform pose (position x and a world rotation vector increment: R <- exp(hat(dtheta)) R), for IK
-// the inputs (the platform poses are the targets, so the system is square when the model has 6 inputs
-// per platform). Residuals: each rod's tip coupling against the platform pose (clamped: position +
+// Unknowns: for every rod its six base unknowns (world frame): n(0), m(0) for a clamped start;
+// n(0), the joint angles and the transmitted moment components for a universal or revolute start
+// (pcr/rods/shooting/joint_ends.hpp: R(0) = R_T R_a(theta1) R_b(theta2) with m(0) = -mu t, or
+// R(0) = R_T R_a(theta) with m(0) = -R_T (mu1 c1 + mu2 c2)); for FK every platform pose (position x and
+// a world rotation vector increment: R <- exp(hat(dtheta)) R), for IK the inputs (the platform poses
+// are the targets, so the system is square when the model has 6 inputs per platform); every passive
+// joint's value. Residuals: each rod's tip coupling against the platform pose (clamped: position +
 // 2 vec(q_e); collar: position, the two components of R_T^T d3 normal to the frame axis, m(L) . d3 = 0;
-// spherical: position, m(L) = 0) and each platform's balance (docs/design.md §3)
+// spherical: position, m(L) = 0; universal / revolute: position and the joint's rows of joint_ends.hpp),
+// each platform's balance (docs/design.md §3)
 //   F_ext + m g - sum n(L) = 0,
-//   M_ext + (x_c - x) x m g + (r_F - x) x F_ext - sum (m(L) + (p(L) - x) x n(L)) = 0.
-// Newton (the shared loop, pcr/solve/newton_loop.hpp) with the Jacobian from the variational
-// equations (integrate_rod with tangents; d y(L)/dL = f(L, y(L)) for fed lengths) and central
-// differences of the algebraic tip/balance functions, step cap, backtracking line search,
+//   M_ext + (x_c - x) x m g + (r_F - x) x F_ext - sum (m(L) + (p(L) - x) x n(L)) = 0
+// and each passive joint's balance Q - k (q - rest) = 0, Q = w . sum (m(0) + (p(0) - o) x n(0)) + w . sum
+// (c - o) x m_l g over the rods starting and the links with mass beyond the joint (axis w, origin o;
+// prismatic: Q = w . (sum n(0) + sum m_l g)); link masses elsewhere are carried by the world or counted
+// in the platform's mass (Link::mass).
+// Base frames follow the URDF forward kinematics of the current joint values (inputs and passive
+// joints). Newton (the shared loop, pcr/solve/newton_loop.hpp) with the Jacobian from the variational
+// equations (integrate_rod with tangents; d y(L)/dL = f(L, y(L)) for fed lengths; for a base frame moved
+// by an unknown joint value, a second tangent pass on the same steps for the frame's rotation, its
+// translation moving the whole rod) and central differences of the algebraic tip/balance functions,
+// step cap, backtracking line search,
 // Levenberg-Marquardt fallback, stall test; with Dormand-Prince the step sequence of every rod is
 // frozen once the residual is small (a smooth map, so Newton converges to round-off).
 // Every solve is warm-started from the previous converged one (for paths), first with chord steps
@@ -22,10 +33,13 @@
 // (stalled or out of iterations) is retried by continuation in the inputs (FK) or the target poses
 // (IK) from the last solution, in 4, 8, ..., 64 steps.
 //
-// Supported: rods that start clamped on a link fixed to the world (fixed or actuated length) and end on
-// a link carried by a platform with a clamped, collar or spherical coupling; gravity on rods and
-// platforms; external loads. Anything else (joint inputs, rods between two platforms, free ends, rod
-// starts on moving links) throws InputError naming the rod or input.
+// Supported: rods that start clamped, universal or revolute on a link not carried by a platform (fixed
+// to the world or moved by actuated or passive revolute, continuous or prismatic joints), fixed or
+// actuated length, and end on a link carried by a platform with a clamped, collar, spherical, universal or
+// revolute coupling; gravity on rods, platforms and links beyond passive joints; external loads on
+// platform-carried links. Anything else (rods between two platforms, free ends, collar or spherical
+// starts, moving joints on platforms, loads on links moved by passive joints) throws InputError naming
+// the rod, joint or link.
 #include <memory>
 #include <string>
 #include <vector>
@@ -73,9 +87,9 @@ class ShootingRobotSolver {
   ShootingRobotSolver& operator=(ShootingRobotSolver&&) noexcept;
 
   /// Platform poses for the given inputs (model order); InputError for a wrong size or out of bounds.
-  /// Fills of RobotSolution: summary (with load_steps: continuation steps), inputs, platforms, and per
-  /// rod name, length, base and tip wrenches, axial force, centerline (the integrator's steps) and
-  /// smallest axial stretch at them; not jacobian_sign (collocation only).
+  /// Fills of RobotSolution: summary (with load_steps: continuation steps), inputs, platforms, passive joint
+  /// values, and per rod name, length, base and tip wrenches, axial force, centerline (the integrator's
+  /// steps) and smallest axial stretch at them; not jacobian_sign (collocation only).
   RobotSolution fk(const VecX& inputs);
   /// Inputs that put every platform at its target pose (platform order). Needs 6 inputs per platform
   /// (square system); InputError otherwise or for a wrong number of targets.

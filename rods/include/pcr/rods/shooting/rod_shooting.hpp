@@ -11,6 +11,11 @@
 //              (R(0) = R_bar R_z(psi)), with m(0) . d3 = -moment . d3
 //   spherical: n(0), rotation R(0) <- R(0) exp(hat(theta))   (p given, m(0) = -moment)
 //   free:      p(0), rotation theta                          (n(0) = -force, m(0) = -moment)
+//   universal: n(0), joint angles theta1, theta2, transmitted torsion mu  (R(0) = R_T R_a(theta1)
+//   R_b(theta2),
+//              m(0) = -moment - mu t, t = (R_T a) x (R(0) b); joint_ends.hpp)
+//   revolute:  n(0), joint angle theta, transmitted moments mu1, mu2 normal to the pin
+//              (R(0) = R_T R_a(theta), m(0) = -moment - R_T (mu1 c1 + mu2 c2))
 // Residuals by tip kind (6), with the sign convention of RodEnd (n(L) = force, m(L) = moment):
 //   clamped:   p(L) - p_bar, 2 vec(q_e), q_e = conj(q_bar) (x) q with w >= 0 (= sin(theta/2) axis of
 //              R_bar^T R: zero only at R = R_bar, unlike vee(R_bar^T R - R^T R_bar) that also vanishes
@@ -19,19 +24,24 @@
 //              (the smallest rotation from d3_bar to d3; zero only for d3 = +d3_bar), (m(L) - moment) . d3
 //   spherical: p(L) - p_bar, m(L) - moment
 //   free:      n(L) - force, m(L) - moment
-// Every pairing that RodModel::validate accepts is supported (at least one end clamped). A collar
+//   universal: p(L) - p_bar, (R_bar a) . (R b), (m(L) - moment) . R_bar a, (m(L) - moment) . R b
+//   revolute:  p(L) - p_bar, two components of the smallest rotation from R_bar a to R a (zero only for
+//              R a = R_bar a), (m(L) - moment) . R_bar a
+// Every pairing that RodModel::validate accepts is supported (one end holds the twist: clamped,
+// universal or revolute; the two ends hold the rod as a rigid body). A collar
 // honours the torsional part of its applied moment (m . d3 = moment . d3; docs/design.md's m . d3 = 0 is
 // the unloaded case).
 //
 // Strategy: Newton from the warm start, or else from the unloaded rod (clamped base: n(0) = m(0) = 0;
-// other bases: a straight rod ending at the clamped tip), with every step capped to max_step (in units
+// joint bases: the end frame turned towards the prescribed tip; other bases: a straight rod ending at
+// the clamped tip), with every step capped to max_step (in units
 // of EI/L^2, EI/L, L, 1 rad), a backtracking line search, Levenberg-Marquardt when that fails, and stall
 // detection. With Dormand-Prince the step sequence is frozen once the residual is below
 // freeze_mesh_below, so that the map is smooth near the root. If the full-load solve fails, load
 // stepping restarts from lambda = 0.
 //
 // Load stepping scales the distributed loads and the loads at both ends by lambda in (0, 1]; when the
-// base is clamped, a prescribed tip position/orientation (clamped, collar, spherical tip) moves
+// base is clamped, a prescribed tip position/orientation (every tip kind but free) moves
 // with lambda from the unloaded tip pose (lambda = 0) to the prescribed one (lambda = 1).
 #include <memory>
 #include <vector>
