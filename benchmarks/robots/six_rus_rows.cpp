@@ -5,12 +5,15 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "common/robot_scenes.hpp"
 #include "common/six_rus_scene.hpp"
 #include "pcr/math/so3.hpp"
 #include "pcr/robots/kinematics.hpp"
+#include "pcr/robots/shooting/shooting_robot_solver.hpp"
 
 namespace pcr::bench {
 namespace {
@@ -52,107 +55,185 @@ LinkTarget platform() {
   return t;
 }
 
-const SixRusMesh kReference{6, 32, 1e-11};
 const char* kMethod = "collocation-condensed-newton";
 
-void cold_rows(BenchCsv& csv, const SixRusMesh& mesh, const RobotSolution& fk_reference,
-               const RobotSolution& ik_reference) {
-  const auto heavy = load_six_rus(true), massless = load_six_rus(false);
-  const KinematicsOptions o = mesh_options(mesh);
-  double fk_error = 0, fk_rotation = 0, ik_error = 0;
+// The shooting reference (Dormand-Prince 1e-12, tolerance 1e-12; its universal joint rows are
+// independent of collocation's, test_joint_crosscheck): FK at their README FK inputs, IK to their
+// README target, IK along the helix.
+struct References {
+  RobotSolution fk, ik;
+  std::vector<VecX> helix;
+};
+
+// One cold FK and one cold IK by `solve_fk` / `solve_ik` (each builds its solver), errors against the
+// references: platform position [m] and rotation [rad] (FK), max input error [rad] (IK).
+struct ColdErrors {
+  double fk = 0, fk_rotation = 0, ik = 0;
   int fk_iterations = 0, ik_iterations = 0;
-  const Timing fk = time_repeated(
-      [&] {
-        ForwardKinematics solver(heavy, o);  // cold: a new solver object each time (assembly included)
-        const RobotSolution s = solver.solve(six_rus_readme_fk_inputs());
-        fk_error = (s.platforms[0].position - fk_reference.platforms[0].position).norm();
-        fk_rotation =
-            so3_log(s.platforms[0].rotation().transpose() * fk_reference.platforms[0].rotation()).norm();
-        fk_iterations = s.summary.iterations;
-        if (!s.summary.converged()) fk_error = NAN;
-      },
-      {5, 20, 0.0});
-  const Timing ik = time_repeated(
-      [&] {
-        InverseKinematics solver(massless, {platform()}, o);
-        const RobotSolution s = solver.solve({six_rus_readme_ik_target()});
-        ik_error = (s.inputs - ik_reference.inputs).lpNorm<Eigen::Infinity>();
-        ik_iterations = s.summary.iterations;
-        if (!s.summary.converged()) ik_error = NAN;
-      },
-      {5, 20, 0.0});
-  csv.row("R6_FK_cold", kMethod, settings_of(mesh), fk_error, fk, fk_iterations);
-  csv.row("R6_IK_cold", kMethod, settings_of(mesh), ik_error, ik, ik_iterations);
-  std::printf("R6 FK cold  %-18s error %.2e m, %.2e rad  median %.2f ms (%d it)\n", settings_of(mesh).c_str(),
-              fk_error, fk_rotation, fk.median * 1e3, fk_iterations);
-  std::printf("R6 IK cold  %-18s error %.2e rad          median %.2f ms (%d it)   [%s]\n",
-              settings_of(mesh).c_str(), ik_error, ik.median * 1e3, ik_iterations, kTheirFigure);
+};
+
+void record_fk(const RobotSolution& s, const References& r, ColdErrors& e) {
+  e.fk = s.summary.converged() ? (s.platforms[0].position - r.fk.platforms[0].position).norm() : NAN;
+  e.fk_rotation = so3_log(s.platforms[0].rotation().transpose() * r.fk.platforms[0].rotation()).norm();
+  e.fk_iterations = s.summary.iterations;
 }
 
-// Warm-started IK along the helix: per pass a new solver, cold at the first point (not timed), then
-// warm along the other 199 (each from the previous solution).
-void helix_row(BenchCsv& csv, const SixRusMesh& mesh, const std::vector<Pose>& helix,
-               const std::vector<VecX>& reference) {
-  const auto heavy = load_six_rus(true);
+void record_ik(const RobotSolution& s, const References& r, ColdErrors& e) {
+  e.ik = s.summary.converged() ? (s.inputs - r.ik.inputs).lpNorm<Eigen::Infinity>() : NAN;
+  e.ik_iterations = s.summary.iterations;
+}
+
+void print_cold(BenchCsv& csv, const char* method, const std::string& settings, const ColdErrors& e,
+                const Timing& fk, const Timing& ik) {
+  csv.row("R6_FK_cold", method, settings, e.fk, fk, e.fk_iterations);
+  csv.row("R6_IK_cold", method, settings, e.ik, ik, e.ik_iterations);
+  std::printf("R6 FK cold  %-30s %-18s error %.2e m, %.2e rad  median %.2f ms (%d it)\n", method,
+              settings.c_str(), e.fk, e.fk_rotation, fk.median * 1e3, e.fk_iterations);
+  std::printf("R6 IK cold  %-30s %-18s error %.2e rad          median %.2f ms (%d it)\n", method,
+              settings.c_str(), e.ik, ik.median * 1e3, e.ik_iterations);
+}
+
+// Warm IK along the helix by `solve(k)` (k >= 1, after an untimed cold solve at point 0 by `start`),
+// three passes; the max input error against the reference.
+template <class Start, class Solve>
+void helix_passes(BenchCsv& csv, const char* method, const std::string& settings, const References& r,
+                  Start start, Solve solve) {
   std::vector<double> times;
   double error = 0;
   int iterations = 0, failures = 0, jacobians = 0;
   for (int pass = 0; pass < 3; ++pass) {
-    InverseKinematics ik(heavy, {platform()}, mesh_options(mesh));
-    ik.solve({helix[0]});
-    for (size_t k = 1; k < helix.size(); ++k) {
+    start();
+    for (size_t k = 1; k < r.helix.size(); ++k) {
       const auto t0 = Clock::now();
-      const RobotSolution s = ik.solve({helix[k]});
+      const RobotSolution s = solve(k);
       times.push_back(seconds_since(t0));
       iterations += s.summary.iterations;
       jacobians += s.summary.jacobian_evaluations;
       if (!s.summary.converged()) ++failures;
-      error = std::max(error, (s.inputs - reference[k]).lpNorm<Eigen::Infinity>());
+      error = std::max(error, (s.inputs - r.helix[k]).lpNorm<Eigen::Infinity>());
     }
   }
   const Timing t = summarise(times);
   if (failures > 0) error = NAN;
-  csv.row("R6_helix_IK_warm", kMethod, settings_of(mesh), error, t, double(iterations) / times.size());
+  csv.row("R6_helix_IK_warm", method, settings, error, t, double(iterations) / times.size());
   std::printf(
-      "R6 helix warm IK %-18s max input error %.2e rad  median %.3f ms/solve, mean %.3f ms/solve, "
+      "R6 helix warm IK %-30s %-18s max input error %.2e rad  median %.3f ms/solve, mean %.3f ms/solve, "
       "%.2f it/solve, %d fresh Jacobians in %zu solves%s\n",
-      settings_of(mesh).c_str(), error, t.median * 1e3, t.mean * 1e3, double(iterations) / times.size(),
+      method, settings.c_str(), error, t.median * 1e3, t.mean * 1e3, double(iterations) / times.size(),
       jacobians, times.size(), failures ? "  FAILURES" : "");
+}
+
+void collocation_rows(BenchCsv& csv, const SixRusMesh& mesh, const References& r) {
+  const auto heavy = load_six_rus(true), massless = load_six_rus(false);
+  const KinematicsOptions o = mesh_options(mesh);
+  ColdErrors e;
+  const Timing fk = time_repeated(
+      [&] { record_fk(ForwardKinematics(heavy, o).solve(six_rus_readme_fk_inputs()), r, e); }, {5, 20, 0.0});
+  const Timing ik = time_repeated(
+      [&] {
+        record_ik(InverseKinematics(massless, {platform()}, o).solve({six_rus_readme_ik_target()}), r, e);
+      },
+      {5, 20, 0.0});
+  print_cold(csv, kMethod, settings_of(mesh), e, fk, ik);
+}
+
+void collocation_helix(BenchCsv& csv, const SixRusMesh& mesh, const std::vector<Pose>& helix,
+                       const References& r) {
+  const auto heavy = load_six_rus(true);
+  std::unique_ptr<InverseKinematics> ik;
+  helix_passes(
+      csv, kMethod, settings_of(mesh), r,
+      [&] {
+        ik = std::make_unique<InverseKinematics>(heavy, std::vector<LinkTarget>{platform()},
+                                                 mesh_options(mesh));
+        ik->solve({helix[0]});
+      },
+      [&](size_t k) { return ik->solve({helix[k]}); });
+}
+
+struct ShootingMethod {
+  const char* name;
+  std::string settings;
+  ShootingRobotOptions options;
+};
+
+std::vector<ShootingMethod> shooting_methods() {
+  std::vector<ShootingMethod> out;
+  ShootingRobotOptions rk4;
+  rk4.integrator = IntegratorMethod::RK4;
+  rk4.rk4_steps = 40;
+  out.push_back({"shooting-rk4", "N=40", rk4});
+  for (double tol : {1e-6, 1e-8, 1e-10}) {
+    ShootingRobotOptions o;
+    o.integration_relative_tolerance = o.integration_absolute_tolerance = tol;
+    char text[32];
+    std::snprintf(text, sizeof text, "tol=%g", tol);
+    out.push_back({"shooting-dormand_prince", text, o});
+  }
+  return out;
+}
+
+void shooting_rows(BenchCsv& csv, const ShootingMethod& m, const std::vector<Pose>& helix,
+                   const References& r) {
+  const auto heavy = load_six_rus(true), massless = load_six_rus(false);
+  ColdErrors e;
+  const Timing fk = time_repeated(
+      [&] { record_fk(ShootingRobotSolver(heavy, m.options).fk(six_rus_readme_fk_inputs()), r, e); },
+      {5, 20, 0.0});
+  const Timing ik = time_repeated(
+      [&] { record_ik(ShootingRobotSolver(massless, m.options).ik({six_rus_readme_ik_target()}), r, e); },
+      {5, 20, 0.0});
+  print_cold(csv, m.name, m.settings, e, fk, ik);
+  std::unique_ptr<ShootingRobotSolver> solver;
+  helix_passes(
+      csv, m.name, m.settings, r,
+      [&] {
+        solver = std::make_unique<ShootingRobotSolver>(heavy, m.options);
+        solver->ik({helix[0]});
+      },
+      [&](size_t k) { return solver->ik({helix[k]}); });
+}
+
+// False (with a message) when a reference solve failed.
+bool shooting_references(const std::vector<Pose>& helix, References& r) {
+  const ShootingRobotOptions tight = shooting_reference_options();
+  r.fk = ShootingRobotSolver(load_six_rus(true), tight).fk(six_rus_readme_fk_inputs());
+  r.ik = ShootingRobotSolver(load_six_rus(false), tight).ik({six_rus_readme_ik_target()});
+  if (!r.fk.summary.converged() || !r.ik.summary.converged()) {
+    std::cerr << "bench_robots: R6 shooting reference did not converge\n";
+    return false;
+  }
+  ShootingRobotSolver path(load_six_rus(true), tight);
+  for (const Pose& p : helix) {
+    const RobotSolution s = path.ik({p});
+    if (!s.summary.converged()) {
+      std::cerr << "bench_robots: R6 helix reference failed at " << p.position.transpose() << "\n";
+      return false;
+    }
+    r.helix.push_back(s.inputs);
+  }
+  return true;
 }
 
 }  // namespace
 
 int bench_six_rus(BenchCsv& csv) {
-  ForwardKinematics fk_ref(load_six_rus(true), mesh_options(kReference));
-  const RobotSolution fk_reference = fk_ref.solve(six_rus_readme_fk_inputs());
-  InverseKinematics ik_ref(load_six_rus(false), {platform()}, mesh_options(kReference));
-  const RobotSolution ik_reference = ik_ref.solve({six_rus_readme_ik_target()});
-  if (!fk_reference.summary.converged() || !ik_reference.summary.converged()) {
-    std::cerr << "bench_robots: R6 reference did not converge\n";
-    return 1;
-  }
-  const Vec3 x = fk_reference.platforms[0].position;
-  const VecX& u = ik_reference.inputs;
-  std::printf(
-      "R6 reference (%s): FK platform (%.9f, %.9f, %.9f) m; IK inputs %.8f %.8f %.8f %.8f %.8f %.8f rad\n",
-      settings_of(kReference).c_str(), x.x(), x.y(), x.z(), u[0], u[1], u[2], u[3], u[4], u[5]);
-  for (const SixRusMesh& mesh : {SixRusMesh{6, 4}, SixRusMesh{6, 8}, SixRusMesh{6, 16}})
-    cold_rows(csv, mesh, fk_reference, ik_reference);
-
   const std::vector<Pose> helix = six_rus_helix(200);
-  std::vector<VecX> reference;
-  InverseKinematics ik(load_six_rus(true), {platform()}, mesh_options(kReference));
-  for (const Pose& p : helix) {
-    const RobotSolution s = ik.solve({p});
-    if (!s.summary.converged()) {
-      std::cerr << "bench_robots: R6 helix reference failed at " << p.position.transpose() << "\n";
-      return 1;
-    }
-    reference.push_back(s.inputs);
-  }
+  References r;
+  if (!shooting_references(helix, r)) return 1;
+  const Vec3 x = r.fk.platforms[0].position;
+  const VecX& u = r.ik.inputs;
+  std::printf(
+      "R6 shooting reference (Dormand-Prince 1e-12): FK platform (%.9f, %.9f, %.9f) m; IK inputs %.8f %.8f "
+      "%.8f %.8f %.8f %.8f rad; %s\n",
+      x.x(), x.y(), x.z(), u[0], u[1], u[2], u[3], u[4], u[5], kTheirFigure);
+  for (const SixRusMesh& mesh :
+       {SixRusMesh{6, 4}, SixRusMesh{6, 8}, SixRusMesh{6, 16}, SixRusMesh{6, 32, 1e-11}})
+    collocation_rows(csv, mesh, r);
   for (const SixRusMesh& mesh : {SixRusMesh{6, 4}, SixRusMesh{6, 8}, SixRusMesh{6, 16},
                                  SixRusMesh{6, 8, 1e-8}, SixRusMesh{6, 8, 1e-6}})
-    helix_row(csv, mesh, helix, reference);
+    collocation_helix(csv, mesh, helix, r);
+  for (const ShootingMethod& m : shooting_methods()) shooting_rows(csv, m, helix, r);
   return 0;
 }
 

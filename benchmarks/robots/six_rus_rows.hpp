@@ -5,9 +5,9 @@
 namespace pcr::bench {
 
 /// Cold FK (their README FK inputs, 0.5 kg), cold IK (their README IK target, massless) and warm IK
-/// along their helix (200 points, 0.5 kg), time beside the error against a fine collocation mesh
-/// (degree 6, 32 elements per rod) solved in the same run. Writes CSV rows and prints; returns 0, or 1
-/// when a reference solve failed.
+/// along their helix (200 points, 0.5 kg), by collocation at several meshes and by shooting (RK4 N=40,
+/// Dormand-Prince 1e-6..1e-10), time beside the error against the shooting reference (Dormand-Prince
+/// 1e-12) solved in the same run. Writes CSV rows and prints; returns 0, or 1 when a reference failed.
 int bench_six_rus(BenchCsv& csv);
 
 }  // namespace pcr::bench
