@@ -59,6 +59,10 @@ SolveArguments parse_solve_arguments(const std::string& command, int argc, const
       a.json = true;
       continue;
     }
+    if (arg == "--stability") {
+      a.stability = true;
+      continue;
+    }
     if (arg.size() > 1 && arg[0] == '-') {
       if (i + 1 >= argc) throw UsageError(arg + ": missing value");
       const std::string value = argv[++i];
@@ -152,6 +156,8 @@ void print_solve_usage(std::ostream& out, const std::string& command) {
       << "                     iterations, e.g. for many solves along a path: on the teleoperation\n"
       << "                     robot (R5b) the solver added about 1e-2 T m to the inputs (README)\n"
       << "  --points N         centerline points per rod in the results (default 21)\n"
+      << "  --stability        stability verdict of the result: stable, or unstable with the number\n"
+      << "                     of unstable modes, and a margin (costs about one more cold solve)\n"
       << "  --json             JSON to stdout instead of the table\n"
       << "  --json-file FILE   JSON to FILE (the table is still printed)\n"
       << "  --csv DIR          DIR/platforms.csv, DIR/inputs.csv, DIR/rod_<name>.csv\n"

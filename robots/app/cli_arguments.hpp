@@ -36,6 +36,7 @@ struct SolveArguments {
   double tolerance = 0.0;              ///< 0 = not given
   int centerline_points = 0;           ///< 0 = not given
   bool json = false;
+  bool stability = false;  ///< --stability: the stability verdict of the result
   std::string json_file, csv_dir, vtk_path, png_path;
   bool help = false;
 };

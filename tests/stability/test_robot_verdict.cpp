@@ -5,6 +5,9 @@
 #include <cmath>
 #include <string>
 
+#include <sstream>
+
+#include "pcr/robots/io/solution_writers.hpp"
 #include "pcr/robots/kinematics.hpp"
 #include "pcr/robots/urdf_loader.hpp"
 #include "stability/robot_discrete.hpp"
@@ -178,4 +181,25 @@ BOOST_AUTO_TEST_CASE(not_checked_unless_asked) {
   ForwardKinematics fk(model);
   const RobotSolution s = fk.solve(model->default_input_values());
   BOOST_TEST(to_string(s.stability_verdict.verdict) == std::string("not_checked"));
+}
+
+// The verdict in the results table and JSON (docs/results_format.md), only when checked.
+BOOST_AUTO_TEST_CASE(verdict_in_table_and_json) {
+  const auto model = load("planar_three_rod");
+  ForwardKinematics fk(model, with_verdict());
+  const RobotSolution s = fk.solve(model->default_input_values());
+  BOOST_TEST_REQUIRE(s.summary.converged());
+  std::ostringstream table, json;
+  write_solution_table(table, *model, s);
+  write_solution_json(json, *model, s, {});
+  BOOST_TEST(table.str().find("stability: unstable (1 unstable mode, margin") != std::string::npos,
+             table.str());
+  BOOST_TEST(json.str().find("\"verdict\": \"unstable\"") != std::string::npos);
+  BOOST_TEST(json.str().find("\"unstable_modes\": 1") != std::string::npos);
+  BOOST_TEST(json.str().find("\"rod_unstable_modes\"") != std::string::npos);
+
+  ForwardKinematics unchecked(model);
+  std::ostringstream plain;
+  write_solution_json(plain, *model, unchecked.solve(model->default_input_values()), {});
+  BOOST_TEST(plain.str().find("\"stability\"") == std::string::npos);
 }

@@ -1,6 +1,7 @@
 #include "pcr/robots/io/json_writer.hpp"
 #include "pcr/robots/io/solution_writers.hpp"
 #include "pcr/solve/solve_summary.hpp"
+#include "stability_output.hpp"
 
 namespace pcr {
 namespace {
@@ -121,6 +122,7 @@ int write_solution_json(std::ostream& out, const RobotModel& model, const RobotS
     json.end_object();
   }
   json.end_object();
+  write_stability_member(json, solution.stability_verdict);
   json.key("summary");
   write_summary(json, solution.summary);
   // Counted before this member is written: the nulls above stand for NaN or infinite values.
