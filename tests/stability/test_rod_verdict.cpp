@@ -239,3 +239,57 @@ BOOST_AUTO_TEST_CASE(round_post_buckled_column_has_a_neutral_mode) {
   BOOST_TEST(discrete_unstable_modes(perfect, s, &zero) == 0);
   BOOST_TEST(zero == 1);
 }
+
+// Other held ends: clamped base, tip held at z = L (1 - eps) on the axis (a straight column compressed by
+// P = EA eps; EA = GA = 1e8 EI / L^2, so that extension and shear shift the loads by ~1e-7). Spherical
+// tip: the clamped-pinned column, first critical load x^2 EI / L^2 with x = 4.4934 the first positive root
+// of tan x = x (Timoshenko & Gere §2.3); collar tip (position and tangent held, twist free): the
+// clamped-clamped column, 4 pi^2 EI / L^2 (§2.3). Counts below and above 0.5 % of the weak plane's load:
+// elliptic (EI2 = 2 EI1; the strong plane's load is twice as high) 0 -> 1, circular 0 -> 2.
+BOOST_AUTO_TEST_CASE(held_tip_columns_count_at_their_euler_loads) {
+  const double clamped_pinned = 4.493409457909064 * 4.493409457909064, clamped_clamped = 4.0 * M_PI * M_PI;
+  const double EA = 1e8;
+  for (RodEndKind tip : {RodEndKind::Spherical, RodEndKind::Collar}) {
+    const double Pcr =
+        (tip == RodEndKind::Spherical ? clamped_pinned : clamped_clamped) * kEI / (kLength * kLength);
+    for (double EI2 : {2.0, 1.0}) {
+      for (int side = 0; side < 2; ++side) {
+        RodModel m = column(EI2, EA);
+        m.tip.kind = tip;
+        const double P = Pcr * (side == 0 ? 0.995 : 1.005);
+        m.tip.position = Vec3(0, 0, kLength * (1.0 - P / EA));
+        const RodSolution s = solve_rod(m, options());
+        BOOST_TEST_REQUIRE(s.summary.converged());
+        BOOST_TEST(s.tip().force.z() == -P, boost::test_tools::tolerance(1e-6));  // the straight column
+        const int expected = side == 0 ? 0 : (EI2 == 1.0 ? 2 : 1);
+        BOOST_TEST(s.stability_verdict.unstable_modes == expected,
+                   to_string(tip) << " EI2 " << EI2 << " P / Pcr " << P / Pcr);
+      }
+    }
+  }
+}
+
+// The shooting solution's verdict (rod_stability(model, ShootingSolution)) counts as the collocation's.
+BOOST_AUTO_TEST_CASE(shooting_solution_counts_as_well) {
+  struct Case {
+    double lambda, EI2;
+    int expected;
+  };
+  for (const Case& c : {Case{0.995, 2.0, 0}, Case{1.005, 2.0, 1}, Case{1.005, 1.0, 2}, Case{2.01, 2.0, 2}}) {
+    const RodModel m = loaded_column(c.lambda, c.EI2);
+    const ShootingSolution s = solve_rod_shooting(m);
+    BOOST_TEST_REQUIRE(s.summary.converged());
+    const Stability v = rod_stability(m, s);
+    BOOST_TEST(v.unstable_modes == c.expected, "P / P1 " << c.lambda << " EI2 " << c.EI2);
+  }
+}
+
+// A dead couple at a free end has no potential on SO(3) (docs/design.md §4): unknown, with the reason.
+BOOST_AUTO_TEST_CASE(dead_couple_gives_unknown) {
+  RodModel m = loaded_column(0.5, 2.0);
+  m.tip.moment = Vec3(0.0, 0.0, 0.1);
+  const RodSolution s = solve_rod(m, options());
+  BOOST_TEST_REQUIRE(s.summary.converged());
+  BOOST_TEST(verdict(s.stability_verdict) == "unknown");
+  BOOST_TEST(s.stability_verdict.reason.find("dead couple") != std::string::npos, s.stability_verdict.reason);
+}
