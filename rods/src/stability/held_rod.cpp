@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <unordered_map>
 
 #include "node_chain.hpp"
 #include "pcr/rods/stability/held_rod.hpp"
@@ -112,7 +113,18 @@ double neutral_tolerance(double asymmetry, double strain_mismatch) {
 
 }  // namespace
 
-HeldRodIndex held_rod_index(const HeldRod& rod, const JacobiStateAt& state, const HeldRodOptions& options) {
+HeldRodIndex held_rod_index(const HeldRod& rod, const JacobiStateAt& equilibrium,
+                            const HeldRodOptions& options) {
+  // The states by s, evaluated once: neighbouring segments share their end node, and a halved segment
+  // meets about half of its sample points again. Keys: s / L in units of 2^-36 (the points differ by
+  // round-off only when they are the same; distinct ones lie at least L / 2^14 apart).
+  std::unordered_map<long long, JacobiState> known;
+  const JacobiStateAt state = [&](double s) {
+    const long long key = std::llround(std::ldexp(s / rod.length, 36));
+    const auto found = known.find(key);
+    if (found != known.end()) return found->second;
+    return known.emplace(key, equilibrium(s)).first->second;
+  };
   HeldRodIndex out;
   const int substeps = std::max(1, options.rk4_substeps);
   const int min_segments = std::max(1, options.min_segments);

@@ -37,20 +37,33 @@ struct Scaled {
   Vec3 shear_compliance, bending_compliance;
 };
 
-/// A~(s) of z~' = A~ z~ (columns and rows dp, dth, dn, dm).
-Mat12 jacobi_matrix(const JacobiState& y, const Scaled& c) {
+/// A~(s) of z~' = A~ z~ (rows and columns dp, dth, dn, dm) by its six non-zero 3 x 3 blocks:
+///   A = [0 A_pth Cse 0; 0 Cbt [m]x 0 Cbt; 0 0 0 0; 0 [n]x A_pth [n]x Cse - [p']x 0].
+struct JacobiMatrix {
+  Mat3 p_th, p_n, th_th, th_m, m_th, m_n;
+  /// A~ Z for a 12 x 12 Z, using the zero blocks (about a third of the dense product's work).
+  Mat12 times(const Mat12& Z) const {
+    Mat12 out;
+    out.middleRows<3>(0).noalias() = p_th * Z.middleRows<3>(3) + p_n * Z.middleRows<3>(6);
+    out.middleRows<3>(3).noalias() = th_th * Z.middleRows<3>(3) + th_m * Z.middleRows<3>(9);
+    out.middleRows<3>(6).setZero();
+    out.middleRows<3>(9).noalias() = m_th * Z.middleRows<3>(3) + m_n * Z.middleRows<3>(6);
+    return out;
+  }
+};
+
+JacobiMatrix jacobi_matrix(const JacobiState& y, const Scaled& c) {
   const Mat3& R = y.rotation;
   const Mat3 Cse = R * c.shear_compliance.asDiagonal() * R.transpose();
   const Mat3 Cbt = R * c.bending_compliance.asDiagonal() * R.transpose();
   const Mat3 n = hat(y.force / c.force), m = hat(y.moment / c.moment), t = hat(y.tangent);
-  const Mat3 A_pth = -t + Cse * n;
-  Mat12 A = Mat12::Zero();
-  A.block<3, 3>(0, 3) = A_pth;
-  A.block<3, 3>(0, 6) = Cse;
-  A.block<3, 3>(3, 3) = Cbt * m;
-  A.block<3, 3>(3, 9) = Cbt;
-  A.block<3, 3>(9, 3) = n * A_pth;
-  A.block<3, 3>(9, 6) = n * Cse - t;
+  JacobiMatrix A;
+  A.p_th = -t + Cse * n;
+  A.p_n = Cse;
+  A.th_th = Cbt * m;
+  A.th_m = Cbt;
+  A.m_th = n * A.p_th;
+  A.m_n = n * Cse - t;
   return A;
 }
 
@@ -77,17 +90,18 @@ bool segment_stiffness(const HeldRod& rod, const JacobiStateAt& state, double s_
   const Scaled c(rod);
   const double h = (s_b - s_a) / substeps, dt = h / c.length;
   const JacobiState y_a = state(s_a);
-  Mat12 Phi = Mat12::Identity(), A0 = jacobi_matrix(y_a, c);
+  Mat12 Phi = Mat12::Identity();
+  JacobiMatrix A0 = jacobi_matrix(y_a, c);
   JacobiState y_b = y_a;
   for (int k = 0; k < substeps; ++k) {  // classical RK4 on Phi' = A Phi
     const double s = s_a + k * h;
-    const Mat12 A1 = jacobi_matrix(state(s + 0.5 * h), c);
+    const JacobiMatrix A1 = jacobi_matrix(state(s + 0.5 * h), c);
     y_b = state(k + 1 == substeps ? s_b : s + h);
-    const Mat12 A2 = jacobi_matrix(y_b, c);
-    const Mat12 k1 = A0 * Phi;
-    const Mat12 k2 = A1 * (Phi + 0.5 * dt * k1);
-    const Mat12 k3 = A1 * (Phi + 0.5 * dt * k2);
-    const Mat12 k4 = A2 * (Phi + dt * k3);
+    const JacobiMatrix A2 = jacobi_matrix(y_b, c);
+    const Mat12 k1 = A0.times(Phi);
+    const Mat12 k2 = A1.times(Phi + 0.5 * dt * k1);
+    const Mat12 k3 = A1.times(Phi + 0.5 * dt * k2);
+    const Mat12 k4 = A2.times(Phi + dt * k3);
     Phi += dt / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
     A0 = A2;
     // X(s) = dx(s) / dpi(s_a) starts as (s - s_a) diag(C_se, C_bt) (det > 0) and is singular exactly at
