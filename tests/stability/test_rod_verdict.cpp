@@ -1,4 +1,4 @@
-// Stability verdict of single rods (RodSolution::stability, rod_stability.hpp, held_rod.hpp) on the
+// Stability verdict of single rods (RodSolution::stability_verdict, rod_stability.hpp, held_rod.hpp) on the
 // clamped-free column of scene R4 under a compressive dead tip load P.
 // Reference (Timoshenko & Gere, Theory of Elastic Stability, 1961, §2.1): the straight column buckles in
 // the plane of bending stiffness EI_i at P_k^(i) = (2k - 1)^2 pi^2 EI_i / (4 L^2), k = 1, 2, ...; its

@@ -106,7 +106,7 @@ bool add_segments(const HeldRod& rod, const JacobiStateAt& state, double s_a, do
 /// 10 times the integration error (which the segments' asymmetry measures) and 0.1 times the state's
 /// strain mismatch (an exact zero eigenvalue, the round post-buckled column's symmetry, measured at
 /// 0.4-1 % of the mismatch of its collocation state: 1.5e-6 at 3.3e-4 with 4 elements of degree 5,
-/// 8e-8 at 8.6e-6 with 8; test_rod_stability).
+/// 8e-8 at 8.6e-6 with 8; test_stability_verdict).
 double neutral_tolerance(double asymmetry, double strain_mismatch) {
   return std::max({1e-8, 10.0 * asymmetry, 0.1 * strain_mismatch});
 }
