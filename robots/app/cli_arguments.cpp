@@ -200,6 +200,8 @@ SolveArguments parse_solve_arguments(const std::string& command, int argc, const
       a.help = true;
     } else if (arg == "--json") {
       a.json = true;
+    } else if (arg == "--stability" && (command == "fk" || command == "ik")) {
+      a.stability = true;
     } else if (arg.size() > 1 && arg[0] == '-') {
       if (!accepts(command, arg))
         throw UsageError("unknown option '" + arg + "' for pcr " + command + " (see pcr " + command +

@@ -44,6 +44,7 @@ struct SolveArguments {
   double tolerance = 0.0;                 ///< 0 = not given
   int centerline_points = 0;              ///< 0 = not given
   bool json = false;
+  bool stability = false;  ///< --stability (fk, ik): the stability verdict of the result
   /// --csv: a directory for fk and ik (one file per table), a file for path and workspace (one table).
   std::string json_file, csv, vtk_path, png_path;
   bool help = false;

@@ -62,6 +62,9 @@ void print_solve_usage(std::ostream& out, const std::string& command) {
       << "                     robot (R5b) the solver added about 1e-2 T m to the inputs (docs/cli.md)\n";
   if (command != "workspace")
     out << "  --points N         centerline points per rod in the results (default 21)\n";
+  if (command == "fk" || command == "ik")
+    out << "  --stability        stability verdict of the result: stable, or unstable with the number\n"
+        << "                     of unstable modes, and a margin (costs about one more cold solve)\n";
   out << "  --json             JSON to stdout instead of the table\n"
       << "  --json-file FILE   JSON to FILE (the table is still printed)\n";
   if (command == "fk" || command == "ik")

@@ -64,6 +64,7 @@ pcr::KinematicsOptions kinematics_options(const SolveArguments& args) {
   if (args.max_stress > 0.0) options.ik.max_rod_stress = args.max_stress;
   if (args.tolerance > 0.0) options.tolerance = args.tolerance;
   if (args.centerline_points > 0) options.centerline_points = args.centerline_points;
+  options.stability_verdict = args.stability;
   return options;
 }
 

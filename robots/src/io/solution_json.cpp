@@ -2,6 +2,7 @@
 #include "pcr/robots/io/json_writer.hpp"
 #include "pcr/robots/io/solution_writers.hpp"
 #include "pcr/solve/solve_summary.hpp"
+#include "stability_output.hpp"
 
 namespace pcr {
 namespace {
@@ -219,6 +220,7 @@ void write_solution_object(JsonWriter& json, const RobotModel& model, const Robo
     json.end_object();
   }
   json.end_object();
+  write_stability_member(json, solution.stability_verdict);
   json.key("summary");
   write_summary(json, solution.summary);
   if (top_level) {

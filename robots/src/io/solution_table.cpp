@@ -3,6 +3,7 @@
 
 #include "pcr/robots/io/solution_writers.hpp"
 #include "pcr/solve/solve_summary.hpp"
+#include "stability_output.hpp"
 
 namespace pcr {
 namespace {
@@ -68,6 +69,7 @@ void write_solution_table(std::ostream& out, const RobotModel& model, const Robo
       << " iterations, residual " << format("%.3g", s.residual_max_abs) << ", "
       << format("%.3g", s.wall_time_seconds * 1e3) << " ms)\n";
   if (!s.converged() && !s.message.empty()) out << "  message: " << s.message << "\n";
+  write_stability_line(out, solution.stability_verdict);
   if (!model.inputs().empty()) {
     out << "inputs:\n";
     for (size_t i = 0; i < model.inputs().size(); ++i) {

@@ -119,6 +119,7 @@ RobotSolution ForwardKinematics::solve(const VecX& inputs) {
     d.predictor.accept(d.x, inputs);
     if (m.options.check_stability)
       kinematics::monitor_stability(m.assembly->problem(), d.x, d.last_jacobian_sign, out);
+    if (m.options.stability_verdict) kinematics::add_stability_verdict(*m.assembly, d.x, out);
   }
   return out;
 }

@@ -187,6 +187,8 @@ RobotSolution InverseKinematics::solve(const std::vector<Pose>& target_poses, co
     d.predictor.accept(d.x, z);
     if (m.options.check_stability)  // J at the solution with its own inputs
       kinematics::monitor_stability(m.forward, d.x, d.last_jacobian_sign, out);
+    if (m.options.stability_verdict)  // the FK system at the solution's own inputs
+      kinematics::add_stability_verdict(assembly, d.x, out);
   }
   return out;
 }

@@ -2,6 +2,7 @@
 
 #include <sstream>
 
+#include "pcr/robots/robot_stability.hpp"
 #include "pcr/solve/free_jacobian.hpp"
 
 namespace pcr::kinematics {
@@ -76,6 +77,10 @@ void monitor_stability(const Problem& fk, const VecX& x, int& last_sign, RobotSo
   if (out.jacobian_sign == 0) return;
   out.jacobian_sign_changed = last_sign != 0 && out.jacobian_sign != last_sign;
   last_sign = out.jacobian_sign;
+}
+
+void add_stability_verdict(const RobotAssembly& assembly, const VecX& x, RobotSolution& out) {
+  out.stability_verdict = robot_stability(assembly, x.head(assembly.problem().num_variables()));
 }
 
 }  // namespace pcr::kinematics

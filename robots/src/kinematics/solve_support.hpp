@@ -28,4 +28,8 @@ RobotSolution finish_solution(const RobotAssembly& assembly, const VecX& x, cons
 /// the converged solution x, and whether it changed since the last checked solve (last_sign, updated).
 void monitor_stability(const Problem& fk, const VecX& x, int& last_sign, RobotSolution& out);
 
+/// The stability verdict (KinematicsOptions::stability_verdict) of the converged solution whose assembly
+/// variables lead x (an IK state has its target blocks after them) into out.stability_verdict.
+void add_stability_verdict(const RobotAssembly& assembly, const VecX& x, RobotSolution& out);
+
 }  // namespace pcr::kinematics

@@ -6,6 +6,7 @@
 
 #include "pcr/core/error.hpp"
 #include "pcr/math/quaternion.hpp"
+#include "pcr/rods/stability/rod_stability.hpp"
 #include "pcr/solve/free_jacobian.hpp"
 #include "pcr/solve/ipopt_solver.hpp"
 #include "pcr/solve/newton_solver.hpp"
@@ -252,6 +253,8 @@ RodSolution solve_rod(const RodModel& model, const RodSolveOptions& options, con
   sol.summary.iterations = iterations;
   if (options.check_stability && sol.summary.converged())
     sol.stability = stability_of(rod, sol.x, options.tolerance);
+  if (options.stability_verdict && sol.summary.converged())
+    sol.stability_verdict = rod_stability(rod, sol.x, sol.variables);
   sol.summary.wall_time_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return sol;

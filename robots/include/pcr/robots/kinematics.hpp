@@ -90,6 +90,11 @@ struct KinematicsOptions {
   /// the IK solution's inputs); costs one Jacobian evaluation and one sparse LU factorisation per
   /// converged solve (R5b with 8 elements per rod: about 1 + 3.5 ms, printed by bench_robots).
   bool check_stability = false;
+  /// Stability verdict of every converged solve (RobotSolution::stability_verdict, robot_stability.hpp),
+  /// FK and IK (the FK system at the IK solution's inputs): per rod its Jacobi integration and node
+  /// elimination, for the platforms one Jacobian evaluation, one LU and 6 solves per platform. Off by
+  /// default: it costs about as much as a cold FK solve (docs/benchmarks.md).
+  bool stability_verdict = false;
   IkOptions ik;  ///< inverse kinematics only
 };
 

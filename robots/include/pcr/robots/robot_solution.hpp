@@ -7,6 +7,7 @@
 
 #include "pcr/core/types.hpp"
 #include "pcr/robots/pose.hpp"
+#include "pcr/rods/stability/stability.hpp"
 #include "pcr/solve/solve_summary.hpp"
 
 namespace pcr {
@@ -48,6 +49,10 @@ struct RobotSolution {
   /// by symmetry). No change does not prove stability (an even number of crossings, or a double mode
   /// such as a round rod's buckling in both bending planes at once, keeps the sign).
   bool jacobian_sign_changed = false;
+  /// Collocation only, with KinematicsOptions::stability_verdict: stable / unstable (with the number of
+  /// unstable modes) / critical / unknown, from the second variation of the energy (robot_stability.hpp;
+  /// FK: at its inputs; IK: the FK system at the solution's inputs). NotChecked otherwise.
+  Stability stability_verdict;
 };
 
 }  // namespace pcr

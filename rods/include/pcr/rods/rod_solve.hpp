@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "pcr/rods/collocation_rod.hpp"
+#include "pcr/rods/stability/stability.hpp"
 #include "pcr/solve/solve_summary.hpp"
 
 namespace pcr {
@@ -26,6 +27,9 @@ struct RodSolveOptions {
   int max_load_steps = 400;
   /// Stability indicator of the result (RodSolution::stability); costs two sparse LU factorisations.
   bool check_stability = false;
+  /// Stability verdict of a converged result (RodSolution::stability_verdict, rod_stability.hpp): the
+  /// number of unstable modes of the equilibrium and its margin, from the second variation of the energy.
+  bool stability_verdict = true;
 };
 
 /// Stability indicator (docs/design.md §4): the sign of det J (the Jacobian of the collocation system with
@@ -48,6 +52,8 @@ struct RodSolution {
   SolveSummary summary;  ///< of the last solve; iterations summed over all load steps
   int load_steps = 0;    ///< 0 when the direct solve succeeded
   StabilityIndicator stability = StabilityIndicator::NotChecked;
+  Stability
+      stability_verdict;  ///< RodSolveOptions::stability_verdict (docs/design.md §4); NotChecked otherwise
   std::shared_ptr<const CollocationRod> rod;
   RodVariables variables;
   VecX x;  ///< all variables of the rod's problem (control points, then L)

@@ -1,0 +1,94 @@
+// robot_stability (robot_stability.hpp): the rods' counts with their links held plus the negative
+// eigenvalues of the platforms' reduced stiffness.
+#include "pcr/robots/robot_stability.hpp"
+
+#include <algorithm>
+#include <sstream>
+
+#include "robot_stability_parts.hpp"
+
+namespace pcr {
+
+namespace {
+
+/// Relative asymmetry of K in its diagonal scaling (as for the rods' segment stiffnesses).
+double scaled_asymmetry(const MatX& K) {
+  VecX d(K.rows());
+  for (int i = 0; i < K.rows(); ++i)
+    d[i] = std::abs(K(i, i)) > 0.0 ? 1.0 / std::sqrt(std::abs(K(i, i))) : 1.0;
+  const MatX Ks = d.asDiagonal() * K * d.asDiagonal();
+  return (Ks - Ks.transpose()).cwiseAbs().maxCoeff();
+}
+
+/// A conservative model's K_red is symmetric but for the discretisation error of the collocation (and the
+/// residual of the solve); beyond this the state is not an accurate equilibrium.
+constexpr double kMaxAsymmetry = 1e-4;
+
+/// Adds the platforms' count (negative eigenvalues of the symmetrised K_hat below -tolerance, neutral ones
+/// within it) and margin to s; false with s Unknown on failure.
+bool add_platforms(const RobotAssembly& assembly, const VecX& x, Stability& s) {
+  const stability::PlatformStiffness border = stability::platform_stiffness(assembly, x);
+  if (!border.ok) {
+    s = unknown_stability(border.failure);
+    return false;
+  }
+  const double asymmetry = scaled_asymmetry(border.stiffness);
+  s.asymmetry = std::max(s.asymmetry, asymmetry);
+  if (asymmetry > kMaxAsymmetry) {
+    std::ostringstream msg;
+    msg << "platforms' reduced stiffness not symmetric: relative asymmetry " << asymmetry << " > "
+        << kMaxAsymmetry;
+    s = unknown_stability(msg.str());
+    return false;
+  }
+  // Eigenvalues in the dimensionless form (bending stiffnesses O(1)); the tolerance as for the rods.
+  const double tolerance = std::max(1e-8, 10.0 * asymmetry);
+  const Eigen::SelfAdjointEigenSolver<MatX> eig(0.5 * (border.stiffness + border.stiffness.transpose()));
+  const VecX& lambda = eig.eigenvalues();
+  s.margin = lambda[0];
+  s.length_scale = assembly.length_scale();
+  s.energy_scale = assembly.moment_scale();
+  for (int i = 0; i < lambda.size(); ++i) {
+    if (lambda[i] < -tolerance)
+      ++s.border_unstable_modes;
+    else if (lambda[i] <= tolerance)
+      ++s.neutral_modes;
+  }
+  return true;
+}
+
+}  // namespace
+
+Stability robot_stability(const RobotAssembly& assembly, const VecX& x) {
+  const std::string failure = stability::robot_assumption_failure(assembly.model());
+  if (!failure.empty()) return unknown_stability(failure);
+  Stability s;
+  double rod_margin = INFINITY;
+  HeldRodIndex weakest;
+  for (int i = 0; i < assembly.num_rods(); ++i) {
+    const HeldRodIndex rod = stability::held_rod_in_robot(assembly, x, i);
+    const std::string& name = assembly.model().rods()[i].name;
+    if (!rod.ok) return unknown_stability("rod '" + name + "': " + rod.failure);
+    if (rod.neutral_modes > 0)  // A singular: Haynsworth's split does not apply
+      return unknown_stability("rod '" + name + "' is at a conjugate point with its links held");
+    s.rod_unstable_modes.push_back(rod.unstable_modes);
+    s.asymmetry = std::max(s.asymmetry, rod.asymmetry);
+    if (rod.margin < rod_margin) weakest = rod;
+    rod_margin = std::min(rod_margin, rod.margin);
+  }
+  if (assembly.model().platforms().empty()) {
+    s.margin = assembly.num_rods() > 0 ? rod_margin : 0.0;
+    s.length_scale = weakest.length_scale;
+    s.energy_scale = weakest.energy_scale;
+  } else if (!add_platforms(assembly, x, s))
+    return s;
+  s.unstable_modes = s.border_unstable_modes;
+  for (int n : s.rod_unstable_modes) s.unstable_modes += n;
+  s.verdict = verdict_of(s.unstable_modes, s.neutral_modes);
+  if (s.verdict == StabilityVerdict::Critical)
+    s.reason =
+        "zero eigenvalue of the platforms' reduced stiffness: a fold or bifurcation point, or a symmetry";
+  return s;
+}
+
+}  // namespace pcr

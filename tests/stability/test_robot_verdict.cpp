@@ -1,0 +1,205 @@
+// Stability verdict of robot equilibria (RobotSolution::stability_verdict, robot_stability.hpp), checked
+// against the independent discrete energy model (robot_discrete.hpp: its Hessian's number of negative
+// eigenvalues at its own relaxed equilibrium) and against Euler's loads for a fed column.
+#include <boost/test/unit_test.hpp>
+#include <cmath>
+#include <string>
+
+#include <sstream>
+
+#include "pcr/robots/io/solution_writers.hpp"
+#include "pcr/robots/kinematics.hpp"
+#include "pcr/robots/urdf_loader.hpp"
+#include "stability/robot_discrete.hpp"
+
+using namespace pcr;
+
+namespace {
+
+// Segments per rod of the discrete model: its critical loads carry an O(h^2) error of about 0.1 % at 16
+// (test_rod_verdict: 0.03 % at 48), irrelevant to states far from critical, as all compared here.
+constexpr int kDiscreteSegments = 16;
+
+std::shared_ptr<const RobotModel> load(const std::string& name) {
+  return std::make_shared<const RobotModel>(load_robot_model(PCR_MODEL_DIR "/" + name + ".urdf"));
+}
+
+KinematicsOptions with_verdict() {
+  KinematicsOptions o;
+  o.stability_verdict = true;
+  return o;
+}
+
+// The fed column of test_stability_monitor: a steel rod with a 2 mm x 1 mm section clamped upright in the
+// base and fed through it (input: its length), its upper end clamped to a massless platform under a dead
+// load of 1 N down plus `lateral` N along x and y. Clamped-free Euler column (Timoshenko & Gere §2.1):
+// the straight column has its first unstable mode from L_cr = (pi / 2) sqrt(E I_min / F) (weak plane), its
+// second from 2 L_cr (strong plane, I_max = 4 I_min) and its third from 3 L_cr (weak plane, second mode).
+constexpr double kE = 200e9, kWidth = 2e-3, kHeight = 1e-3, kLoad = 1.0;  // Pa, m, m, N
+const double kEulerLength = M_PI / 2 * std::sqrt(kE * kWidth * std::pow(kHeight, 3) / 12 / kLoad);
+
+std::shared_ptr<const RobotModel> fed_column(double lateral) {
+  const std::string force =
+      std::to_string(lateral) + " " + std::to_string(lateral) + " " + std::to_string(-kLoad);
+  const std::string xml = R"(<robot name="fed_column">
+  <link name="base"/>
+  <link name="platform"/>
+  <joint name="platform_pose" type="floating">
+    <parent link="base"/>
+    <child link="platform"/>
+    <origin xyz="0 0 0.1" rpy="0 0 0"/>
+  </joint>
+  <pcr_load link="platform" xyz="0 0 0" force=")" +
+                          force + R"(" torque="0 0 0"/>
+  <pcr_rod name="column">
+    <start link="base" xyz="0 0 0" rpy="0 0 0" coupling="clamped"/>
+    <end link="platform" xyz="0 0 0" rpy="0 0 0" coupling="clamped"/>
+    <material youngs_modulus="200e9" shear_modulus="80e9" density="8000"/>
+    <section type="rectangle" width="0.002" height="0.001"/>
+    <length value="0.1" actuated="true" lower="0.05" upper="1.0"/>
+  </pcr_rod>
+</robot>)";
+  return std::make_shared<const RobotModel>(parse_robot_model(xml, "fed_column"));
+}
+
+}  // namespace
+
+// R5a at its default lengths: stable, as the discrete model says; the IK result of R5a's IK scene too.
+BOOST_AUTO_TEST_CASE(stewart_gough_default_pose_is_stable) {
+  const auto model = load("stewart_gough");
+  ForwardKinematics fk(model, with_verdict());
+  const RobotSolution s = fk.solve(model->default_input_values());
+  BOOST_TEST_REQUIRE(s.summary.converged());
+  const Stability& v = s.stability_verdict;
+  BOOST_TEST(to_string(v.verdict) == std::string("stable"), v.reason);
+  BOOST_TEST(v.unstable_modes == 0);
+  BOOST_TEST(v.rod_unstable_modes.size() == 6u);
+  BOOST_TEST(v.margin > 0.0);
+  // The collocation's reduced stiffness is symmetric to its discretisation error (8 elements of degree 6).
+  BOOST_TEST(v.asymmetry < 1e-5);
+  BOOST_TEST(test::discrete_robot_inertia(fk.assembly(), fk.state(), kDiscreteSegments).negative == 0);
+
+  LinkTarget target;
+  target.link = "platform";
+  InverseKinematics ik(model, {target}, with_verdict());
+  Pose pose;
+  pose.position = Vec3(0, 0, 0.4);
+  pose.orientation = Quat(std::cos(M_PI / 36), 0, std::sin(M_PI / 36), 0);  // 10 deg about y (R5a)
+  const RobotSolution t = ik.solve({pose});
+  BOOST_TEST_REQUIRE(t.summary.converged());
+  BOOST_TEST(to_string(t.stability_verdict.verdict) == std::string("stable"), t.stability_verdict.reason);
+  BOOST_TEST(t.stability_verdict.unstable_modes == 0);
+}
+
+// planar_three_rod at its default lengths: one unstable mode, the platform tilting out of its plane about
+// the line through the two outer pins (the platform pushed up by the compressed middle rod at a point
+// 2 cm below that line acts as an inverted pendulum, stronger than the middle rod's bending and the
+// platform's hanging weight resist). The discrete model finds the same one negative eigenvalue.
+BOOST_AUTO_TEST_CASE(planar_three_rod_default_pose_has_one_unstable_mode) {
+  const auto model = load("planar_three_rod");
+  ForwardKinematics fk(model, with_verdict());
+  const RobotSolution s = fk.solve(model->default_input_values());
+  BOOST_TEST_REQUIRE(s.summary.converged());
+  const Stability& v = s.stability_verdict;
+  BOOST_TEST(to_string(v.verdict) == std::string("unstable"), v.reason);
+  BOOST_TEST(v.unstable_modes == 1);
+  BOOST_TEST(v.border_unstable_modes == 1);  // not a rod with its links held: the platform's motion
+  BOOST_TEST(v.margin < 0.0);
+  const test::DiscreteRods::Inertia d =
+      test::discrete_robot_inertia(fk.assembly(), fk.state(), kDiscreteSegments);
+  BOOST_TEST(d.negative == 1);
+  BOOST_TEST(d.zero == 0);
+}
+
+// The fed column along its straight branch: the count changes from 0 to 1 at L_cr and from 1 to 2 at
+// 2 L_cr, each within 0.5 % (axial and shear strains shift these lengths by F / (E A) ~ 1e-5 relative).
+BOOST_AUTO_TEST_CASE(fed_column_counts_change_at_the_euler_lengths) {
+  ForwardKinematics fk(fed_column(0.0), with_verdict());
+  const double ratios[] = {0.5, 0.995, 1.005, 1.5, 1.99, 2.01, 2.5};
+  const int expected[] = {0, 0, 1, 1, 1, 2, 2};
+  for (int k = 0; k < 7; ++k) {
+    const RobotSolution s = fk.solve(VecX::Constant(1, ratios[k] * kEulerLength));
+    BOOST_TEST_REQUIRE(s.summary.converged());
+    BOOST_TEST(s.rods[0].centerline.back().head<2>().norm() < 1e-9);  // the straight branch
+    BOOST_TEST(s.stability_verdict.unstable_modes == expected[k], "L / L_cr = " << ratios[k]);
+    BOOST_TEST(to_string(s.stability_verdict.verdict) == std::string(expected[k] ? "unstable" : "stable"));
+  }
+  // Away from the thresholds the discrete model agrees.
+  for (double ratio : {0.5, 1.5}) {
+    fk.solve(VecX::Constant(1, ratio * kEulerLength));
+    BOOST_TEST(test::discrete_robot_inertia(fk.assembly(), fk.state(), kDiscreteSegments).negative ==
+                   (ratio < 1.0 ? 0 : 1),
+               "L / L_cr = " << ratio);
+  }
+}
+
+// With a 5 % lateral load the warm-started path follows the bent (post-buckled) branch: stable throughout,
+// as the elastica's first branch (Timoshenko & Gere §2.7) and the discrete model.
+BOOST_AUTO_TEST_CASE(fed_column_post_buckled_branch_is_stable) {
+  ForwardKinematics fk(fed_column(5e-2 * kLoad), with_verdict());
+  for (double ratio : {0.8, 1.0, 1.2, 1.45}) {
+    const double length = ratio * kEulerLength;
+    const RobotSolution s = fk.solve(VecX::Constant(1, length));
+    BOOST_TEST_REQUIRE(s.summary.converged());
+    BOOST_TEST(to_string(s.stability_verdict.verdict) == std::string("stable"), "L / L_cr = " << ratio);
+    if (ratio > 1.1) {  // bent: beyond half the length (the elastica: 0.73 L at 1.15 L_cr)
+      BOOST_TEST(s.rods[0].centerline.back().head<2>().norm() > 0.5 * length);
+      BOOST_TEST(test::discrete_robot_inertia(fk.assembly(), fk.state(), kDiscreteSegments).negative == 0);
+    }
+  }
+}
+
+// A dead torque on the platform has no potential (docs/design.md §4): the verdict is unknown, with why.
+BOOST_AUTO_TEST_CASE(dead_torque_gives_unknown) {
+  const std::string xml = R"(<robot name="torqued">
+  <link name="base"/>
+  <link name="platform"/>
+  <joint name="platform_pose" type="floating">
+    <parent link="base"/>
+    <child link="platform"/>
+    <origin xyz="0 0 0.1" rpy="0 0 0"/>
+  </joint>
+  <pcr_load link="platform" xyz="0 0 0" force="0 0 -0.1" torque="0 0 0.001"/>
+  <pcr_rod name="column">
+    <start link="base" xyz="0 0 0" rpy="0 0 0" coupling="clamped"/>
+    <end link="platform" xyz="0 0 0" rpy="0 0 0" coupling="clamped"/>
+    <material youngs_modulus="200e9" shear_modulus="80e9" density="8000"/>
+    <section type="circle" radius="0.0005"/>
+    <length value="0.1"/>
+  </pcr_rod>
+</robot>)";
+  ForwardKinematics fk(std::make_shared<const RobotModel>(parse_robot_model(xml, "torqued")), with_verdict());
+  const RobotSolution s = fk.solve(VecX());
+  BOOST_TEST_REQUIRE(s.summary.converged());
+  BOOST_TEST(to_string(s.stability_verdict.verdict) == std::string("unknown"));
+  BOOST_TEST(s.stability_verdict.reason.find("dead torque") != std::string::npos, s.stability_verdict.reason);
+}
+
+// Not asked (the default for robots): nothing computed, nothing claimed.
+BOOST_AUTO_TEST_CASE(not_checked_unless_asked) {
+  const auto model = load("stewart_gough");
+  ForwardKinematics fk(model);
+  const RobotSolution s = fk.solve(model->default_input_values());
+  BOOST_TEST(to_string(s.stability_verdict.verdict) == std::string("not_checked"));
+}
+
+// The verdict in the results table and JSON (docs/results_format.md), only when checked.
+BOOST_AUTO_TEST_CASE(verdict_in_table_and_json) {
+  const auto model = load("planar_three_rod");
+  ForwardKinematics fk(model, with_verdict());
+  const RobotSolution s = fk.solve(model->default_input_values());
+  BOOST_TEST_REQUIRE(s.summary.converged());
+  std::ostringstream table, json;
+  write_solution_table(table, *model, s);
+  write_solution_json(json, *model, s, {});
+  BOOST_TEST(table.str().find("stability: unstable (1 unstable mode, margin") != std::string::npos,
+             table.str());
+  BOOST_TEST(json.str().find("\"verdict\": \"unstable\"") != std::string::npos);
+  BOOST_TEST(json.str().find("\"unstable_modes\": 1") != std::string::npos);
+  BOOST_TEST(json.str().find("\"rod_unstable_modes\"") != std::string::npos);
+
+  ForwardKinematics unchecked(model);
+  std::ostringstream plain;
+  write_solution_json(plain, *model, unchecked.solve(model->default_input_values()), {});
+  BOOST_TEST(plain.str().find("\"stability\"") == std::string::npos);
+}
