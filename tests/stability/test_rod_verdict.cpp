@@ -269,6 +269,35 @@ BOOST_AUTO_TEST_CASE(held_tip_columns_count_at_their_euler_loads) {
   }
 }
 
+// Joint tips on the same clamped column (tip position held at z = L (1 - eps), P = EA eps). Revolute tip,
+// pin axis x = d1: the column bends about d1 (stiffness EI1 = EI) with its tip pinned, clamped-pinned
+// 20.19 EI1 / L^2, and about d2 (EI2) with its tip rotation held, clamped-clamped 4 pi^2 EI2 / L^2
+// (Timoshenko & Gere §2.3). Universal tip (axes x and y = unit(z x x), end_axes.hpp): pinned about both,
+// 20.19 EI1 / L^2 and 20.19 EI2 / L^2. Counts at 0.995 and 1.005 x 20.19 EI / L^2: revolute 0 -> 1 for
+// both sections (the next load is 4 pi^2 EI2 / L^2 >= 39.5 EI / L^2); universal 0 -> 1 elliptic (EI2 = 2
+// EI: the second load is twice the first) and 0 -> 2 circular (a double load). Both ends hold the twist.
+BOOST_AUTO_TEST_CASE(joint_tip_columns_count_at_their_euler_loads) {
+  const double clamped_pinned = 4.493409457909064 * 4.493409457909064;
+  const double EA = 1e8;
+  for (RodEndKind tip : {RodEndKind::Revolute, RodEndKind::Universal}) {
+    for (double EI2 : {2.0, 1.0}) {
+      for (int side = 0; side < 2; ++side) {
+        RodModel m = column(EI2, EA);
+        m.tip.kind = tip;
+        m.tip.axis = Vec3::UnitX();
+        const double P = clamped_pinned * kEI / (kLength * kLength) * (side == 0 ? 0.995 : 1.005);
+        m.tip.position = Vec3(0, 0, kLength * (1.0 - P / EA));
+        const RodSolution s = solve_rod(m, options());
+        BOOST_TEST_REQUIRE(s.summary.converged());
+        BOOST_TEST(s.tip().force.z() == -P, boost::test_tools::tolerance(1e-6));  // the straight column
+        const int above = tip == RodEndKind::Universal && EI2 == 1.0 ? 2 : 1;
+        BOOST_TEST(s.stability_verdict.unstable_modes == (side == 0 ? 0 : above),
+                   to_string(tip) << " EI2 " << EI2 << " P / Pcr " << P / (clamped_pinned * kEI));
+      }
+    }
+  }
+}
+
 // The shooting solution's verdict (rod_stability(model, ShootingSolution)) counts as the collocation's.
 BOOST_AUTO_TEST_CASE(shooting_solution_counts_as_well) {
   struct Case {
