@@ -38,8 +38,8 @@ struct Joint {
   Pose origin;                      ///< joint frame in the parent link frame
   Vec3 axis = Vec3::UnitX();        ///< unit vector in the joint frame
   double lower = 0.0, upper = 0.0;  ///< URDF limits [m or rad]; +-infinity for continuous joints
-  double default_value = 0.0;       ///< initial value, within [lower, upper] (a passive joint's initial guess)
-  int value_index = -1;             ///< index into the joint-value vector (moving joints only), else -1
+  double default_value = 0.0;  ///< initial value, within [lower, upper] (a passive joint's initial guess)
+  int value_index = -1;        ///< index into the joint-value vector (moving joints only), else -1
   /// A passive joint is not an input: its value is an unknown of the assembly, balanced by the
   /// generalised force of everything beyond it (rods, loads, weights) and its spring,
   /// Q_beyond - stiffness (q - rest) = 0 [N or N m; stiffness in N/m or N m/rad].
@@ -173,7 +173,13 @@ class RobotModel {
   int platform_equation_count() const { return 7 * static_cast<int>(platforms_.size()); }
 
  private:
-  void build_tables();
+  void build_tables();  // the steps below, in order (robot_model_tables.cpp)
+  void build_link_tree();
+  void build_joint_values();
+  void build_platform_tables();
+  void build_passive_tables();
+  void set_initial_platform_poses();
+  void check_loads();
   void build_rods();
   void check_passive_joints_loaded() const;
 
