@@ -45,6 +45,53 @@ Pose joint_motion(const Joint& joint, double value) {
   return motion;
 }
 
+// Attachments (links, finite frames, joint axes), the twist rule, lengths and discretisation hints of
+// one rod; normalises the frames and axes.
+void check_rod_element(RodElement& element, const std::vector<Link>& links) {
+  const int n_links = static_cast<int>(links.size());
+  const std::string& name = element.name;
+  const std::pair<RodAttachment*, const char*> ends[] = {{&element.start, "start"}, {&element.end, "end"}};
+  for (const auto& [end, which] : ends) {
+    if (end->coupling == RodEndKind::Free) {
+      if (end->link >= 0) {
+        throw_input_error("pcr_rod '", name, "': free ", which,
+                          " must not be attached to a link (link index ", end->link, ")");
+      }
+    } else {
+      require(end->link >= 0 && end->link < n_links, "pcr_rod '", name, "': ", which, " link index ",
+              end->link, " out of range");
+      require(end->frame.position.allFinite() && end->frame.orientation.allFinite() &&
+                  end->frame.orientation.norm() > 0.0,
+              "pcr_rod '", name, "': ", which, " frame is not a finite pose");
+      end->frame.orientation.normalize();
+    }
+    check_joint_axis(name, which, *end);
+  }
+  const std::string twist = twist_rule_violation(element);
+  require(twist.empty(), "pcr_rod '", name, "': ", twist);
+  require(element.start.link < 0 || element.start.link != element.end.link, "pcr_rod '", name,
+          "': both ends are on link '", element.start.link >= 0 ? links[element.start.link].name : "",
+          "'; a rod must join two different links");
+  if (element.length_actuated) {
+    require(finite(element.length_lower) && finite(element.length_upper) && element.length_lower > 0.0 &&
+                element.length_lower <= element.length_upper,
+            "pcr_rod '", name, "': length bounds lower = ", element.length_lower,
+            ", upper = ", element.length_upper, " must be finite with 0 < lower <= upper");
+    require(finite(element.length_default) && element.length_default >= element.length_lower &&
+                element.length_default <= element.length_upper,
+            "pcr_rod '", name, "': default length ", element.length_default, " is outside [",
+            element.length_lower, ", ", element.length_upper, "]");
+  } else {
+    require(finite(element.length_default) && element.length_default > 0.0, "pcr_rod '", name,
+            "': length = ", element.length_default, " must be positive and finite");
+    element.length_lower = element.length_upper = element.length_default;
+  }
+  require(element.degree == 0 || element.degree >= 2, "pcr_rod '", name, "': degree = ", element.degree,
+          " must be >= 2 (or 0 for the solver's choice)");
+  require(element.elements >= 0, "pcr_rod '", name, "': elements = ", element.elements,
+          " must be >= 1 (or 0)");
+}
+
 }  // namespace
 
 const char* to_string(JointType type) {
@@ -106,56 +153,14 @@ RobotModel::RobotModel(std::string name, std::vector<Link> links, std::vector<Jo
 }
 
 void RobotModel::build_rods() {
-  const int n_links = static_cast<int>(links_.size());
   for (int r = 0; r < static_cast<int>(rods_.size()); ++r) add_name(rod_names_, "pcr_rod", rods_[r].name, r);
 
   const VecX q0 = default_joint_values();
   const std::vector<Pose> poses0 = initial_platform_poses();
   for (RodElement& element : rods_) {
-    const std::string& name = element.name;
-    const std::pair<RodAttachment*, const char*> ends[] = {{&element.start, "start"}, {&element.end, "end"}};
-    for (const auto& [end, which] : ends) {
-      if (end->coupling == RodEndKind::Free) {
-        if (end->link >= 0) {
-          throw_input_error("pcr_rod '", name, "': free ", which,
-                            " must not be attached to a link (link index ", end->link, ")");
-        }
-      } else {
-        require(end->link >= 0 && end->link < n_links, "pcr_rod '", name, "': ", which, " link index ",
-                end->link, " out of range");
-        require(end->frame.position.allFinite() && end->frame.orientation.allFinite() &&
-                    end->frame.orientation.norm() > 0.0,
-                "pcr_rod '", name, "': ", which, " frame is not a finite pose");
-        end->frame.orientation.normalize();
-      }
-      check_joint_axis(name, which, *end);
-    }
-    const std::string twist = twist_rule_violation(element);
-    require(twist.empty(), "pcr_rod '", name, "': ", twist);
-    require(element.start.link < 0 || element.start.link != element.end.link, "pcr_rod '", name,
-            "': both ends are on link '", element.start.link >= 0 ? links_[element.start.link].name : "",
-            "'; a rod must join two different links");
-    if (element.length_actuated) {
-      require(finite(element.length_lower) && finite(element.length_upper) && element.length_lower > 0.0 &&
-                  element.length_lower <= element.length_upper,
-              "pcr_rod '", name, "': length bounds lower = ", element.length_lower,
-              ", upper = ", element.length_upper, " must be finite with 0 < lower <= upper");
-      require(finite(element.length_default) && element.length_default >= element.length_lower &&
-                  element.length_default <= element.length_upper,
-              "pcr_rod '", name, "': default length ", element.length_default, " is outside [",
-              element.length_lower, ", ", element.length_upper, "]");
-    } else {
-      require(finite(element.length_default) && element.length_default > 0.0, "pcr_rod '", name,
-              "': length = ", element.length_default, " must be positive and finite");
-      element.length_lower = element.length_upper = element.length_default;
-    }
-    require(element.degree == 0 || element.degree >= 2, "pcr_rod '", name, "': degree = ", element.degree,
-            " must be >= 2 (or 0 for the solver's choice)");
-    require(element.elements >= 0, "pcr_rod '", name, "': elements = ", element.elements,
-            " must be >= 1 (or 0)");
-
+    check_rod_element(element, links_);
     RodModel& rod = element.rod;
-    rod.name = name;
+    rod.name = element.name;
     rod.length = element.length_default;
     rod.loads.gravity = gravity_;
     rod.base.kind = element.start.coupling;
@@ -172,7 +177,10 @@ void RobotModel::build_rods() {
     }
     rod.validate();
   }
+  build_inputs();
+}
 
+void RobotModel::build_inputs() {
   // Actuation inputs: rod lengths, then moving joints; names unique across both.
   inputs_.clear();
   input_names_.clear();

@@ -181,6 +181,7 @@ class RobotModel {
   void set_initial_platform_poses();
   void check_loads();
   void build_rods();
+  void build_inputs();  // rod lengths, then moving joints that are not passive
   void check_passive_joints_loaded() const;
 
   std::string name_;
