@@ -63,83 +63,99 @@ RodEndEvaluator::RodEndEvaluator(const CollocationRod& rod, const RodVariables& 
 
 void RodEndEvaluator::evaluate(const double* const* values, RodEndVector& y,
                                std::vector<MatX>* jacobians) const {
-  if (mixed_) {
-    y = Eigen::Map<const RodEndVector>(values[0]);
-    if (jacobians) {
-      jacobians->resize(1);
-      (*jacobians)[0] = MatX::Identity(13, 13);
-    }
-    return;
+  if (mixed_)
+    evaluate_mixed(values, y, jacobians);
+  else if (condensed_ && loads_)
+    evaluate_condensed_with_loads(values, y, jacobians);
+  else if (condensed_)
+    evaluate_condensed(values, y, jacobians);
+  else
+    evaluate_primal(values, y, jacobians);
+}
+
+// Mixed: y is the end control point itself.
+void RodEndEvaluator::evaluate_mixed(const double* const* values, RodEndVector& y,
+                                     std::vector<MatX>* jacobians) const {
+  y = Eigen::Map<const RodEndVector>(values[0]);
+  if (jacobians) {
+    jacobians->resize(1);
+    (*jacobians)[0] = MatX::Identity(13, 13);
   }
-  if (condensed_ && loads_) {
-    // At s = L: n = n0 - f L, m = h - a x n - l L - L (I - c) x f with a = P - c (P of the end control
-    // point), I = sum_j w_j P_j over the control points read (+ T of the end one with running integrals).
-    // dm/dP_j = L w_j hat(f) (+ hat(n) for the end), dm/dT = L hat(f), dm/dn0 = -hat(a), dm/dh = 1,
-    // dn/dL = -f, dm/dL = a x f - l - (I - c) x f.
-    const int end = count_ - 1;
-    const Eigen::Map<const Eigen::Matrix<double, 7, 1>> point(values[end]);  // [P, Q] first in both layouts
-    const Eigen::Map<const Eigen::Matrix<double, 6, 1>> wrench(values[count_]);
-    const double L = values[count_ + 1][0];
-    Vec3 I = integral_ >= 0 ? Vec3(Eigen::Map<const Vec3>(values[end] + integral_)) : Vec3::Zero();
-    for (int j = 0; j < count_; ++j) I += integral_weights_[j] * Eigen::Map<const Vec3>(values[j]);
-    const Vec3 a = point.head<3>() - moment_point_, n = wrench.head<3>() - f_ * L;
-    y.head<7>() = point;
-    y.segment<3>(7) = n;
-    PointConstants loads;
-    loads.f = f_;
-    loads.l = l_;
-    y.segment<3>(10) =
-        condensed_moment<double>(point.head<3>(), n, wrench.tail<3>(), L, I, loads, moment_point_, 1.0);
-    if (jacobians) {
-      jacobians->assign(count_ + 2, MatX());
-      const Mat3 hat_f = hat(f_);
-      for (int j = 0; j < count_; ++j) {
-        MatX& J = (*jacobians)[j];
-        J = MatX::Zero(13, cp_size_);
-        J.block<3, 3>(10, 0) = (L * integral_weights_[j]) * hat_f;
-      }
-      MatX& Jp = (*jacobians)[end];
-      Jp.topLeftCorner<7, 7>().setIdentity();
-      Jp.block<3, 3>(10, 0) += hat(n);
-      if (integral_ >= 0) Jp.block<3, 3>(10, integral_) = L * hat_f;
-      MatX& Jw = (*jacobians)[count_];
-      Jw = MatX::Zero(13, 6);
-      Jw.block<3, 3>(7, 0).setIdentity();
-      Jw.block<3, 3>(10, 0) = -hat(a);
-      Jw.block<3, 3>(10, 3).setIdentity();
-      MatX& JL = (*jacobians)[count_ + 1];
-      JL = MatX::Zero(13, 1);
-      JL.block<3, 1>(7, 0) = -f_;
-      JL.block<3, 1>(10, 0) = a.cross(f_) - l_ - (I - moment_point_).cross(f_);
+}
+
+void RodEndEvaluator::evaluate_condensed_with_loads(const double* const* values, RodEndVector& y,
+                                                    std::vector<MatX>* jacobians) const {
+  // At s = L: n = n0 - f L, m = h - a x n - l L - L (I - c) x f with a = P - c (P of the end control
+  // point), I = sum_j w_j P_j over the control points read (+ T of the end one with running integrals).
+  // dm/dP_j = L w_j hat(f) (+ hat(n) for the end), dm/dT = L hat(f), dm/dn0 = -hat(a), dm/dh = 1,
+  // dn/dL = -f, dm/dL = a x f - l - (I - c) x f.
+  const int end = count_ - 1;
+  const Eigen::Map<const Eigen::Matrix<double, 7, 1>> point(values[end]);  // [P, Q] first in both layouts
+  const Eigen::Map<const Eigen::Matrix<double, 6, 1>> wrench(values[count_]);
+  const double L = values[count_ + 1][0];
+  Vec3 I = integral_ >= 0 ? Vec3(Eigen::Map<const Vec3>(values[end] + integral_)) : Vec3::Zero();
+  for (int j = 0; j < count_; ++j) I += integral_weights_[j] * Eigen::Map<const Vec3>(values[j]);
+  const Vec3 a = point.head<3>() - moment_point_, n = wrench.head<3>() - f_ * L;
+  y.head<7>() = point;
+  y.segment<3>(7) = n;
+  PointConstants loads;
+  loads.f = f_;
+  loads.l = l_;
+  y.segment<3>(10) =
+      condensed_moment<double>(point.head<3>(), n, wrench.tail<3>(), L, I, loads, moment_point_, 1.0);
+  if (jacobians) {
+    jacobians->assign(count_ + 2, MatX());
+    const Mat3 hat_f = hat(f_);
+    for (int j = 0; j < count_; ++j) {
+      MatX& J = (*jacobians)[j];
+      J = MatX::Zero(13, cp_size_);
+      J.block<3, 3>(10, 0) = (L * integral_weights_[j]) * hat_f;
     }
-    return;
+    MatX& Jp = (*jacobians)[end];
+    Jp.topLeftCorner<7, 7>().setIdentity();
+    Jp.block<3, 3>(10, 0) += hat(n);
+    if (integral_ >= 0) Jp.block<3, 3>(10, integral_) = L * hat_f;
+    MatX& Jw = (*jacobians)[count_];
+    Jw = MatX::Zero(13, 6);
+    Jw.block<3, 3>(7, 0).setIdentity();
+    Jw.block<3, 3>(10, 0) = -hat(a);
+    Jw.block<3, 3>(10, 3).setIdentity();
+    MatX& JL = (*jacobians)[count_ + 1];
+    JL = MatX::Zero(13, 1);
+    JL.block<3, 1>(7, 0) = -f_;
+    JL.block<3, 1>(10, 0) = a.cross(f_) - l_ - (I - moment_point_).cross(f_);
   }
-  if (condensed_) {
-    // y = [P, Q, n, h - (P - c) x n]: dm/dP = hat(n), dm/dn = -hat(P - c), dm/dh = I (also the base
-    // of the form with loads, where s = 0: its T does not enter).
-    static_assert(kCondensedPoint.p == 0 && kCondensedPoint.q == 3 && kCondensedLoadedPoint.p == 0 &&
-                      kCondensedLoadedPoint.q == 3,
-                  "the condensed control points start with y's [p, q]");
-    const Eigen::Map<const Eigen::Matrix<double, 7, 1>> point(values[0]);
-    const Eigen::Map<const Eigen::Matrix<double, 6, 1>> wrench(values[1]);
-    const Vec3 n = wrench.head<3>(), arm = point.head<3>() - moment_point_;
-    y.head<7>() = point;
-    y.segment<3>(7) = n;
-    y.segment<3>(10) = wrench.tail<3>() - arm.cross(n);
-    if (jacobians) {
-      jacobians->assign(2, MatX());
-      MatX& Jp = (*jacobians)[0];
-      Jp = MatX::Zero(13, cp_size_);
-      Jp.topLeftCorner<7, 7>().setIdentity();
-      Jp.block<3, 3>(10, 0) = hat(n);
-      MatX& Jw = (*jacobians)[1];
-      Jw = MatX::Zero(13, 6);
-      Jw.block<3, 3>(7, 0).setIdentity();
-      Jw.block<3, 3>(10, 0) = -hat(arm);
-      Jw.block<3, 3>(10, 3).setIdentity();
-    }
-    return;
+}
+
+void RodEndEvaluator::evaluate_condensed(const double* const* values, RodEndVector& y,
+                                         std::vector<MatX>* jacobians) const {
+  // y = [P, Q, n, h - (P - c) x n]: dm/dP = hat(n), dm/dn = -hat(P - c), dm/dh = I (also the base
+  // of the form with loads, where s = 0: its T does not enter).
+  static_assert(kCondensedPoint.p == 0 && kCondensedPoint.q == 3 && kCondensedLoadedPoint.p == 0 &&
+                    kCondensedLoadedPoint.q == 3,
+                "the condensed control points start with y's [p, q]");
+  const Eigen::Map<const Eigen::Matrix<double, 7, 1>> point(values[0]);
+  const Eigen::Map<const Eigen::Matrix<double, 6, 1>> wrench(values[1]);
+  const Vec3 n = wrench.head<3>(), arm = point.head<3>() - moment_point_;
+  y.head<7>() = point;
+  y.segment<3>(7) = n;
+  y.segment<3>(10) = wrench.tail<3>() - arm.cross(n);
+  if (jacobians) {
+    jacobians->assign(2, MatX());
+    MatX& Jp = (*jacobians)[0];
+    Jp = MatX::Zero(13, cp_size_);
+    Jp.topLeftCorner<7, 7>().setIdentity();
+    Jp.block<3, 3>(10, 0) = hat(n);
+    MatX& Jw = (*jacobians)[1];
+    Jw = MatX::Zero(13, 6);
+    Jw.block<3, 3>(7, 0).setIdentity();
+    Jw.block<3, 3>(10, 0) = -hat(arm);
+    Jw.block<3, 3>(10, 3).setIdentity();
   }
+}
+
+void RodEndEvaluator::evaluate_primal(const double* const* values, RodEndVector& y,
+                                      std::vector<MatX>* jacobians) const {
   // Primal: local z = [q (4), q_u (4), p_u (3), L (1)] for the wrench; p, q are the end values.
   static_assert(kPrimalPoint.size == 7 && kPrimalPoint.p == 0 && kPrimalPoint.q == 3,
                 "the primal control point is [P, Q]");

@@ -30,6 +30,12 @@ class RodEndEvaluator {
   void evaluate(const double* const* values, RodEndVector& y, std::vector<MatX>* jacobians) const;
 
  private:
+  void evaluate_mixed(const double* const* values, RodEndVector& y, std::vector<MatX>* jacobians) const;
+  void evaluate_condensed_with_loads(const double* const* values, RodEndVector& y,
+                                     std::vector<MatX>* jacobians) const;
+  void evaluate_condensed(const double* const* values, RodEndVector& y, std::vector<MatX>* jacobians) const;
+  void evaluate_primal(const double* const* values, RodEndVector& y, std::vector<MatX>* jacobians) const;
+
   bool at_tip_;
   bool mixed_;
   bool condensed_;
