@@ -22,6 +22,7 @@ from ._pcr import (  # noqa: F401
     parse_model,
     SolveSummary,
     RodResult,
+    Stability,
     RobotSolution,
     ForwardKinematics,
     InverseKinematics,
@@ -32,6 +33,6 @@ from ._pcr import (  # noqa: F401
 
 __all__ = [
     "InputError", "Pose", "LinkTarget", "RobotModel", "load_model", "parse_model", "SolveSummary",
-    "RodResult", "RobotSolution", "ForwardKinematics", "InverseKinematics", "WorkspaceSample",
+    "RodResult", "Stability", "RobotSolution", "ForwardKinematics", "InverseKinematics", "WorkspaceSample",
     "WorkspaceResult", "sample_workspace",
 ]

@@ -51,6 +51,27 @@ void bind_rod_result(py::module_& m) {
           "n x 3 array of centerline points [m], base first");
 }
 
+void bind_stability(py::module_& m) {
+  py::class_<Stability>(m, "Stability",
+                        "Stability verdict of an equilibrium (docs/design.md §4): verdict 'stable', "
+                        "'unstable', 'critical', 'unknown' (reason says why) or 'not_checked'.")
+      .def_property_readonly("verdict", [](const Stability& s) { return to_string(s.verdict); })
+      .def_readonly("unstable_modes", &Stability::unstable_modes)
+      .def_readonly("neutral_modes", &Stability::neutral_modes)
+      .def_readonly("margin", &Stability::margin,
+                    "smallest eigenvalue of the dimensionless reduced stiffness")
+      .def_readonly("length_scale", &Stability::length_scale, "[m]")
+      .def_readonly("energy_scale", &Stability::energy_scale, "[J]")
+      .def_readonly("reason", &Stability::reason)
+      .def_readonly("rod_unstable_modes", &Stability::rod_unstable_modes)
+      .def_readonly("platform_unstable_modes", &Stability::border_unstable_modes,
+                    "negative eigenvalues of the platforms' reduced stiffness")
+      .def("__repr__", [](const Stability& s) {
+        return "<pcr.Stability " + std::string(to_string(s.verdict)) + ", " +
+               std::to_string(s.unstable_modes) + " unstable modes>";
+      });
+}
+
 void bind_robot_solution(py::module_& m) {
   py::class_<RobotSolution>(m, "RobotSolution", "Inputs, platform poses, rods and the summary of one solve.")
       .def_readonly("summary", &RobotSolution::summary)
@@ -61,6 +82,8 @@ void bind_robot_solution(py::module_& m) {
       .def_readonly("passive_joints", &RobotSolution::passive_joints, "model passive-joint order")
       .def_readonly("jacobian_sign", &RobotSolution::jacobian_sign)
       .def_readonly("jacobian_sign_changed", &RobotSolution::jacobian_sign_changed)
+      .def_readonly("stability", &RobotSolution::stability_verdict,
+                    "the verdict when the solver's option stability_verdict=True, else not_checked")
       .def("__repr__", [](const RobotSolution& s) {
         return "<pcr.RobotSolution " + std::string(to_string(s.summary.status)) + ", " +
                std::to_string(s.platforms.size()) + " platforms, " + std::to_string(s.rods.size()) + " rods>";
@@ -72,6 +95,7 @@ void bind_robot_solution(py::module_& m) {
 void bind_results(py::module_& m) {
   bind_summary(m);
   bind_rod_result(m);
+  bind_stability(m);
   bind_robot_solution(m);
 }
 

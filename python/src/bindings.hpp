@@ -11,14 +11,14 @@ namespace pcr::python {
 
 /// RobotModel, load_model / parse_model, Pose, LinkTarget.
 void bind_model(pybind11::module_& m);
-/// SolveSummary, RodResult, RobotSolution.
+/// SolveSummary, RodResult, Stability, RobotSolution.
 void bind_results(pybind11::module_& m);
 /// ForwardKinematics, InverseKinematics, their path helpers and the workspace sampler.
 void bind_kinematics(pybind11::module_& m);
 
 /// KinematicsOptions from the keyword arguments of a constructor (tolerance, max_iterations,
 /// centerline_points, degree, elements, formulation, mixed_points, solver, objective, max_rod_stress,
-/// check_stability); an unknown keyword or value raises InputError naming it.
+/// check_stability, stability_verdict); an unknown keyword or value raises InputError naming it.
 KinematicsOptions kinematics_options(const pybind11::kwargs& kwargs);
 
 }  // namespace pcr::python

@@ -84,11 +84,13 @@ KinematicsOptions kinematics_options(const py::kwargs& kwargs) {
       o.ik.max_rod_stress = positive_number(key, v);
     else if (key == "check_stability")
       o.check_stability = py::cast<bool>(v);
+    else if (key == "stability_verdict")
+      o.stability_verdict = py::cast<bool>(v);
     else
       throw InputError(
           "unknown option '" + key +
           "': expected tolerance, max_iterations, centerline_points, degree, elements, formulation, "
-          "mixed_points, solver, objective, max_rod_stress or check_stability");
+          "mixed_points, solver, objective, max_rod_stress, check_stability or stability_verdict");
   }
   return o;
 }

@@ -169,6 +169,34 @@ BOOST_AUTO_TEST_CASE(ik_of_an_fk_pose_gives_back_the_fk_inputs) {
   BOOST_CHECK_SMALL(i["inputs"]["right"].number - right, 1e-8);
 }
 
+// --stability through the tool (also the sanitizer pass's coverage of the verdict code). The counts are
+// those test_stability_verdict checks against an independent discrete energy model: stewart_gough's
+// default pose stable, planar_three_rod's default pose 1 unstable mode (its platform tilts out of the
+// plane); the table names the verdict; a model with a passive joint is "unknown" with the reason.
+BOOST_AUTO_TEST_CASE(stability_verdict_in_the_json_and_the_table) {
+  const Run stewart = run_pcr("fk " + model("stewart_gough.urdf") + " --stability --json");
+  BOOST_REQUIRE_EQUAL(stewart.exit_code, 0);
+  const test_json::Value s = test_json::parse(stewart.out);
+  BOOST_CHECK_EQUAL(s["stability"]["verdict"].text, "stable");
+  BOOST_CHECK_EQUAL(s["stability"]["unstable_modes"].number, 0);
+  BOOST_CHECK_GT(s["stability"]["margin"].number, 0.0);
+  const Run planar = run_pcr("fk " + model("planar_three_rod.urdf") + " --stability --json");
+  BOOST_REQUIRE_EQUAL(planar.exit_code, 0);
+  const test_json::Value p = test_json::parse(planar.out);
+  BOOST_CHECK_EQUAL(p["stability"]["verdict"].text, "unstable");
+  BOOST_CHECK_EQUAL(p["stability"]["unstable_modes"].number, 1);
+  BOOST_CHECK_LT(p["stability"]["margin"].number, 0.0);
+  const Run table =
+      run_pcr("ik " + model("planar_three_rod.urdf") + " --stability --target platform=0.01,0,0.29");
+  BOOST_REQUIRE_EQUAL(table.exit_code, 0);
+  BOOST_CHECK_MESSAGE(contains(table.out, "stability: "), table.out);
+  const Run hinge = run_pcr("fk " + model("passive_hinge.urdf") + " --stability --json");
+  BOOST_REQUIRE_EQUAL(hinge.exit_code, 0);
+  const test_json::Value h = test_json::parse(hinge.out);
+  BOOST_CHECK_EQUAL(h["stability"]["verdict"].text, "unknown");
+  BOOST_CHECK_MESSAGE(contains(h["stability"]["reason"].text, "passive"), h["stability"]["reason"].text);
+}
+
 BOOST_AUTO_TEST_CASE(unreachable_ik_target_fails_with_exit_code_1) {
   // 0.9 m above the base: the rods are at most 0.8 m long (stewart_gough.urdf bounds).
   const Run run = run_pcr("ik " + model("stewart_gough.urdf") + " --json --target platform=0,0,0.9");

@@ -128,3 +128,16 @@ def test_unreachable_target_is_a_status_not_an_exception(planar):
     result = ik.solve([pcr.Pose([0.0, 0.0, 5.0], [1, 0, 0, 0])])  # 5 m above rods of at most 0.5 m
     assert not result.converged
     assert result.summary.status != "converged" and result.summary.message
+
+
+def test_stability_verdict_equals_the_tool(planar, stewart):
+    # The tool's --stability JSON member and the binding's Stability are the same computation: the
+    # verdicts and counts must agree (planar_three_rod's default pose tilts out of its plane: 1 unstable
+    # mode; stewart_gough's default pose is stable - both asserted in C++ by test_stability_verdict).
+    for model, name in ((planar, "planar_three_rod"), (stewart, "stewart_gough")):
+        result = pcr.ForwardKinematics(model, stability_verdict=True).solve(model.default_inputs)
+        ref = run_tool("fk", model_path(name), "--stability")["stability"]
+        assert result.stability.verdict == ref["verdict"]
+        assert result.stability.unstable_modes == ref["unstable_modes"]
+        assert result.stability.margin == ref["margin"]
+    assert pcr.ForwardKinematics(planar).solve(planar.default_inputs).stability.verdict == "not_checked"
