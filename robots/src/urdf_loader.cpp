@@ -95,85 +95,100 @@ void read_pcr_joint(const TiXmlElement& e, const std::string& source, const Urdf
   reader.finish();
 }
 
-RobotModel parse_document(const std::string& xml, const std::string& source) {
-  // No parser (pcr's TinyXML pass, then urdfdom's) sees text that is not UTF-8 XML characters.
-  check_model_text(xml, source);
-  TiXmlDocument document;
-  document.Parse(xml.c_str());
-  if (document.Error()) {
-    throw_input_error(source, ":", document.ErrorRow(), ": XML error: ", document.ErrorDesc());
-  }
-  const TiXmlElement* robot = document.RootElement();
-  if (robot == nullptr || robot->ValueStr() != "robot")
-    throw_input_error(source, ": the root element is not <robot>");
-  XmlElementReader robot_reader(*robot, source, "robot");
-  const std::string robot_name = robot_reader.text("name");
+// <pcr_load link xyz force torque>: a constant wrench on a link (where the link must be movable is
+// checked once the joints are known, check_loads_act_on_movable_links).
+ExternalLoad read_pcr_load(const TiXmlElement& e, const std::string& source, const UrdfTree& tree) {
+  XmlElementReader reader(e, source, "pcr_load");
+  ExternalLoad load;
+  const std::string link = reader.text("link");
+  const auto it = tree.link_index.find(link);
+  if (it == tree.link_index.end()) reader.fail("link", link, "is not a link of the robot");
+  load.link = it->second;
+  load.point = reader.vec3_or("xyz", Vec3::Zero());
+  load.force = reader.vec3_or("force", Vec3::Zero());
+  load.torque = reader.vec3_or("torque", Vec3::Zero());
+  reader.finish();
+  return load;
+}
 
-  const UrdfTree tree = read_tree(*robot, source);
-  UrdfPart urdf = read_urdf_part(xml, tree, source);
-  std::vector<Link>& links = urdf.links;
-  std::vector<Joint>& joints = urdf.joints;
-  std::vector<Platform>& platforms = urdf.platforms;
-
-  // Extension elements.
+// The pcr extension elements of a model file, with the elements the later checks name in messages.
+struct PcrElements {
   Vec3 gravity = Vec3::Zero();
+  bool has_gravity = false;
   std::vector<RodElement> rods;
+  std::map<std::string, int> rod_lines;  // line of each rod's element, by rod name
   std::vector<ExternalLoad> loads;
-  std::map<std::string, int> rod_lines;
   std::vector<const TiXmlElement*> load_elements;   // per load
   std::vector<const TiXmlElement*> joint_elements;  // per pcr_joint
-  bool has_gravity = false;
-  for (const TiXmlElement* e = robot->FirstChildElement(); e; e = e->NextSiblingElement()) {
+};
+
+// Adds one <pcr_rod>; fails when its name is already taken by an earlier rod.
+void add_pcr_rod(const TiXmlElement& e, const std::string& source, const UrdfTree& tree, PcrElements& pcr) {
+  pcr.rods.push_back(read_rod(e, source, tree));
+  const std::string& name = pcr.rods.back().name;
+  if (!pcr.rod_lines.emplace(name, e.Row()).second) {
+    XmlElementReader reader(e, source, quoted("pcr_rod", name));
+    reader.fail("name", name,
+                "is already used by the pcr_rod on line " + std::to_string(pcr.rod_lines[name]));
+  }
+}
+
+// Reads the pcr_ children of <robot> in file order (pcr_joint values go into `joints`); an unknown
+// pcr_ element is an error, other elements are the URDF part's.
+PcrElements read_pcr_elements(const TiXmlElement& robot, const std::string& source, const UrdfTree& tree,
+                              std::vector<Joint>& joints) {
+  PcrElements pcr;
+  for (const TiXmlElement* e = robot.FirstChildElement(); e; e = e->NextSiblingElement()) {
     const std::string tag = e->ValueStr();
     if (tag == "pcr_gravity") {
       XmlElementReader reader(*e, source, "pcr_gravity");
-      if (has_gravity) reader.fail("given more than once");
-      has_gravity = true;
-      gravity = reader.vec3("xyz");
+      if (pcr.has_gravity) reader.fail("given more than once");
+      pcr.has_gravity = true;
+      pcr.gravity = reader.vec3("xyz");
       reader.finish();
     } else if (tag == "pcr_rod") {
-      rods.push_back(read_rod(*e, source, tree));
-      if (!rod_lines.emplace(rods.back().name, e->Row()).second) {
-        XmlElementReader reader(*e, source, quoted("pcr_rod", rods.back().name));
-        reader.fail("name", rods.back().name,
-                    "is already used by the pcr_rod on line " + std::to_string(rod_lines[rods.back().name]));
-      }
+      add_pcr_rod(*e, source, tree, pcr);
     } else if (tag == "pcr_load") {
-      XmlElementReader reader(*e, source, "pcr_load");
-      ExternalLoad load;
-      const std::string link = reader.text("link");
-      const auto it = tree.link_index.find(link);
-      if (it == tree.link_index.end()) reader.fail("link", link, "is not a link of the robot");
-      load_elements.push_back(e);  // where the link must be movable is checked once the joints are known
-      load.link = it->second;
-      load.point = reader.vec3_or("xyz", Vec3::Zero());
-      load.force = reader.vec3_or("force", Vec3::Zero());
-      load.torque = reader.vec3_or("torque", Vec3::Zero());
-      reader.finish();
-      loads.push_back(load);
+      pcr.loads.push_back(read_pcr_load(*e, source, tree));
+      pcr.load_elements.push_back(e);
     } else if (tag == "pcr_joint") {
       read_pcr_joint(*e, source, tree, joints);
-      joint_elements.push_back(e);
+      pcr.joint_elements.push_back(e);
     } else if (tag.compare(0, 4, "pcr_") == 0) {
       XmlElementReader reader(*e, source, "<" + tag + ">");
       reader.fail("unknown pcr element (pcr_rod, pcr_gravity, pcr_load or pcr_joint)");
     }
   }
-  for (std::size_t i = 0; i < loads.size(); ++i) {
-    if (carrying_floating_link(tree, loads[i].link) >= 0 ||
-        moved_by_passive_joint(tree, joints, loads[i].link))
-      continue;
-    XmlElementReader reader(*load_elements[i], source, "pcr_load");
-    reader.fail("link", tree.link_names[loads[i].link],
+  return pcr;
+}
+
+// A load acts on a link a platform carries or a passive joint moves (else on the fixed world).
+void check_loads_act_on_movable_links(const PcrElements& pcr, const std::string& source, const UrdfTree& tree,
+                                      const std::vector<Joint>& joints) {
+  for (std::size_t i = 0; i < pcr.loads.size(); ++i) {
+    const int link = pcr.loads[i].link;
+    if (carrying_floating_link(tree, link) >= 0 || moved_by_passive_joint(tree, joints, link)) continue;
+    XmlElementReader reader(*pcr.load_elements[i], source, "pcr_load");
+    reader.fail("link", tree.link_names[link],
                 "is not carried by a platform or moved by a passive joint (a load there acts on the fixed "
                 "world)");
   }
-  for (const TiXmlElement* e : joint_elements) {
+}
+
+// Every passive joint named by a <pcr_joint> has something beyond it that determines its value.
+void check_passive_joints_loaded(const PcrElements& pcr, const std::string& source, const UrdfTree& tree,
+                                 const std::vector<Joint>& joints, const std::vector<Link>& links) {
+  for (const TiXmlElement* e : pcr.joint_elements) {
     const std::string name = e->Attribute("name") ? e->Attribute("name") : "";
     for (int j = 0; j < static_cast<int>(joints.size()); ++j)
       if (joints[j].name == name && joints[j].passive)
-        check_passive_joint_loaded(*e, source, tree, joints, links, rods, loads, gravity, j);
+        check_passive_joint_loaded(*e, source, tree, joints, links, pcr.rods, pcr.loads, pcr.gravity, j);
   }
+}
+
+// Every platform carries the end of at least one rod (else nothing determines its pose).
+void check_platforms_hold_rods(const std::vector<Platform>& platforms, const std::vector<RodElement>& rods,
+                               const std::string& source, const UrdfTree& tree) {
   for (const Platform& platform : platforms) {
     bool has_rod = false;
     for (const RodElement& rod : rods) {
@@ -188,11 +203,39 @@ RobotModel parse_document(const std::string& xml, const std::string& source) {
                         "'): no pcr_rod is attached to it, so its pose is undetermined");
     }
   }
+}
+
+// The <robot> root of a model file's text (UTF-8 XML characters only, checked before any parser sees it).
+const TiXmlElement& robot_element(TiXmlDocument& document, const std::string& xml,
+                                  const std::string& source) {
+  check_model_text(xml, source);
+  document.Parse(xml.c_str());
+  if (document.Error()) {
+    throw_input_error(source, ":", document.ErrorRow(), ": XML error: ", document.ErrorDesc());
+  }
+  const TiXmlElement* robot = document.RootElement();
+  if (robot == nullptr || robot->ValueStr() != "robot")
+    throw_input_error(source, ": the root element is not <robot>");
+  return *robot;
+}
+
+RobotModel parse_document(const std::string& xml, const std::string& source) {
+  TiXmlDocument document;
+  const TiXmlElement& robot = robot_element(document, xml, source);
+  XmlElementReader robot_reader(robot, source, "robot");
+  const std::string robot_name = robot_reader.text("name");
+
+  const UrdfTree tree = read_tree(robot, source);
+  UrdfPart urdf = read_urdf_part(xml, tree, source);
+  PcrElements pcr = read_pcr_elements(robot, source, tree, urdf.joints);
+  check_loads_act_on_movable_links(pcr, source, tree, urdf.joints);
+  check_passive_joints_loaded(pcr, source, tree, urdf.joints, urdf.links);
+  check_platforms_hold_rods(urdf.platforms, pcr.rods, source, tree);
 
   // Cross-element checks (well-posedness, platform hold) live in RobotModel; prefix the file name.
   try {
-    return RobotModel(robot_name, std::move(links), std::move(joints), std::move(platforms), std::move(rods),
-                      std::move(loads), gravity);
+    return RobotModel(robot_name, std::move(urdf.links), std::move(urdf.joints), std::move(urdf.platforms),
+                      std::move(pcr.rods), std::move(pcr.loads), pcr.gravity);
   } catch (const InputError& e) {
     throw InputError(source + ": " + e.what());
   }

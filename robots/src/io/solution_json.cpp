@@ -35,6 +35,14 @@ void write_pose_members(JsonWriter& json, const Pose& pose) {
   json.array(pose.rpy());
 }
 
+/// name: {position, quaternion_wxyz, rpy}.
+void write_pose_object(JsonWriter& json, const std::string& name, const Pose& pose) {
+  json.key(name);
+  json.begin_object();
+  write_pose_members(json, pose);
+  json.end_object();
+}
+
 /// A matrix as an array of its rows.
 void write_matrix(JsonWriter& json, const MatX& matrix) {
   json.begin_array();
@@ -105,6 +113,84 @@ void write_derivatives(JsonWriter& json, const RobotModel& model, const Solution
   }
 }
 
+/// "inputs" and "passive_joints": name -> value (rad or m), in the model's order.
+void write_joint_values(JsonWriter& json, const RobotModel& model, const RobotSolution& solution) {
+  json.key("inputs");
+  json.begin_object();
+  for (size_t i = 0; i < model.inputs().size() && static_cast<int>(i) < solution.inputs.size(); ++i) {
+    json.key(model.inputs()[i].name);
+    json.value(solution.inputs[static_cast<int>(i)]);
+  }
+  json.end_object();
+  json.key("passive_joints");
+  json.begin_object();
+  const std::vector<int>& passive = model.passive_joints();
+  for (size_t i = 0; i < passive.size() && static_cast<int>(i) < solution.passive_joints.size(); ++i) {
+    json.key(model.joints()[passive[i]].name);
+    json.value(solution.passive_joints[static_cast<int>(i)]);
+  }
+  json.end_object();
+}
+
+/// "platforms": name -> pose (world frame).
+void write_platform_poses(JsonWriter& json, const RobotModel& model, const RobotSolution& solution) {
+  json.key("platforms");
+  json.begin_object();
+  for (size_t p = 0; p < solution.platforms.size() && p < model.platforms().size(); ++p) {
+    write_pose_object(json, model.platforms()[p].name, solution.platforms[p]);
+  }
+  json.end_object();
+}
+
+/// "links" (only when some were asked for): name -> pose (world frame).
+void write_link_poses(JsonWriter& json, const std::vector<LinkPose>& links) {
+  if (links.empty()) return;
+  json.key("links");
+  json.begin_object();
+  for (const LinkPose& link : links) {
+    write_pose_object(json, link.link, link.pose);
+  }
+  json.end_object();
+}
+
+/// "targets" (only for IK): link -> the target, the pose reached and the distance between them.
+void write_targets(JsonWriter& json, const RobotModel& model, const RobotSolution& solution,
+                   const std::vector<LinkTarget>& targets) {
+  if (targets.empty()) return;
+  json.key("targets");
+  json.begin_object();
+  const VecX q = joint_values_of_solution(model, solution);
+  for (const LinkTarget& target : targets) {
+    json.key(target.link);
+    write_target(json, target, model.link_pose(model.link_index(target.link), q, solution.platforms));
+  }
+  json.end_object();
+}
+
+/// "rods": name -> length, forces, end wrenches and centerline points (world frame).
+void write_rods(JsonWriter& json, const std::vector<RodResult>& rods) {
+  json.key("rods");
+  json.begin_object();
+  for (const RodResult& rod : rods) {
+    json.key(rod.name);
+    json.begin_object();
+    json.key("length");
+    json.value(rod.length);
+    json.key("axial_force");
+    json.value(rod.axial_force);
+    json.key("min_axial_stretch");
+    json.value(rod.min_axial_stretch);
+    write_wrench(json, "base_wrench", rod.base_force, rod.base_moment);
+    write_wrench(json, "tip_wrench", rod.tip_force, rod.tip_moment);
+    json.key("centerline");
+    json.begin_array();
+    for (const Vec3& point : rod.centerline) json.array(point);
+    json.end_array();
+    json.end_object();
+  }
+  json.end_object();
+}
+
 void write_summary(JsonWriter& json, const SolveSummary& s) {
   json.begin_object();
   json.key("solver");
@@ -154,72 +240,12 @@ void write_solution_object(JsonWriter& json, const RobotModel& model, const Robo
   json.value(model.name());
   json.key("status");
   json.value(to_string(solution.summary.status));
-  json.key("inputs");
-  json.begin_object();
-  for (size_t i = 0; i < model.inputs().size() && static_cast<int>(i) < solution.inputs.size(); ++i) {
-    json.key(model.inputs()[i].name);
-    json.value(solution.inputs[static_cast<int>(i)]);
-  }
-  json.end_object();
-  json.key("passive_joints");
-  json.begin_object();
-  const std::vector<int>& passive = model.passive_joints();
-  for (size_t i = 0; i < passive.size() && static_cast<int>(i) < solution.passive_joints.size(); ++i) {
-    json.key(model.joints()[passive[i]].name);
-    json.value(solution.passive_joints[static_cast<int>(i)]);
-  }
-  json.end_object();
-  json.key("platforms");
-  json.begin_object();
-  for (size_t p = 0; p < solution.platforms.size() && p < model.platforms().size(); ++p) {
-    json.key(model.platforms()[p].name);
-    json.begin_object();
-    write_pose_members(json, solution.platforms[p]);
-    json.end_object();
-  }
-  json.end_object();
-  if (!extras.links.empty()) {
-    json.key("links");
-    json.begin_object();
-    for (const LinkPose& link : extras.links) {
-      json.key(link.link);
-      json.begin_object();
-      write_pose_members(json, link.pose);
-      json.end_object();
-    }
-    json.end_object();
-  }
-  if (!targets.empty()) {
-    json.key("targets");
-    json.begin_object();
-    const VecX q = joint_values_of_solution(model, solution);
-    for (const LinkTarget& target : targets) {
-      json.key(target.link);
-      write_target(json, target, model.link_pose(model.link_index(target.link), q, solution.platforms));
-    }
-    json.end_object();
-  }
+  write_joint_values(json, model, solution);
+  write_platform_poses(json, model, solution);
+  write_link_poses(json, extras.links);
+  write_targets(json, model, solution, targets);
   write_derivatives(json, model, extras);
-  json.key("rods");
-  json.begin_object();
-  for (const RodResult& rod : solution.rods) {
-    json.key(rod.name);
-    json.begin_object();
-    json.key("length");
-    json.value(rod.length);
-    json.key("axial_force");
-    json.value(rod.axial_force);
-    json.key("min_axial_stretch");
-    json.value(rod.min_axial_stretch);
-    write_wrench(json, "base_wrench", rod.base_force, rod.base_moment);
-    write_wrench(json, "tip_wrench", rod.tip_force, rod.tip_moment);
-    json.key("centerline");
-    json.begin_array();
-    for (const Vec3& point : rod.centerline) json.array(point);
-    json.end_array();
-    json.end_object();
-  }
-  json.end_object();
+  write_rods(json, solution.rods);
   write_stability_member(json, solution.stability_verdict);
   json.key("summary");
   write_summary(json, solution.summary);
