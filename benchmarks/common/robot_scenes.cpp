@@ -1,7 +1,9 @@
 #include "common/robot_scenes.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <string>
+#include <vector>
 
 #include "pcr/math/quaternion.hpp"
 #include "pcr/math/so3.hpp"
@@ -69,6 +71,24 @@ ShootingRobotOptions shooting_reference_options() {
   o.integration_relative_tolerance = o.integration_absolute_tolerance = 1e-12;
   o.tolerance = 1e-12;
   return o;
+}
+
+std::vector<ShootingMethod> shooting_methods(const std::vector<int>& rk4_steps) {
+  std::vector<ShootingMethod> out;
+  for (int n : rk4_steps) {
+    ShootingRobotOptions o;
+    o.integrator = IntegratorMethod::RK4;
+    o.rk4_steps = n;
+    out.push_back({"rk4", "N=" + std::to_string(n), o});
+  }
+  for (double tol : {1e-6, 1e-8, 1e-10}) {
+    ShootingRobotOptions o;
+    o.integration_relative_tolerance = o.integration_absolute_tolerance = tol;
+    char text[32];
+    std::snprintf(text, sizeof text, "tol=%g", tol);
+    out.push_back({"dormand_prince", text, o});
+  }
+  return out;
 }
 
 }  // namespace pcr::bench

@@ -2,6 +2,7 @@
 // The Stewart-Gough scenes of the benchmarks (docs/benchmarks.md (Scenes) R5a, R5b): models, the R5a
 // inputs and target, the R5b teleoperation path.
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "pcr/robots/kinematics.hpp"
@@ -33,5 +34,15 @@ LinkTarget platform_target();
 /// Shooting settings of the robot references: Dormand-Prince with integration_relative_tolerance =
 /// integration_absolute_tolerance = 1e-12 and residual tolerance 1e-12.
 ShootingRobotOptions shooting_reference_options();
+
+/// A timed shooting setting: its integrator ("rk4" or "dormand_prince"), the settings column of the
+/// CSV ("N=40", "tol=1e-08") and the solver options (otherwise the defaults).
+struct ShootingMethod {
+  std::string name, settings;
+  ShootingRobotOptions options;
+};
+/// The timed shooting settings: RK4 with each of `rk4_steps` steps per rod, then Dormand-Prince at
+/// integration_relative_tolerance = integration_absolute_tolerance = 1e-6, 1e-8 and 1e-10.
+std::vector<ShootingMethod> shooting_methods(const std::vector<int>& rk4_steps);
 
 }  // namespace pcr::bench

@@ -27,29 +27,6 @@ using namespace pcr::bench;
 
 namespace {
 
-struct Method {
-  std::string name, settings;
-  ShootingRobotOptions options;
-};
-
-std::vector<Method> methods() {
-  std::vector<Method> out;
-  for (int n : {20, 40}) {
-    ShootingRobotOptions o;
-    o.integrator = IntegratorMethod::RK4;
-    o.rk4_steps = n;
-    out.push_back({"rk4", "N=" + std::to_string(n), o});
-  }
-  for (double tol : {1e-6, 1e-8, 1e-10}) {
-    ShootingRobotOptions o;
-    o.integration_relative_tolerance = o.integration_absolute_tolerance = tol;
-    char s[32];
-    std::snprintf(s, sizeof s, "tol=%g", tol);
-    out.push_back({"dormand_prince", s, o});
-  }
-  return out;
-}
-
 // One result line: on stdout and in the CSV.
 struct ResultTable {
   BenchCsv& csv;
@@ -57,7 +34,7 @@ struct ResultTable {
     std::printf("%-12s %-15s %-10s %10s %12s %10s %10s %5s %s\n", "scene", "method", "settings", "error",
                 "median [ms]", "min [ms]", "max [ms]", "it", "solves/s");
   }
-  void row(const std::string& scene, const Method& m, double error, const Timing& t, int iterations,
+  void row(const std::string& scene, const ShootingMethod& m, double error, const Timing& t, int iterations,
            double rate) const {
     csv.row(scene, m.name, m.settings, error, t, iterations);
     std::printf("%-12s %-15s %-10s %10.2e %12.3f %10.3f %10.3f %5d %.0f\n", scene.c_str(), m.name.c_str(),
@@ -71,7 +48,7 @@ template <class Solve>
 void cold_rows(const ResultTable& table, const std::shared_ptr<const RobotModel>& r5a, const char* scene,
                Solve solve) {
   const Repeats repeats{21, 21, 0.0};
-  for (const Method& m : methods()) {
+  for (const ShootingMethod& m : shooting_methods({20, 40})) {
     ShootingRobotSolver solver(r5a, m.options);
     double error = 0.0;
     int iterations = 0;
@@ -132,7 +109,7 @@ bool run_r5b_path(const ResultTable& table) {
   const std::vector<Pose> path = r5b_path();
   const std::vector<VecX> reference = r5b_reference(r5b, path);
   if (reference.empty()) return false;
-  for (const Method& m : methods()) {
+  for (const ShootingMethod& m : shooting_methods({20, 40})) {
     ShootingRobotSolver solver(r5b, m.options);
     std::vector<double> t;
     double error = 0.0, total = 0.0;

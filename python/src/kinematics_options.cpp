@@ -7,21 +7,12 @@
 
 #include "bindings.hpp"
 #include "pcr/core/error.hpp"
+#include "pcr/robots/kinematics_option_names.hpp"
 
 namespace py = pybind11;
 
 namespace pcr::python {
 namespace {
-
-std::string text_option(const std::string& key, const py::handle& value,
-                        const std::vector<std::string>& allowed) {
-  const std::string text = py::cast<std::string>(value);
-  for (const std::string& a : allowed)
-    if (text == a) return text;
-  std::string list;
-  for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
-  throw InputError("option " + key + "='" + text + "': expected one of " + list);
-}
 
 double positive_number(const std::string& key, const py::handle& value) {
   const double x = py::cast<double>(value);
@@ -34,23 +25,6 @@ int positive_count(const std::string& key, const py::handle& value) {
   const int n = py::cast<int>(value);
   if (n < 1) throw InputError("option " + key + "=" + std::to_string(n) + ": must be at least 1");
   return n;
-}
-
-// formulation: "auto" keeps the choice by slenderness (mixed rods solved condensed); the others are
-// exactly that formulation for every rod without a model hint (as the tool's --formulation).
-void set_formulation(KinematicsOptions& o, const std::string& f) {
-  if (f == "auto") return;
-  o.assembly.discretization.formulation = f == "primal"  ? RodFormulation::Primal
-                                          : f == "mixed" ? RodFormulation::Mixed
-                                                         : RodFormulation::Condensed;
-  o.assembly.formulation_by_slenderness = false;
-  o.assembly.condense_mixed_rods = false;
-}
-
-void set_objective(KinematicsOptions& o, const std::string& objective) {
-  o.ik.objective = objective == "effort"   ? IkObjective::ActuationEffort
-                   : objective == "energy" ? IkObjective::ElasticEnergy
-                                           : IkObjective::InputDistance;
 }
 
 }  // namespace
@@ -70,16 +44,8 @@ KinematicsOptions kinematics_options(const py::kwargs& kwargs) {
       o.assembly.discretization.degree = positive_count(key, v);
     else if (key == "elements")
       o.assembly.discretization.elements = positive_count(key, v);
-    else if (key == "formulation")
-      set_formulation(o, text_option(key, v, {"auto", "mixed", "condensed", "primal"}));
-    else if (key == "mixed_points")
-      o.assembly.discretization.mixed_points = text_option(key, v, {"midpoints", "greville"}) == "greville"
-                                                   ? MixedPoints::Greville
-                                                   : MixedPoints::Midpoints;
-    else if (key == "solver")
-      o.solver = text_option(key, v, {"newton", "ipopt"}) == "ipopt" ? SolverKind::Ipopt : SolverKind::Newton;
-    else if (key == "objective")
-      set_objective(o, text_option(key, v, {"distance", "effort", "energy"}));
+    else if (!kinematics_option_words(key).empty())  // solver, formulation, mixed_points, objective
+      set_kinematics_option(o, key, py::cast<std::string>(v));
     else if (key == "max_rod_stress")
       o.ik.max_rod_stress = positive_number(key, v);
     else if (key == "check_stability")

@@ -3,10 +3,12 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <utility>
 
 #include "pcr/core/error.hpp"
 #include "pcr/robots/io/gnuplot_figure.hpp"
 #include "pcr/robots/io/solution_writers.hpp"
+#include "pcr/robots/kinematics_option_names.hpp"
 #include "pcr/robots/urdf_loader.hpp"
 
 namespace pcr_app {
@@ -46,21 +48,16 @@ pcr::VecX resolve_inputs(const pcr::RobotModel& model, const std::vector<NamedAr
 
 pcr::KinematicsOptions kinematics_options(const SolveArguments& args) {
   pcr::KinematicsOptions options;
-  if (args.solver == "ipopt") options.solver = pcr::SolverKind::Ipopt;
-  if (args.solver == "newton") options.solver = pcr::SolverKind::Newton;
+  // The word options (already checked by the argument parser; "" where not given).
+  const std::pair<const char*, const std::string*> word_options[] = {{"solver", &args.solver},
+                                                                     {"formulation", &args.formulation},
+                                                                     {"mixed_points", &args.mixed_points},
+                                                                     {"objective", &args.objective}};
+  for (const auto& [name, word] : word_options)
+    if (!word->empty()) pcr::set_kinematics_option(options, name, *word);
   pcr::RodDiscretization& d = options.assembly.discretization;
   if (args.degree > 0) d.degree = args.degree;
   if (args.elements > 0) d.elements = args.elements;
-  if (args.formulation == "primal") d.formulation = pcr::RodFormulation::Primal;
-  if (args.formulation == "mixed") d.formulation = pcr::RodFormulation::Mixed;
-  if (args.formulation == "condensed") d.formulation = pcr::RodFormulation::Condensed;
-  if (args.formulation == "primal" || args.formulation == "mixed" || args.formulation == "condensed") {
-    options.assembly.formulation_by_slenderness = false;
-    options.assembly.condense_mixed_rods = false;  // exactly the formulation asked for
-  }
-  if (args.mixed_points == "greville") d.mixed_points = pcr::MixedPoints::Greville;
-  if (args.objective == "effort") options.ik.objective = pcr::IkObjective::ActuationEffort;
-  if (args.objective == "energy") options.ik.objective = pcr::IkObjective::ElasticEnergy;
   if (args.max_stress > 0.0) options.ik.max_rod_stress = args.max_stress;
   if (args.tolerance > 0.0) options.tolerance = args.tolerance;
   if (args.centerline_points > 0) options.centerline_points = args.centerline_points;

@@ -1,5 +1,6 @@
-// SparseLu: solutions of small systems with known answers, the sign of the determinant (computed by
-// hand), refactorisation on a kept pattern, and the failure report of a singular matrix.
+// SparseLu: solutions of small systems with known answers (and of a right-hand side without columns),
+// the sign of the determinant (computed by hand), refactorisation on a kept pattern, and the failure
+// report of a singular matrix.
 #define BOOST_TEST_MODULE sparse_lu
 #include <boost/test/unit_test.hpp>
 
@@ -39,6 +40,18 @@ BOOST_AUTO_TEST_CASE(solves_a_known_system) {
   const MatX X = lu.solve(B);
   BOOST_TEST((X.col(1) - 2 * expected).norm() < 1e-14);
   BOOST_TEST(lu.determinant_sign() == 1);
+}
+
+// A right-hand side without columns (the input Jacobian of a robot without inputs) has a 3 x 0 solution;
+// Eigen's SparseLU itself asserts on it (with assertions on, as in the sanitizer build).
+BOOST_AUTO_TEST_CASE(solves_a_right_hand_side_without_columns) {
+  MatX A(3, 3);
+  A << 2, 1, 0, 1, 3, 1, 0, 1, 4;
+  SparseLu lu;
+  BOOST_REQUIRE(lu.compute(sparse(A)));
+  const MatX X = lu.solve(MatX(3, 0));
+  BOOST_TEST(X.rows() == 3);
+  BOOST_TEST(X.cols() == 0);
 }
 
 // Swapping two rows of A flips the sign of det A; negating one more row flips it back.

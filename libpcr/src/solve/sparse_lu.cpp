@@ -52,6 +52,9 @@ VecX SparseLu::solve(const VecX& b) const {
 }
 
 MatX SparseLu::solve(const MatX& B) const {
+  // No right-hand sides (e.g. the input Jacobian of a robot without inputs): an n x 0 solution, without
+  // calling Eigen's SparseLU, which asserts on an empty right-hand side.
+  if (B.cols() == 0) return MatX::Zero(impl_->lu.cols(), 0);
   return impl_->lu.solve(B);
 }
 

@@ -44,8 +44,6 @@ using kinematics::FkModel;
 /// returns dX over all variables (zero rows for fixed ones), one column per rhs column.
 MatX implicit_derivative(const Problem& problem, const Eigen::SparseMatrix<double, Eigen::RowMajor>& J_all,
                          const MatX& rhs) {
-  // No columns (a robot without inputs): nothing to solve; Eigen's sparse LU does not take an empty rhs.
-  if (rhs.cols() == 0) return MatX::Zero(problem.num_variables(), 0);
   const FreeJacobian J = free_jacobian(problem, J_all);
   SparseLu lu;
   require(lu.compute(J.matrix), "derivatives: the assembled Jacobian is singular at this configuration");

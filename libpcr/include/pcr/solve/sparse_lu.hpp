@@ -31,6 +31,7 @@ class SparseLu {
   /// x = A^-1 b into a vector of the right size (no allocation when x already has it).
   void solve(const VecX& b, VecX& x) const;
   VecX solve(const VecX& b) const;
+  /// X = A^-1 B, one column per column of B (n x 0 for a B without columns).
   MatX solve(const MatX& B) const;
   /// Sign of det A: +1, -1 (0 before a successful factorisation).
   int determinant_sign() const;
