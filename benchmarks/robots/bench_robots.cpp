@@ -222,6 +222,80 @@ void run_r5b_path(BenchCsv& csv, const std::shared_ptr<const RobotModel>& r5b, c
   std::printf("  per pass: %s (fresh Jacobians)\n", passes.c_str());
 }
 
+// R5a cold rows: the default degree (AssemblyOptions) over the element counts, and at 8 elements the
+// baselines of the default's choice: degree 5, degree 5 at the Greville points. Rows named "condensed":
+// the condensed form (the default for these rods; R5a's rods carry gravity, so n, m also read the
+// integral of p); the mixed rows are its baseline.
+std::vector<Mesh> r5a_meshes() {
+  const int p = AssemblyOptions().discretization.degree;
+  const MixedPoints mid = MixedPoints::Midpoints;
+  const RodFormulation condensed = RodFormulation::Condensed;
+  return {{p, 2, mid},
+          {p, 4, mid},
+          {p, 8, mid},
+          {p, 8, mid, true},
+          {p, 16, mid},
+          {5, 8, mid},
+          {5, 8, MixedPoints::Greville},
+          {p, 2, mid, false, 1e-10, condensed},
+          {p, 4, mid, false, 1e-10, condensed},
+          {p, 8, mid, false, 1e-10, condensed},
+          {p, 16, mid, false, 1e-10, condensed},
+          {5, 8, mid, false, 1e-10, condensed}};
+}
+
+// R5b teleoperation: the size of the square IK system (structural zeros of the blocks left out) and the
+// cost of a warm solve's operations.
+void print_r5b_operation_costs(const std::shared_ptr<const RobotModel>& r5b, const std::vector<Pose>& path) {
+  const int p = AssemblyOptions().discretization.degree;
+  const MixedPoints mid = MixedPoints::Midpoints;
+  const RodFormulation condensed = RodFormulation::Condensed;
+  for (const Mesh& mesh :
+       {Mesh{p, 8, mid}, Mesh{5, 8, mid}, Mesh{p, 16, mid}, Mesh{p, 8, mid, false, 1e-10, condensed},
+        Mesh{5, 16, mid, false, 1e-10, condensed}}) {
+    InverseKinematics ik(r5b, {platform_target()},
+                         options(mesh.degree, mesh.elements, 1e-10, mesh.points, false, mesh.formulation));
+    const Problem& problem = ik.problem();
+    std::printf("R5b IK %s %s: %d rows, %d Jacobian nonzeros\n", settings_of(mesh).c_str(),
+                to_string(mesh.formulation), problem.num_rows(), problem.jacobian_nonzeros());
+    if (ik.solve({path[0]}).summary.converged()) print_operation_costs(ik);
+  }
+}
+
+// R5b timed warm solves. Greville points only at 8 elements (at 4, warm Newton solves fail along the
+// path and each failure goes to Ipopt, minutes).
+std::vector<Mesh> r5b_path_meshes() {
+  const int p = AssemblyOptions().discretization.degree;
+  const MixedPoints mid = MixedPoints::Midpoints;
+  const RodFormulation condensed = RodFormulation::Condensed;
+  return {{p, 2, mid},
+          {p, 4, mid},
+          {p, 8, mid},
+          {p, 8, mid, true},  // sparse LU baseline
+          {p, 16, mid},
+          {5, 8, mid},
+          {5, 16, mid},
+          {5, 16, mid, true},  // sparse LU baseline
+          {5, 8, MixedPoints::Greville},
+          // a looser Newton tolerance (docs/cli.md: T = 100 x the accuracy)
+          {p, 8, mid, false, 1e-6},
+          {p, 8, mid, true, 1e-6},
+          {5, 16, mid, false, 1e-6},
+          {5, 16, mid, true, 1e-6},
+          // the condensed form (rods without distributed loads): 7 instead of 13 unknowns per control point
+          {p, 8, mid, false, 1e-10, condensed},
+          {p, 16, mid, false, 1e-10, condensed},
+          {p, 8, mid, false, 1e-6, condensed},
+          {7, 6, mid, false, 1e-6, condensed},
+          {5, 8, mid, false, 1e-6, condensed},
+          {5, 16, mid, false, 1e-6, condensed},
+          {7, 12, mid, false, 1e-6, condensed},
+          // 1e-7: below 1e-8 m on 14 and 16 elements (the path predictor amplifies the convergence error
+          // of the last solutions, so 1e-6 leaves ~8e-8 m there)
+          {5, 14, mid, false, 1e-7, condensed},
+          {5, 16, mid, false, 1e-7, condensed}};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -233,74 +307,14 @@ int main(int argc, char** argv) {
   if (argc > 2 && std::string(argv[2]) == "six_rus") return bench_six_rus(csv);
   const auto r5a = load_r5a();
   const auto r5b = load_r5b();
-  // The default degree (AssemblyOptions) over the element counts, and at 8 elements the baselines of
-  // the default's choice: degree 5, degree 5 at the Greville points.
-  const int p = AssemblyOptions().discretization.degree;
-  const MixedPoints mid = MixedPoints::Midpoints;
-  // Rows named "condensed": the condensed form (the default for these rods; R5a's rods carry gravity, so
-  // n, m also read the integral of p); the mixed rows are its baseline.
-  const RodFormulation condensed = RodFormulation::Condensed;
-  if (!run_r5a_cold(csv, r5a,
-                    {{p, 2, mid},
-                     {p, 4, mid},
-                     {p, 8, mid},
-                     {p, 8, mid, true},
-                     {p, 16, mid},
-                     {5, 8, mid},
-                     {5, 8, MixedPoints::Greville},
-                     {p, 2, mid, false, 1e-10, condensed},
-                     {p, 4, mid, false, 1e-10, condensed},
-                     {p, 8, mid, false, 1e-10, condensed},
-                     {p, 16, mid, false, 1e-10, condensed},
-                     {5, 8, mid, false, 1e-10, condensed}}))
-    return 1;
-
+  if (!run_r5a_cold(csv, r5a, r5a_meshes())) return 1;
   // R5b teleoperation: the cost of a warm solve's operations, reference inputs along the path at 32
   // elements, then timed warm solves.
   const std::vector<Pose> path = r5b_path();
-  for (const Mesh& mesh :
-       {Mesh{p, 8, mid}, Mesh{5, 8, mid}, Mesh{p, 16, mid}, Mesh{p, 8, mid, false, 1e-10, condensed},
-        Mesh{5, 16, mid, false, 1e-10, condensed}}) {
-    // size of the square IK system (structural zeros of the blocks left out)
-    InverseKinematics ik(r5b, {platform_target()},
-                         options(mesh.degree, mesh.elements, 1e-10, mesh.points, false, mesh.formulation));
-    const Problem& problem = ik.problem();
-    std::printf("R5b IK %s %s: %d rows, %d Jacobian nonzeros\n", settings_of(mesh).c_str(),
-                to_string(mesh.formulation), problem.num_rows(), problem.jacobian_nonzeros());
-    if (ik.solve({path[0]}).summary.converged()) print_operation_costs(ik);
-  }
+  print_r5b_operation_costs(r5b, path);
   const std::vector<VecX> reference = r5b_reference(r5b, path);
   if (reference.empty()) return 1;
-  // Greville points only at 8 elements (at 4, warm Newton solves fail along the path and each failure
-  // goes to Ipopt, minutes).
-  const Mesh path_meshes[] = {
-      {p, 2, mid},
-      {p, 4, mid},
-      {p, 8, mid},
-      {p, 8, mid, true},  // sparse LU baseline
-      {p, 16, mid},
-      {5, 8, mid},
-      {5, 16, mid},
-      {5, 16, mid, true},  // sparse LU baseline
-      {5, 8, MixedPoints::Greville},
-      // a looser Newton tolerance (docs/cli.md: T = 100 x the accuracy)
-      {p, 8, mid, false, 1e-6},
-      {p, 8, mid, true, 1e-6},
-      {5, 16, mid, false, 1e-6},
-      {5, 16, mid, true, 1e-6},
-      // the condensed form (rods without distributed loads): 7 instead of 13 unknowns per control point
-      {p, 8, mid, false, 1e-10, condensed},
-      {p, 16, mid, false, 1e-10, condensed},
-      {p, 8, mid, false, 1e-6, condensed},
-      {7, 6, mid, false, 1e-6, condensed},
-      {5, 8, mid, false, 1e-6, condensed},
-      {5, 16, mid, false, 1e-6, condensed},
-      {7, 12, mid, false, 1e-6, condensed},
-      // 1e-7: below 1e-8 m on 14 and 16 elements (the path predictor amplifies the convergence error of
-      // the last solutions, so 1e-6 leaves ~8e-8 m there)
-      {5, 14, mid, false, 1e-7, condensed},
-      {5, 16, mid, false, 1e-7, condensed}};
-  for (const Mesh& mesh : path_meshes) run_r5b_path(csv, r5b, path, reference, mesh);
+  for (const Mesh& mesh : r5b_path_meshes()) run_r5b_path(csv, r5b, path, reference, mesh);
   if (bench_six_rus(csv) != 0) return 1;
   std::cout << "wrote " << csv.path() << "\n";
   return 0;

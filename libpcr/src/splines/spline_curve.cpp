@@ -125,6 +125,47 @@ void insert_to_bezier(const std::vector<double>& U, int p, int a, int mul, int r
   }
 }
 
+// Degree elevation of the Bezier segment bpts (degree p) by t into ebpts, columns lbz..p + t (The NURBS
+// Book eq. 5.36).
+void elevate_bezier(const MatX& bezalfs, int p, int t, int lbz, const MatX& bpts, MatX& ebpts) {
+  for (int i = lbz; i <= p + t; ++i) {
+    ebpts.col(i).setZero();
+    for (int j = std::max(0, i - t); j <= std::min(p, i); ++j) ebpts.col(i) += bezalfs(i, j) * bpts.col(j);
+  }
+}
+
+// Removes the knot ua oldr times (it was inserted oldr times in the previous pass) from the control
+// points written so far (Qw up to cind, knots Uh up to kind) and the elevated segment ebpts
+// (The NURBS Book A5.9, the knot removal step).
+void remove_inserted_knot(const std::vector<double>& Uh, int ph, int oldr, int kind, int cind, int lbz,
+                          double ua, double ub, MatX& Qw, MatX& ebpts) {
+  int first = kind - 2, last = kind;
+  const double den = ub - ua;
+  const double bet = (ub - Uh[kind - 1]) / den;
+  for (int tr = 1; tr < oldr; ++tr) {
+    int i = first, j = last, kj = j - kind + 1;
+    while (j - i > tr) {
+      if (i < cind) {
+        const double alf = (ub - Uh[i]) / (ua - Uh[i]);
+        Qw.col(i) = alf * Qw.col(i) + (1.0 - alf) * Qw.col(i - 1);
+      }
+      if (j >= lbz) {
+        if (j - tr <= kind - ph + oldr) {
+          const double gam = (ub - Uh[j - tr]) / den;
+          ebpts.col(kj) = gam * ebpts.col(kj) + (1.0 - gam) * ebpts.col(kj + 1);
+        } else {
+          ebpts.col(kj) = bet * ebpts.col(kj) + (1.0 - bet) * ebpts.col(kj + 1);
+        }
+      }
+      ++i;
+      --j;
+      --kj;
+    }
+    --first;
+    ++last;
+  }
+}
+
 }  // namespace
 
 SplineCurve SplineCurve::with_elevated_degree(int times) const {
@@ -161,37 +202,8 @@ SplineCurve SplineCurve::with_elevated_degree(int times) const {
     const int lbz = oldr > 0 ? (oldr + 2) / 2 : 1;
     const int rbz = r > 0 ? ph - (r + 1) / 2 : ph;
     if (r > 0) insert_to_bezier(U, p, a, mul, r, ua, ub, alfs, bpts, next_bpts);
-    for (int i = lbz; i <= ph; ++i) {  // degree-elevate the Bezier segment
-      ebpts.col(i).setZero();
-      for (int j = std::max(0, i - t); j <= std::min(p, i); ++j) ebpts.col(i) += bezalfs(i, j) * bpts.col(j);
-    }
-    if (oldr > 1) {  // remove the knot ua oldr times (it was inserted oldr times in the previous pass)
-      int first = kind - 2, last = kind;
-      const double den = ub - ua;
-      const double bet = (ub - Uh[kind - 1]) / den;
-      for (int tr = 1; tr < oldr; ++tr) {
-        int i = first, j = last, kj = j - kind + 1;
-        while (j - i > tr) {
-          if (i < cind) {
-            const double alf = (ub - Uh[i]) / (ua - Uh[i]);
-            Qw.col(i) = alf * Qw.col(i) + (1.0 - alf) * Qw.col(i - 1);
-          }
-          if (j >= lbz) {
-            if (j - tr <= kind - ph + oldr) {
-              const double gam = (ub - Uh[j - tr]) / den;
-              ebpts.col(kj) = gam * ebpts.col(kj) + (1.0 - gam) * ebpts.col(kj + 1);
-            } else {
-              ebpts.col(kj) = bet * ebpts.col(kj) + (1.0 - bet) * ebpts.col(kj + 1);
-            }
-          }
-          ++i;
-          --j;
-          --kj;
-        }
-        --first;
-        ++last;
-      }
-    }
+    elevate_bezier(bezalfs, p, t, lbz, bpts, ebpts);
+    if (oldr > 1) remove_inserted_knot(Uh, ph, oldr, kind, cind, lbz, ua, ub, Qw, ebpts);
     if (a != p)  // load the knot ua with its elevated multiplicity
       for (int i = 0; i < ph - oldr; ++i) Uh[kind++] = ua;
     for (int j = lbz; j <= rbz; ++j) Qw.col(cind++) = ebpts.col(j);

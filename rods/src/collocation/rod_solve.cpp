@@ -154,6 +154,94 @@ StabilityIndicator stability_of(const CollocationRod& rod, const VecX& x_solutio
   return sign0 == sign1 ? StabilityIndicator::SignKept : StabilityIndicator::Unstable;
 }
 
+// The starting points: sol.variables and the returned x0 (load stepping's start) from `initial` or the
+// straight rod, exact at load factor 0; sol.x (the direct solve's start) from `initial` or the
+// stress-free shape (the straight rod without intrinsic strains).
+VecX set_starting_point(const CollocationRod& rod, const VecX* initial, RodSolution& sol) {
+  VecX x0;
+  {
+    Problem probe;
+    sol.variables = rod.add_to_problem(probe, {}, 0.0, false, -1, initial);
+    x0 = probe.initial_values();
+  }
+  if (initial) {
+    sol.x = x0;
+  } else {
+    const VecX stress_free = rod.stress_free_configuration();
+    Problem probe;
+    rod.add_to_problem(probe, {}, 1.0, false, -1, &stress_free);
+    sol.x = probe.initial_values();
+  }
+  return x0;
+}
+
+// Where load stepping ended: the last converged state x at load factor lambda, the last solve's summary.
+struct LoadStepping {
+  VecX x;
+  double lambda = 0.0;
+  int steps = 0, iterations = 0;
+  SolveSummary last;
+};
+
+// Continuation: lambda from 0 (the initial guess x0 is exact for zero load and the ends where the guess
+// has them) to 1: loads and intrinsic strains scaled by lambda, prescribed end frames moved from the
+// guess's to the model's (MovingEnds); step grows by 1.5 after a success and halves after a failure.
+LoadStepping step_the_loads(const CollocationRod& rod, const RodSolveOptions& options, const VecX& x0,
+                            RodVariables& vars) {
+  const MovingEnds ends(rod, x0, vars);
+  LoadStepping out;
+  double step = 0.25, previous_step = 0.0;
+  out.x = x0;
+  VecX x_previous = x0;
+  out.last.status = SolveStatus::Failed;
+  while (out.lambda < 1.0 && out.steps < options.max_load_steps && step > 1e-7) {
+    const double target = std::min(1.0, out.lambda + step);
+    VecX trial = out.x;
+    if (previous_step > 0.0)
+      trial += (out.x - x_previous) * ((target - out.lambda) / previous_step);  // secant predictor
+    if (ends.moves() && target < 1.0)
+      out.last =
+          solve_at(CollocationRod(ends.at(target), rod.discretization()), options, target, trial, vars);
+    else
+      out.last = solve_at(rod, options, target, trial, vars);
+    out.iterations += out.last.iterations;
+    ++out.steps;
+    if (out.last.converged()) {
+      x_previous = out.x;
+      out.x = trial;
+      previous_step = target - out.lambda;
+      out.lambda = target;
+      step *= 1.5;
+    } else {
+      step *= 0.5;
+    }
+  }
+  return out;
+}
+
+// The solution after load stepping (that of lambda = 1, or the failed direct solve's with the stepping's
+// status), its message naming both, and a failure where the result is inadmissible.
+void take_load_stepping_result(const CollocationRod& rod, const LoadStepping& stepping, RodSolution& sol) {
+  sol.load_steps = stepping.steps;
+  std::ostringstream msg;
+  msg << "direct solve failed (" << to_string(sol.summary.status)
+      << (sol.summary.message.empty() ? "" : ": " + sol.summary.message)
+      << "); load stepping: " << stepping.steps << " steps, reached lambda = " << stepping.lambda;
+  if (stepping.lambda >= 1.0 && stepping.last.converged()) {
+    sol.x = stepping.x;
+    sol.summary = stepping.last;
+  } else {
+    sol.summary.status =
+        stepping.last.status == SolveStatus::Converged ? SolveStatus::MaxIterations : stepping.last.status;
+  }
+  sol.summary.message = msg.str() + (sol.summary.message.empty() ? "" : "; " + sol.summary.message);
+  const std::string collapse = sol.summary.converged() ? collapse_of(rod, sol.x, sol.variables) : "";
+  if (!collapse.empty()) {
+    sol.summary.status = SolveStatus::Failed;
+    sol.summary.message += "; converged to an inadmissible state: " + collapse;
+  }
+}
+
 }  // namespace
 
 const char* to_string(StabilityIndicator s) {
@@ -173,22 +261,7 @@ RodSolution solve_rod(const RodModel& model, const RodSolveOptions& options, con
   RodSolution sol;
   sol.rod = std::make_shared<const CollocationRod>(model, options.discretization);
   const CollocationRod& rod = *sol.rod;
-  // The direct solve starts from `initial` or the stress-free shape (the straight rod without intrinsic
-  // strains); load stepping from `initial` or the straight rod, exact at load factor 0.
-  VecX x0;
-  {
-    Problem probe;
-    sol.variables = rod.add_to_problem(probe, {}, 0.0, false, -1, initial);
-    x0 = probe.initial_values();
-  }
-  if (initial) {
-    sol.x = x0;
-  } else {
-    const VecX stress_free = rod.stress_free_configuration();
-    Problem probe;
-    rod.add_to_problem(probe, {}, 1.0, false, -1, &stress_free);
-    sol.x = probe.initial_values();
-  }
+  const VecX x0 = set_starting_point(rod, initial, sol);
   sol.summary = solve_at(rod, options, 1.0, sol.x, sol.variables);
   int iterations = sol.summary.iterations;
   const std::string direct_collapse = sol.summary.converged() ? collapse_of(rod, sol.x, sol.variables) : "";
@@ -201,54 +274,9 @@ RodSolution solve_rod(const RodModel& model, const RodSolveOptions& options, con
   // result is reported as it is.
   const bool stalled_near_solution = direct_collapse.empty() && sol.summary.residual_max_abs < 1e-6;
   if (!sol.summary.converged() && options.load_stepping && !stalled_near_solution) {
-    // Continuation: lambda from 0 (the initial guess is exact for zero load and the ends where the guess
-    // has them) to 1: loads and intrinsic strains scaled by lambda, prescribed end frames moved from the
-    // guess's to the model's (MovingEnds); step grows by 1.5 after a success and halves after a failure.
-    const MovingEnds ends(rod, x0, sol.variables);
-    double lambda = 0.0, step = 0.25, previous_step = 0.0;
-    VecX x = x0, x_previous = x0;
-    SolveSummary last;
-    last.status = SolveStatus::Failed;
-    int steps = 0;
-    while (lambda < 1.0 && steps < options.max_load_steps && step > 1e-7) {
-      const double target = std::min(1.0, lambda + step);
-      VecX trial = x;
-      if (previous_step > 0.0)
-        trial += (x - x_previous) * ((target - lambda) / previous_step);  // secant predictor
-      if (ends.moves() && target < 1.0)
-        last = solve_at(CollocationRod(ends.at(target), rod.discretization()), options, target, trial,
-                        sol.variables);
-      else
-        last = solve_at(rod, options, target, trial, sol.variables);
-      iterations += last.iterations;
-      ++steps;
-      if (last.converged()) {
-        x_previous = x;
-        x = trial;
-        previous_step = target - lambda;
-        lambda = target;
-        step *= 1.5;
-      } else {
-        step *= 0.5;
-      }
-    }
-    sol.load_steps = steps;
-    std::ostringstream msg;
-    msg << "direct solve failed (" << to_string(sol.summary.status)
-        << (sol.summary.message.empty() ? "" : ": " + sol.summary.message) << "); load stepping: " << steps
-        << " steps, reached lambda = " << lambda;
-    if (lambda >= 1.0 && last.converged()) {
-      sol.x = x;
-      sol.summary = last;
-    } else {
-      sol.summary.status = last.status == SolveStatus::Converged ? SolveStatus::MaxIterations : last.status;
-    }
-    sol.summary.message = msg.str() + (sol.summary.message.empty() ? "" : "; " + sol.summary.message);
-    const std::string collapse = sol.summary.converged() ? collapse_of(rod, sol.x, sol.variables) : "";
-    if (!collapse.empty()) {
-      sol.summary.status = SolveStatus::Failed;
-      sol.summary.message += "; converged to an inadmissible state: " + collapse;
-    }
+    const LoadStepping stepping = step_the_loads(rod, options, x0, sol.variables);
+    iterations += stepping.iterations;
+    take_load_stepping_result(rod, stepping, sol);
   }
   sol.summary.iterations = iterations;
   if (options.check_stability && sol.summary.converged())

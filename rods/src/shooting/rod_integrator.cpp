@@ -145,6 +145,52 @@ IntegrationReport integrate_rk4(const RodOde& ode, double s0, double s1, State& 
   return report;
 }
 
+// RMS of e weighted by absolute_tolerance * scale_i + relative_tolerance * max(|y_a,i|, |y_b,i|), the
+// norm of the step-size control (Hairer, Norsett & Wanner II.4).
+struct WeightedRms {
+  const IntegratorOptions& o;
+  const RodStateVector& scale;
+  double operator()(const RodStateVector& e, const RodStateVector& y_a, const RodStateVector& y_b) const {
+    double sum = 0.0;
+    for (int i = 0; i < kRodStateSize; ++i) {
+      const double sc = o.absolute_tolerance * scale[i] +
+                        o.relative_tolerance * std::max(std::abs(y_a[i]), std::abs(y_b[i]));
+      sum += (e[i] / sc) * (e[i] / sc);
+    }
+    return std::sqrt(sum / kRodStateSize);
+  }
+};
+
+// Initial step: h = 0.01 |y| / |y'| in the weighted norm (Hairer, Norsett & Wanner II.4, simplified),
+// within [10 h_min, span]; then the controller adapts it.
+double initial_step(const WeightedRms& weighted_rms, const RodStateVector& y0, const RodStateVector& f0,
+                    double span, double h_min) {
+  const double d0 = weighted_rms(y0, y0, y0), d1 = weighted_rms(f0, y0, y0);
+  const double h = (d0 < 1e-5 || d1 < 1e-5) ? 1e-6 * span : 0.01 * d0 / d1;
+  return std::min(std::max(h, 10.0 * h_min), span);
+}
+
+// k1 = f(s, y) at the start of the next step, y the renormalised y_new. First same as last: k7 =
+// f(y_new); renormalising q scales f's q part by 1/|q| (degree-1 homogeneous in q, the rest is
+// independent of |q|), except for the tangents: recompute then.
+template <typename State>
+void next_first_stage(const RodOde& ode, double s, const State& y, const State& y_new, const State& k7,
+                      State& k1) {
+  if (std::is_same<State, RodStateVector>::value) {
+    k1 = k7;
+    const double norm = state_of(y_new).template segment<4>(RodStateIndex::q).norm();
+    k1.col(0).template segment<4>(RodStateIndex::q) /= norm;
+  } else {
+    ode.derivative(s, y, k1);
+  }
+}
+
+IntegrationReport failed(IntegrationReport report, const char* what, double s) {
+  report.success = false;
+  report.message = failure(what, s);
+  return report;
+}
+
 template <typename State>
 IntegrationReport integrate_dormand_prince(const RodOde& ode, double s0, double s1, State& y,
                                            const IntegratorOptions& o, RodTrajectory* trajectory) {
@@ -153,32 +199,15 @@ IntegrationReport integrate_dormand_prince(const RodOde& ode, double s0, double 
   if (s1 == s0) return report;
   const double span = s1 - s0;
   const double h_min = o.min_step_fraction * span;
-  const RodStateVector& scale = ode.state_scale();
+  const WeightedRms weighted_rms{o, ode.state_scale()};
   State k1, k2, k3, k4, k5, k6, k7, tmp, y_new;
   ode.derivative(s0, y, k1);
-  // Initial step: h = 0.01 |y| / |y'| in the weighted norm (Hairer, Norsett & Wanner II.4, simplified),
-  // then the controller adapts it.
-  auto weighted_rms = [&](const RodStateVector& e, const RodStateVector& y_a, const RodStateVector& y_b) {
-    double sum = 0.0;
-    for (int i = 0; i < kRodStateSize; ++i) {
-      const double sc = o.absolute_tolerance * scale[i] +
-                        o.relative_tolerance * std::max(std::abs(y_a[i]), std::abs(y_b[i]));
-      sum += (e[i] / sc) * (e[i] / sc);
-    }
-    return std::sqrt(sum / kRodStateSize);
-  };
-  const RodStateVector y0 = state_of(y), f0 = state_of(k1);
-  const double d0 = weighted_rms(y0, y0, y0), d1 = weighted_rms(f0, y0, y0);
-  double h = (d0 < 1e-5 || d1 < 1e-5) ? 1e-6 * span : 0.01 * d0 / d1;
-  h = std::min(std::max(h, 10.0 * h_min), span);
+  double h = initial_step(weighted_rms, state_of(y), state_of(k1), span, h_min);
   double s = s0;
   bool last_rejected = false;
   while (s < s1) {
-    if (report.steps + report.rejected_steps >= o.max_steps) {
-      report.success = false;
-      report.message = failure("too many steps (max_steps reached)", s);
-      return report;
-    }
+    if (report.steps + report.rejected_steps >= o.max_steps)
+      return failed(report, "too many steps (max_steps reached)", s);
     const bool last = s + h >= s1 - 1e-14 * span;
     if (last) h = s1 - s;
     DormandPrinceStages::step(ode, s, h, y, k1, k2, k3, k4, k5, k6, k7, tmp, y_new);
@@ -188,11 +217,7 @@ IntegrationReport integrate_dormand_prince(const RodOde& ode, double s0, double 
     const double error = weighted_rms(err, state_of(y), state_of(y_new));
     if (!std::isfinite(error)) {
       // Non-finite trial: shrink the step hard; fail if that is impossible.
-      if (h <= h_min) {
-        report.success = false;
-        report.message = failure("non-finite state", s);
-        return report;
-      }
+      if (h <= h_min) return failed(report, "non-finite state", s);
       h = std::max(0.1 * h, h_min);
       ++report.rejected_steps;
       last_rejected = true;
@@ -204,15 +229,7 @@ IntegrationReport integrate_dormand_prince(const RodOde& ode, double s0, double 
       s = last ? s1 : s + h;
       y = y_new;
       normalise(y);
-      // First same as last: k7 = f(y_new); renormalising q scales f's q part by 1/|q| (degree-1
-      // homogeneous in q, the rest is independent of |q|), except for the tangents: recompute then.
-      if (std::is_same<State, RodStateVector>::value) {
-        k1 = k7;
-        const double norm = state_of(y_new).template segment<4>(RodStateIndex::q).norm();
-        k1.col(0).template segment<4>(RodStateIndex::q) /= norm;
-      } else {
-        ode.derivative(s, y, k1);
-      }
+      next_first_stage(ode, s, y, y_new, k7, k1);
       ++report.steps;
       record(trajectory, s, y);
       factor = std::min(last_rejected ? 1.0 : 5.0, std::max(0.2, factor));
@@ -222,11 +239,7 @@ IntegrationReport integrate_dormand_prince(const RodOde& ode, double s0, double 
       ++report.rejected_steps;
       last_rejected = true;
       h *= std::max(0.2, factor);
-      if (h < h_min) {
-        report.success = false;
-        report.message = failure("step size underflow (min_step_fraction reached)", s);
-        return report;
-      }
+      if (h < h_min) return failed(report, "step size underflow (min_step_fraction reached)", s);
     }
   }
   return report;
