@@ -9,23 +9,12 @@
 #include "pcr/math/quaternion.hpp"
 #include "pcr/math/so3.hpp"
 #include "pcr/robots/urdf_loader.hpp"
+#include "robot_fixtures.hpp"
 
 namespace pcr::bench {
 
 std::shared_ptr<const RobotModel> load_six_rus(bool platform_mass) {
-  const std::string path = std::string(PCR_MODEL_DIR) + "/six_rus.urdf";
-  if (platform_mass) return std::make_shared<const RobotModel>(load_robot_model(path));
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string xml = text.str();
-  const size_t begin = xml.find("\n    <inertial>");
-  const std::string close = "</inertial>";
-  const size_t end = xml.find(close, begin);
-  require(begin != std::string::npos && end != std::string::npos,
-          path + ": no platform <inertial> to remove");
-  xml.erase(begin, end + close.size() - begin);
-  return std::make_shared<const RobotModel>(parse_robot_model(xml, "six_rus_massless"));
+  return platform_mass ? test::load_model("six_rus") : test::massless_six_rus();
 }
 
 VecX six_rus_readme_fk_inputs() {

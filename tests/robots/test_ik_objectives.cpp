@@ -25,20 +25,16 @@
 #include "pcr/robots/urdf_loader.hpp"
 #include "pcr/rods/rod_solve.hpp"
 #include "pcr/solve/jacobian_check.hpp"
+#include "robot_fixtures.hpp"
 
 using namespace pcr;
+using test::load_model;
+using test::model_path;
+using test::moved_inputs;
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-std::string model_path(const std::string& name) {
-  return std::string(PCR_MODEL_DIR) + "/" + name + ".urdf";
-}
-
-std::shared_ptr<const RobotModel> load(const std::string& name) {
-  return std::make_shared<const RobotModel>(load_robot_model(model_path(name)));
-}
 
 /// The planar robot with rods of the given radius instead of 0.5 mm; first_rod_extra: XML put into
 /// the first rod element.
@@ -54,15 +50,6 @@ std::shared_ptr<const RobotModel> planar_with_radius(double radius, const std::s
   BOOST_REQUIRE(replaced == 3);
   xml.insert(xml.find("</pcr_rod>"), first_rod_extra);
   return std::make_shared<const RobotModel>(parse_robot_model(xml, "planar_thick"));
-}
-
-/// Inputs moved from the defaults by an asymmetric pattern (so that rods bend).
-VecX moved_inputs(const RobotModel& m, double fraction) {
-  const double pattern[] = {1.0, -0.6, 0.35, -0.8, 0.5, -0.2};
-  VecX u = m.default_input_values();
-  for (int i = 0; i < u.size(); ++i)
-    u[i] += pattern[i % 6] * fraction * (m.inputs()[i].upper - m.inputs()[i].lower);
-  return u;
 }
 
 /// Elastic energy in the strain form, 1/2 int (kappa^T K_BT kappa + eps^T K_SE eps) ds (the test
@@ -174,7 +161,7 @@ BOOST_AUTO_TEST_CASE(objective_and_stress_values_match_independent_computations)
   // 32 elements: the strain form's shear energy (from p', K_SE ~ 6e5 N) is 3x off at 8 elements
   // (3.4e-3 J vs 1.0e-3 J), within 2e-4 relative at 16 and 32 elements; the bending parts agree to
   // 5e-5 already at 8 (Simpson, 2000 intervals per rod).
-  const auto model = load("stewart_gough");
+  const auto model = load_model("stewart_gough");
   KinematicsOptions o;
   o.assembly.discretization.elements = 32;
   ForwardKinematics fk(model, o);
@@ -223,7 +210,7 @@ BOOST_AUTO_TEST_CASE(objective_and_stress_gradients_match_finite_differences) {
     if (primal) o.assembly.discretization = RodDiscretization{RodFormulation::Primal, 5, 8};
     o.assembly.formulation_by_slenderness = false;
     o.assembly.condense_mixed_rods = false;
-    const auto model = primal ? planar_with_radius(0.01) : load(k.model);
+    const auto model = primal ? planar_with_radius(0.01) : load_model(k.model);
     ForwardKinematics fk(model, o);
     BOOST_REQUIRE(fk.solve(moved_inputs(*model, 0.05)).summary.converged());
     const RobotAssembly& a = fk.assembly();
@@ -260,7 +247,7 @@ BOOST_AUTO_TEST_CASE(reduced_gradients_match_finite_differences_of_fk) {
   // its smoothing is strongly curved): error 0.17 at step 1e-4, 1.7e-3 at 1e-5 (O(h^2) truncation,
   // so ~2e-5 at 1e-6, of a derivative ~134), plus FK noise (x(u) to ~1e-12 relative / 1e-6 step);
   // tolerance 2e-5 absolute + relative.
-  const auto model = load("stewart_gough");
+  const auto model = load_model("stewart_gough");
   InverseKinematics ik(model, {position_target(kTarget)});
   const Problem& p = ik.problem();
   BOOST_REQUIRE(p.variable(ik.target_variable(0)).name == "target.platform");
@@ -290,7 +277,7 @@ BOOST_AUTO_TEST_CASE(reduced_gradients_match_finite_differences_of_fk) {
 }
 
 BOOST_AUTO_TEST_CASE(effort_and_energy_optima_beat_nearby_feasible_points) {
-  const auto model = load("stewart_gough");
+  const auto model = load_model("stewart_gough");
   KinematicsOptions fo;
   fo.tolerance = 1e-12;
   ForwardKinematics fk(model, fo);
@@ -351,7 +338,7 @@ BOOST_AUTO_TEST_CASE(partial_targets_go_to_the_reduced_space_and_agree_with_the_
   // default. On the planar robot (3 inputs, x and z targeted) the full-space Ipopt (IkOptions::
   // full_space) converges as well and must reach the same optimum: both satisfy the equations to the
   // tolerance 1e-10 and Ipopt's optimality to 1e-8 (scaled), so the inputs agree to ~1e-8 L; bound 1e-6 m.
-  const auto planar = load("planar_three_rod");
+  const auto planar = load_model("planar_three_rod");
   LinkTarget t = position_target(Vec3(0.01, 0.0, 0.29));
   t.components = {true, false, true, false, false, false};  // x, z
   const std::vector<Pose> pose{Pose{t.pose.position, Quat(1, 0, 0, 0)}};
@@ -369,7 +356,7 @@ BOOST_AUTO_TEST_CASE(partial_targets_go_to_the_reduced_space_and_agree_with_the_
                                                                          << " | " << b.inputs.transpose());
   // stewart_gough, position only (3 of 6 inputs free): the reduced space converges (the full space did
   // not: IkOptions::full_space) and reaches the target to its tolerance 1e-9 L0 (L0 = 0.45 m) + FK noise.
-  const auto sg = load("stewart_gough");
+  const auto sg = load_model("stewart_gough");
   InverseKinematics ik(sg, {position_target(kTarget)});
   const VecX sg_reference = sg->default_input_values();
   const RobotSolution s = ik.solve({Pose{kTarget, Quat(1, 0, 0, 0)}}, &sg_reference);
@@ -384,7 +371,7 @@ BOOST_AUTO_TEST_CASE(stress_limit_is_active_and_satisfied) {
   // at 32 elements) and 1.25e9 Pa (62.01 mm, reached without IkOptions::max_input_step); 70 % is below
   // all of them, so the limit must bind whichever one Ipopt approaches, and it is reachable (the
   // effort optimum has 4.6e8 Pa).
-  const auto model = load("stewart_gough");
+  const auto model = load_model("stewart_gough");
   const VecX reference = model->default_input_values();
   const std::vector<Pose> target{Pose{kTarget, Quat(1, 0, 0, 0)}};
   InverseKinematics free_ik(model, {position_target(kTarget)});
@@ -413,7 +400,7 @@ BOOST_AUTO_TEST_CASE(stress_limit_is_active_and_satisfied) {
 
 BOOST_AUTO_TEST_CASE(infeasible_stress_limit_is_reported) {
   // 1 kPa: gravity alone (platform 0.1 kg on six 1 mm rods) gives axial stresses ~1e5 Pa.
-  const auto model = load("stewart_gough");
+  const auto model = load_model("stewart_gough");
   KinematicsOptions o;
   o.ik.objective = IkObjective::ElasticEnergy;
   o.ik.max_rod_stress = 1e3;
@@ -426,7 +413,7 @@ BOOST_AUTO_TEST_CASE(infeasible_stress_limit_is_reported) {
 }
 
 BOOST_AUTO_TEST_CASE(bad_ik_options_are_rejected_with_names) {
-  const auto model = load("stewart_gough");
+  const auto model = load_model("stewart_gough");
   auto make = [&](const KinematicsOptions& o) { InverseKinematics ik(model, {position_target(kTarget)}, o); };
   KinematicsOptions o;
   o.ik.objective = IkObjective::ActuationEffort;
@@ -448,7 +435,7 @@ BOOST_AUTO_TEST_CASE(bad_ik_options_are_rejected_with_names) {
     BOOST_TEST(std::string(e.what()).find("stress_points_per_rod = 1") != std::string::npos, e.what());
   }
   // A robot without fed rods has no effort objective.
-  const auto slider = load("slider_actuated");
+  const auto slider = load_model("slider_actuated");
   LinkTarget t = position_target(kTarget);
   KinematicsOptions e;
   e.ik.objective = IkObjective::ActuationEffort;
@@ -506,7 +493,7 @@ BOOST_AUTO_TEST_CASE(formulation_is_chosen_by_slenderness_unless_given) {
     for (int i = 0; i < a.num_rods(); ++i) f.push_back(a.rod(i).discretization().formulation);
     return f;
   };
-  const auto slender = load("planar_three_rod");
+  const auto slender = load_model("planar_three_rod");
   const auto thick = planar_with_radius(0.07);
   // sqrt(EI / EA) = r / 2 for a circle: equal up to round-off (1e-12 relative).
   BOOST_TEST(gyration_ratio(slender->rods()[0]) == 2.5e-4 / 0.5, boost::test_tools::tolerance(1e-12));
@@ -521,12 +508,14 @@ BOOST_AUTO_TEST_CASE(formulation_is_chosen_by_slenderness_unless_given) {
   greville.discretization.mixed_points = MixedPoints::Greville;
   // Every shipped model is slender, with gravity (R5a, ...) or without (R5b); the cantilever model names
   // the mixed form in its discretisation hint and keeps it.
-  for (RodFormulation f : formulations(load("cantilever"), {})) BOOST_TEST((f == RodFormulation::Mixed));
+  for (RodFormulation f : formulations(load_model("cantilever"), {}))
+    BOOST_TEST((f == RodFormulation::Mixed));
   for (const char* name : {"stewart_gough", "stewart_gough_teleop", "two_stage", "slider_actuated"}) {
-    for (RodFormulation f : formulations(load(name), {})) BOOST_TEST((f == RodFormulation::Condensed), name);
-    for (RodFormulation f : formulations(load(name), keep_mixed))
+    for (RodFormulation f : formulations(load_model(name), {}))
+      BOOST_TEST((f == RodFormulation::Condensed), name);
+    for (RodFormulation f : formulations(load_model(name), keep_mixed))
       BOOST_TEST((f == RodFormulation::Mixed), name);
-    for (RodFormulation f : formulations(load(name), greville))
+    for (RodFormulation f : formulations(load_model(name), greville))
       BOOST_TEST((f == RodFormulation::Mixed), name);
   }
   // Options switch the choice off.
@@ -607,7 +596,7 @@ BOOST_AUTO_TEST_CASE(square_target_gives_the_newton_inputs_whatever_the_objectiv
   // R5a full pose target: no freedom left, so the reduced-space solve must land on the inputs of the
   // square Newton path. Both solve to 1e-10 dimensionless residuals; the inputs agree to ~1e-10 m,
   // tolerance 1e-8 m.
-  const auto model = load("stewart_gough");
+  const auto model = load_model("stewart_gough");
   LinkTarget t;
   t.link = "platform";
   t.pose.position = Vec3(0.0, 0.0, 0.4);

@@ -20,40 +20,21 @@
 #include "pcr/robots/platform_hold_check.hpp"
 #include "pcr/robots/urdf_loader.hpp"
 #include "pcr/solve/jacobian_check.hpp"
+#include "robot_fixtures.hpp"
 
 using namespace pcr;
+using test::load_model;
+using test::model_path;
+using test::moved_inputs;
+using test::tight_kinematics;
 
 namespace {
-
-std::string model_path(const std::string& name) {
-  return std::string(PCR_MODEL_DIR) + "/" + name + ".urdf";
-}
 
 std::string read_file(const std::string& path) {
   std::ifstream in(path);
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
-}
-
-std::shared_ptr<const RobotModel> load(const std::string& name) {
-  return std::make_shared<const RobotModel>(load_robot_model(model_path(name)));
-}
-
-KinematicsOptions tight() {
-  KinematicsOptions o;
-  o.tolerance = 1e-12;
-  return o;
-}
-
-/// Inputs moved from the defaults by `fraction` of their range with an asymmetric pattern (as in
-/// test_kinematics: symmetric configurations of symmetric robots can be singular for IK).
-VecX moved_inputs(const RobotModel& m, double fraction) {
-  const double pattern[] = {1.0, -0.6, 0.35, -0.8, 0.5, -0.2};
-  VecX u = m.default_input_values();
-  for (int i = 0; i < u.size(); ++i)
-    u[i] += pattern[i % 6] * fraction * (m.inputs()[i].upper - m.inputs()[i].lower);
-  return u;
 }
 
 const char* const kSteel = R"(<material youngs_modulus="200e9" shear_modulus="80e9" density="8000"/>)";
@@ -105,7 +86,7 @@ int count_blocks(const Problem& p, const std::string& kind) {
 BOOST_AUTO_TEST_CASE(joint_coupling_and_passive_balance_blocks_match_finite_differences) {
   std::vector<std::pair<std::string, std::shared_ptr<const RobotModel>>> models;
   for (const char* name : {"planar_pinned", "passive_hinge", "universal_pair", "universal_passive"})
-    models.emplace_back(name, load(name));
+    models.emplace_back(name, load_model(name));
   for (int n = 1; n <= 3; ++n)
     models.emplace_back("chain" + std::to_string(n),
                         std::make_shared<const RobotModel>(parse_robot_model(chain_model(n), "chain.urdf")));
@@ -148,9 +129,9 @@ BOOST_AUTO_TEST_CASE(universal_coupling_equals_two_passive_revolute_joints) {
   // generalised forces are its two zero moment rows, so both models have the same discrete equilibria.
   // Agreement to 1e-10 m (issue requirement): both solves at 1e-12 dimensionless residual x length
   // scale 0.26 m, times the condition of the platform's response (< 1e2 here).
-  const auto pair = load("universal_pair"), passive = load("universal_passive");
+  const auto pair = load_model("universal_pair"), passive = load_model("universal_passive");
   const VecX u = moved_inputs(*pair, 0.05);
-  ForwardKinematics fa(pair, tight()), fb(passive, tight());
+  ForwardKinematics fa(pair, tight_kinematics()), fb(passive, tight_kinematics());
   const RobotSolution a = fa.solve(u), b = fb.solve(u);
   BOOST_REQUIRE_MESSAGE(a.summary.converged(), a.summary.brief_report());
   BOOST_REQUIRE_MESSAGE(b.summary.converged(), b.summary.brief_report());
@@ -194,7 +175,7 @@ BOOST_AUTO_TEST_CASE(bar_on_a_passive_hinge_with_a_torsion_spring_meets_the_mome
     << kSteel << "<section type=\"circle\" radius=\"" << r << "\"/><length value=\"" << L << R"("/></pcr_rod>
 </robot>)";
   const auto model = std::make_shared<const RobotModel>(parse_robot_model(x.str(), "hinge_bar.urdf"));
-  ForwardKinematics fk(model, tight());
+  ForwardKinematics fk(model, tight_kinematics());
   const RobotSolution s = fk.solve(model->default_input_values());
   BOOST_REQUIRE_MESSAGE(s.summary.converged(), s.summary.brief_report());
   BOOST_REQUIRE(s.passive_joints.size() == 1);
@@ -250,7 +231,7 @@ BOOST_AUTO_TEST_CASE(continuous_and_prismatic_passive_joints_in_a_chain_balance_
 </robot>)";
   const auto model = std::make_shared<const RobotModel>(parse_robot_model(x.str(), "swivel_slider.urdf"));
   BOOST_REQUIRE(model->passive_joints().size() == 2);  // file order: swivel, slider
-  ForwardKinematics fk(model, tight());
+  ForwardKinematics fk(model, tight_kinematics());
   const RobotSolution s = fk.solve(model->default_input_values());
   BOOST_REQUIRE_MESSAGE(s.summary.converged(), s.summary.brief_report());
   double q1 = r1, q2 = r2;  // fixed point (a contraction: the coupling q1 Fy / k2 ~ 0.01)
@@ -277,7 +258,7 @@ BOOST_AUTO_TEST_CASE(fk_then_ik_round_trip_on_the_joint_models) {
                                                                {"universal_pair", full},
                                                                {"universal_passive", full}};
   for (const auto& [name, components] : cases) {
-    const auto model = load(name);
+    const auto model = load_model(name);
     ForwardKinematics fk(model);
     const VecX u = moved_inputs(*model, 0.005);
     const RobotSolution s = fk.solve(u);
@@ -319,7 +300,7 @@ BOOST_AUTO_TEST_CASE(fk_then_ik_round_trip_on_the_joint_models) {
 }
 
 BOOST_AUTO_TEST_CASE(table_and_json_list_the_passive_joint_values) {
-  const auto model = load("passive_hinge");
+  const auto model = load_model("passive_hinge");
   ForwardKinematics fk(model);
   const RobotSolution s = fk.solve(model->default_input_values());
   BOOST_REQUIRE(s.summary.converged());
@@ -393,7 +374,7 @@ BOOST_AUTO_TEST_CASE(rank_check_counts_universal_4_and_revolute_5_constraints) {
   for (const Case& c :
        {Case{"planar_pinned", 3 * (5 + 5), 6 + 3 * 6}, Case{"universal_pair", 6 * (4 + 3), 6 + 6 * 6},
         Case{"universal_passive", 6 * 3, 6 + 6 * 2}, Case{"passive_hinge", 3 * 3, 6}}) {
-    const auto model = load(c.model);
+    const auto model = load_model(c.model);
     const MatX C =
         coupling_constraint_matrix(*model, model->default_joint_values(), model->initial_platform_poses());
     BOOST_TEST(C.rows() == c.rows, c.model);

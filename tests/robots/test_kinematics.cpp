@@ -14,18 +14,15 @@
 #include "pcr/robots/kinematics.hpp"
 #include "pcr/robots/urdf_loader.hpp"
 #include "pcr/solve/jacobian_check.hpp"
+#include "robot_fixtures.hpp"
 
 using namespace pcr;
+using test::load_model;
+using test::model_path;
+using test::moved_inputs;
+using test::tight_kinematics;
 
 namespace {
-
-std::string model_path(const std::string& name) {
-  return std::string(PCR_MODEL_DIR) + "/" + name + ".urdf";
-}
-
-std::shared_ptr<const RobotModel> load(const std::string& name) {
-  return std::make_shared<const RobotModel>(load_robot_model(model_path(name)));
-}
 
 std::string read_file(const std::string& path) {
   std::ifstream in(path);
@@ -60,26 +57,6 @@ const std::array<bool, 6> kFull{{true, true, true, true, true, true}};
 const std::array<bool, 6> kHeaveTilt{{false, false, true, true, true, false}};  // z, rx, ry
 const std::array<bool, 6> kPlanar{{true, false, true, false, true, false}};     // x, z, ry
 
-KinematicsOptions tight() {
-  KinematicsOptions o;
-  o.tolerance = 1e-12;
-  return o;
-}
-
-/// Inputs moved from the defaults by `fraction` of their range with an asymmetric pattern (symmetric
-/// configurations of symmetric robots can be singular for IK: e.g. the planar robot's x and rotation
-/// both depend on the left/right difference alone when left = right).
-VecX moved_inputs(const RobotModel& m, double fraction) {
-  const double pattern[] = {1.0, -0.6, 0.35, -0.8, 0.5, -0.2};
-  VecX u = m.default_input_values();
-  for (int i = 0; i < u.size(); ++i) {
-    const ActuationInput& in = m.inputs()[i];
-    const double range = std::isfinite(in.upper - in.lower) ? in.upper - in.lower : 1.0;
-    u[i] += pattern[i % 6] * fraction * range;
-  }
-  return u;
-}
-
 /// Warm-started IK along the first 10 steps of the R5b teleoperation path with two option sets: both
 /// converge at every step and their inputs agree to `tolerance` m.
 void check_warm_teleop_ik_agrees(const std::shared_ptr<const RobotModel>& teleop, const KinematicsOptions& a,
@@ -100,7 +77,7 @@ void check_warm_teleop_ik_agrees(const std::shared_ptr<const RobotModel>& teleop
 /// FK of `model` at inputs u with the default assembly (mixed rods solved condensed) and with the mixed
 /// rods kept, both at tolerance 1e-12 and converged; the options are returned for further solves.
 struct CondensedAndMixed {
-  KinematicsOptions condensed = tight(), mixed = tight();
+  KinematicsOptions condensed = tight_kinematics(), mixed = tight_kinematics();
   bool condensed_with_loads = false;  // of the first rod in the condensed assembly
   RobotSolution fk_condensed, fk_mixed;
 };
@@ -126,7 +103,7 @@ BOOST_AUTO_TEST_CASE(every_coupling_balance_and_target_block_matches_finite_diff
   std::vector<std::pair<std::string, std::shared_ptr<const RobotModel>>> models;
   for (const char* name : {"stewart_gough", "stewart_gough_teleop", "planar_three_rod", "two_stage",
                            "cantilever", "slider_actuated"})
-    models.emplace_back(name, load(name));
+    models.emplace_back(name, load_model(name));
   models.emplace_back("planar_with_spherical_rod", planar_with_spherical_rod());
   for (const auto& [name, model] : models) {
     ForwardKinematics fk(model);
@@ -140,7 +117,7 @@ BOOST_AUTO_TEST_CASE(every_coupling_balance_and_target_block_matches_finite_diff
     BOOST_TEST(r.passed, name << ": " << r.to_string());
   }
   // Target blocks: a full-pose target with a rotated offset link is in the IK problem.
-  const auto model = load("stewart_gough");
+  const auto model = load_model("stewart_gough");
   LinkTarget t;
   t.link = "platform";
   t.pose.position = Vec3(0.01, -0.02, 0.4);
@@ -166,7 +143,7 @@ BOOST_AUTO_TEST_CASE(fk_then_ik_round_trip_on_every_model) {
                                      {"two_stage", {"platform1", "platform2"}, kHeaveTilt},
                                      {"slider_actuated", {"platform"}, kHeaveTilt}};
   for (const IkCase& c : cases) {
-    const auto model = load(c.model);
+    const auto model = load_model(c.model);
     ForwardKinematics fk(model);
     // 0.5 % of the input ranges (mm): moderate deformations. (Larger unequal length changes of the
     // planar robot can make a direct FK jump to an unstable equilibrium; KinematicsOptions::check_stability
@@ -230,8 +207,8 @@ BOOST_AUTO_TEST_CASE(fk_then_ik_round_trip_on_every_model) {
 
 BOOST_AUTO_TEST_CASE(input_jacobian_matches_finite_differences_of_fk) {
   for (const char* name : {"stewart_gough", "slider_actuated"}) {
-    const auto model = load(name);
-    ForwardKinematics fk(model, tight());
+    const auto model = load_model(name);
+    ForwardKinematics fk(model, tight_kinematics());
     const VecX u0 = moved_inputs(*model, 0.01);
     BOOST_REQUIRE(fk.solve(u0).summary.converged());
     const MatX J = fk.input_jacobian();
@@ -258,8 +235,8 @@ BOOST_AUTO_TEST_CASE(input_jacobian_matches_finite_differences_of_fk) {
 }
 
 BOOST_AUTO_TEST_CASE(compliance_matches_finite_differences_of_fk) {
-  const auto base = load("stewart_gough");
-  ForwardKinematics fk(base, tight());
+  const auto base = load_model("stewart_gough");
+  ForwardKinematics fk(base, tight_kinematics());
   BOOST_REQUIRE(fk.solve(base->default_input_values()).summary.converged());
   const MatX C = fk.compliance(0);
   // FD: the same model with an extra dead wrench on the platform (force at its origin, torque).
@@ -276,7 +253,7 @@ BOOST_AUTO_TEST_CASE(compliance_matches_finite_differences_of_fk) {
       std::vector<Platform> platforms = base->platforms();
       auto model = std::make_shared<const RobotModel>(base->name(), base->links(), base->joints(), platforms,
                                                       base->rods(), loads, base->gravity());
-      ForwardKinematics f(model, tight());
+      ForwardKinematics f(model, tight_kinematics());
       const RobotSolution s = f.solve(model->default_input_values());
       BOOST_REQUIRE(s.summary.converged());
       poses[sign > 0 ? 0 : 1] = s.platforms[0];
@@ -291,8 +268,8 @@ BOOST_AUTO_TEST_CASE(compliance_matches_finite_differences_of_fk) {
 }
 
 BOOST_AUTO_TEST_CASE(newton_and_ipopt_forward_kinematics_agree) {
-  const auto model = load("stewart_gough");
-  KinematicsOptions o = tight();
+  const auto model = load_model("stewart_gough");
+  KinematicsOptions o = tight_kinematics();
   ForwardKinematics newton(model, o);
   o.solver = SolverKind::Ipopt;
   o.tolerance = 1e-11;
@@ -312,8 +289,8 @@ BOOST_AUTO_TEST_CASE(newton_and_ipopt_forward_kinematics_agree) {
 BOOST_AUTO_TEST_CASE(structured_and_sparse_lu_give_the_same_kinematics) {
   for (const std::string name : {"stewart_gough", "stewart_gough_teleop", "planar_three_rod",
                                  "slider_actuated", "two_stage", "cantilever"}) {
-    const auto model = load(name);
-    KinematicsOptions structured = tight(), sparse = tight();
+    const auto model = load_model(name);
+    KinematicsOptions structured = tight_kinematics(), sparse = tight_kinematics();
     sparse.linear_solver = NewtonLinearSolver::Sparse;
     ForwardKinematics a(model, structured), b(model, sparse);
     const VecX u = moved_inputs(*model, 0.02);
@@ -328,8 +305,8 @@ BOOST_AUTO_TEST_CASE(structured_and_sparse_lu_give_the_same_kinematics) {
                  name << " rod " << r);
   }
   // R5b: warm-started IK along a few steps of the teleoperation path (Newton with factorisation reuse).
-  const auto teleop = load("stewart_gough_teleop");
-  KinematicsOptions structured = tight(), sparse = tight();
+  const auto teleop = load_model("stewart_gough_teleop");
+  KinematicsOptions structured = tight_kinematics(), sparse = tight_kinematics();
   sparse.linear_solver = NewtonLinearSolver::Sparse;
   check_warm_teleop_ik_agrees(teleop, structured, sparse, 1e-9);
 }
@@ -339,7 +316,7 @@ BOOST_AUTO_TEST_CASE(condensed_and_mixed_rods_give_the_same_kinematics) {
   // is the mixed midpoint scheme with n, m eliminated (test_collocation_rod), so FK and warm-started
   // IK must agree with the mixed rods up to the solver tolerance: both solve to 1e-12 (dimensionless),
   // which moves positions by ~1e-12 L0 times cond; 1e-9 m, and 1e-6 relative on the rod wrenches.
-  const auto teleop = load("stewart_gough_teleop");
+  const auto teleop = load_model("stewart_gough_teleop");
   const CondensedAndMixed both = condensed_and_mixed_fk(teleop, moved_inputs(*teleop, 0.02));
   const RobotSolution &sc = both.fk_condensed, &sm = both.fk_mixed;
   BOOST_TEST((sc.platforms[0].position - sm.platforms[0].position).norm() < 1e-9);
@@ -357,9 +334,9 @@ BOOST_AUTO_TEST_CASE(condensed_and_mixed_rods_give_the_same_kinematics) {
 BOOST_AUTO_TEST_CASE(condensed_and_mixed_rods_agree_under_gravity) {
   // R5a's rods carry gravity: there the condensed form (exact balance with the integral of p) is not the
   // mixed scheme but converges to the same solution. At the default mesh both are 1.8e-10 m (FK
-  // platform) and 1.7e-8 m (IK inputs) from a fine mixed reference (bench_robots, docs/benchmarks.md "Robots"), so
-  // they differ by at most twice that: asserted 1e-9 m and 5e-8 m.
-  const auto r5a = load("stewart_gough");
+  // platform) and 1.7e-8 m (IK inputs) from a fine mixed reference (bench_robots, docs/benchmarks.md
+  // "Robots"), so they differ by at most twice that: asserted 1e-9 m and 5e-8 m.
+  const auto r5a = load_model("stewart_gough");
   const CondensedAndMixed both = condensed_and_mixed_fk(r5a, r5a->default_input_values());
   BOOST_TEST(both.condensed_with_loads);
   BOOST_TEST((both.fk_condensed.platforms[0].position - both.fk_mixed.platforms[0].position).norm() < 1e-9);
@@ -375,8 +352,8 @@ BOOST_AUTO_TEST_CASE(condensed_and_mixed_rods_agree_under_gravity) {
 }
 
 BOOST_AUTO_TEST_CASE(summary_counts_the_fresh_jacobians_of_every_attempt) {
-  const auto model = load("stewart_gough");
-  ForwardKinematics fk(model, tight());
+  const auto model = load_model("stewart_gough");
+  ForwardKinematics fk(model, tight_kinematics());
   const VecX u = moved_inputs(*model, 0.03);
   const RobotSolution cold = fk.solve(u);
   BOOST_REQUIRE_MESSAGE(cold.summary.converged(), cold.summary.brief_report());
@@ -419,7 +396,7 @@ BOOST_AUTO_TEST_CASE(a_rod_compressed_to_a_point_is_not_a_solution) {
 
 BOOST_AUTO_TEST_CASE(admissible_solutions_report_their_smallest_axial_stretch) {
   // Steel rods under platform loads of a few N: |eps3| = |n| / EA ~ 1e-5, so v3 within 1e-3 of 1.
-  const auto model = load("stewart_gough");
+  const auto model = load_model("stewart_gough");
   ForwardKinematics fk(model);
   const RobotSolution s = fk.solve(moved_inputs(*model, 0.03));
   BOOST_REQUIRE_MESSAGE(s.summary.converged(), s.summary.brief_report());
@@ -427,7 +404,7 @@ BOOST_AUTO_TEST_CASE(admissible_solutions_report_their_smallest_axial_stretch) {
 }
 
 BOOST_AUTO_TEST_CASE(unreachable_target_is_reported_not_hidden) {
-  const auto model = load("stewart_gough");
+  const auto model = load_model("stewart_gough");
   LinkTarget t;
   t.link = "platform";
   InverseKinematics ik(model, {t});
@@ -441,7 +418,7 @@ BOOST_AUTO_TEST_CASE(unreachable_target_is_reported_not_hidden) {
 }
 
 BOOST_AUTO_TEST_CASE(bad_inputs_are_rejected_with_names) {
-  const auto model = load("stewart_gough");
+  const auto model = load_model("stewart_gough");
   ForwardKinematics fk(model);
   BOOST_CHECK_THROW(fk.solve(VecX::Constant(5, 0.45)), InputError);
   VecX u = model->default_input_values();
@@ -461,7 +438,7 @@ BOOST_AUTO_TEST_CASE(bad_inputs_are_rejected_with_names) {
 
 BOOST_AUTO_TEST_CASE(assembly_hands_out_its_coupling_and_balance_blocks) {
   // Typed handles instead of searching blocks by kind: each names the block of that rod end or platform.
-  const RobotAssembly sg(load("stewart_gough"));
+  const RobotAssembly sg(load_model("stewart_gough"));
   const Problem& p = sg.problem();
   for (int i = 0; i < sg.num_rods(); ++i) {
     const std::string rod = sg.rod(i).model().name;
@@ -472,7 +449,7 @@ BOOST_AUTO_TEST_CASE(assembly_hands_out_its_coupling_and_balance_blocks) {
   BOOST_TEST(p.residual(sg.platform_balance(0)).name() == sg.model().platforms()[0].name);
   BOOST_TEST(p.residual(sg.platform_balance(0)).num_rows() == 7);
   // The cantilever's tip is free: no coupling block there.
-  const RobotAssembly cantilever(load("cantilever"));
+  const RobotAssembly cantilever(load_model("cantilever"));
   BOOST_TEST(cantilever.rod_coupling(0, false) >= 0);
   BOOST_TEST(cantilever.rod_coupling(0, true) == -1);
   BOOST_CHECK_THROW(cantilever.rod_coupling(1, false), InputError);

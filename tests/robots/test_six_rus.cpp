@@ -16,29 +16,19 @@
 #include "pcr/robots/kinematics.hpp"
 #include "pcr/robots/urdf_loader.hpp"
 #include "pcr/solve/jacobian_check.hpp"
+#include "robot_fixtures.hpp"
 
 using namespace pcr;
 
 namespace {
 
-const std::string kModelPath = std::string(PCR_MODEL_DIR) + "/six_rus.urdf";
-
 std::shared_ptr<const RobotModel> load_six_rus() {
-  return std::make_shared<const RobotModel>(load_robot_model(kModelPath));
+  return test::load_model("six_rus");
 }
 
 /// The model without the platform's 0.5 kg (their README IK example is massless).
 std::shared_ptr<const RobotModel> load_massless_six_rus() {
-  std::ifstream in(kModelPath);
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string xml = text.str();
-  const size_t begin = xml.find("\n    <inertial>");
-  const std::string close = "</inertial>";
-  const size_t end = xml.find(close, begin);
-  BOOST_REQUIRE(begin != std::string::npos && end != std::string::npos);
-  xml.erase(begin, end + close.size() - begin);
-  return std::make_shared<const RobotModel>(parse_robot_model(xml, "six_rus_massless"));
+  return test::massless_six_rus();
 }
 
 VecX inputs(std::initializer_list<double> values) {

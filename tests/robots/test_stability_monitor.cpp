@@ -18,40 +18,16 @@
 
 #include "pcr/robots/kinematics.hpp"
 #include "pcr/robots/urdf_loader.hpp"
+#include "robot_fixtures.hpp"
 
 using namespace pcr;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kE = 200e9, kWidth = 2e-3, kHeight = 1e-3, kLoad = 1.0;  // Pa, m, m, N
-const double kEulerLength = kPi / 2 * std::sqrt(kE * kWidth * std::pow(kHeight, 3) / 12 / kLoad);
-
-// A massless platform on the column's upper end carries the load: F downwards plus `lateral` along x and
-// y (an imperfection).
-std::shared_ptr<const RobotModel> fed_column(double lateral) {
-  const std::string force =
-      std::to_string(lateral) + " " + std::to_string(lateral) + " " + std::to_string(-kLoad);
-  const std::string xml = R"(<robot name="fed_column">
-  <link name="base"/>
-  <link name="platform"/>
-  <joint name="platform_pose" type="floating">
-    <parent link="base"/>
-    <child link="platform"/>
-    <origin xyz="0 0 0.1" rpy="0 0 0"/>
-  </joint>
-  <pcr_load link="platform" xyz="0 0 0" force=")" +
-                          force + R"(" torque="0 0 0"/>
-  <pcr_rod name="column">
-    <start link="base" xyz="0 0 0" rpy="0 0 0" coupling="clamped"/>
-    <end link="platform" xyz="0 0 0" rpy="0 0 0" coupling="clamped"/>
-    <material youngs_modulus="200e9" shear_modulus="80e9" density="8000"/>
-    <section type="rectangle" width="0.002" height="0.001"/>
-    <length value="0.1" actuated="true" lower="0.05" upper="1.0"/>
-  </pcr_rod>
-</robot>)";
-  return std::make_shared<const RobotModel>(parse_robot_model(xml, "fed_column"));
-}
+// The fed column (robot_fixtures.hpp): load kLoad, Euler length kEulerLength.
+constexpr double kLoad = test::kFedColumnLoad;  // N
+const double kEulerLength = test::fed_column_euler_length();
+using test::fed_column;
 
 KinematicsOptions monitored() {
   KinematicsOptions o;

@@ -16,14 +16,13 @@
 #include "pcr/robots/kinematics.hpp"
 #include "pcr/robots/shooting/shooting_robot_solver.hpp"
 #include "pcr/robots/urdf_loader.hpp"
+#include "robot_fixtures.hpp"
 
 using namespace pcr;
+using test::load_model;
+using test::tight_shooting;
 
 namespace {
-
-std::shared_ptr<const RobotModel> load(const std::string& name) {
-  return std::make_shared<const RobotModel>(load_robot_model(std::string(PCR_MODEL_DIR) + "/" + name + ".urdf"));
-}
 
 KinematicsOptions fine_collocation() {
   KinematicsOptions o;
@@ -31,14 +30,6 @@ KinematicsOptions fine_collocation() {
   o.assembly.use_model_hints = false;
   o.assembly.formulation_by_slenderness = false;
   o.assembly.condense_mixed_rods = false;
-  o.tolerance = 1e-12;
-  return o;
-}
-
-ShootingRobotOptions tight_shooting() {
-  ShootingRobotOptions o;
-  o.integration_relative_tolerance = 1e-12;
-  o.integration_absolute_tolerance = 1e-12;
   o.tolerance = 1e-12;
   return o;
 }
@@ -62,7 +53,8 @@ Distance distance(const RobotSolution& a, const RobotSolution& b) {
     d.angle = std::max(d.angle, rotation_angle_between(a.platforms[k].rotation(), b.platforms[k].rotation()));
   }
   d.inputs = (a.inputs - b.inputs).lpNorm<Eigen::Infinity>();
-  if (a.passive_joints.size() > 0) d.passive = (a.passive_joints - b.passive_joints).lpNorm<Eigen::Infinity>();
+  if (a.passive_joints.size() > 0)
+    d.passive = (a.passive_joints - b.passive_joints).lpNorm<Eigen::Infinity>();
   return d;
 }
 
@@ -96,7 +88,7 @@ Pose pose(double x, double y, double z, double roll, double pitch, double yaw) {
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(six_rus_fk_at_several_crank_angles) {
-  const auto model = load("six_rus");
+  const auto model = load_model("six_rus");
   const VecX u0 = model->default_input_values();
   check_fk(model, u0, "six_rus FK default");
   VecX raised = u0;
@@ -109,7 +101,7 @@ BOOST_AUTO_TEST_CASE(six_rus_fk_at_several_crank_angles) {
 }
 
 BOOST_AUTO_TEST_CASE(six_rus_ik_to_level_and_tilted_poses) {
-  const auto model = load("six_rus");
+  const auto model = load_model("six_rus");
   LinkTarget platform;
   platform.link = "platform";  // the full pose
   const std::vector<LinkTarget> target{platform};
@@ -128,7 +120,7 @@ BOOST_AUTO_TEST_CASE(six_rus_ik_to_level_and_tilted_poses) {
 
 BOOST_AUTO_TEST_CASE(pinned_planar_robot_and_passive_hinge_fk) {
   for (const char* name : {"planar_pinned", "passive_hinge"}) {
-    const auto model = load(name);
+    const auto model = load_model(name);
     const VecX u0 = model->default_input_values();
     check_fk(model, u0, std::string(name) + " FK default");
     VecX moved = u0;
@@ -140,7 +132,7 @@ BOOST_AUTO_TEST_CASE(pinned_planar_robot_and_passive_hinge_fk) {
 
 BOOST_AUTO_TEST_CASE(universal_couplings_and_their_passive_construction_fk) {
   for (const char* name : {"universal_pair", "universal_passive"}) {
-    const auto model = load(name);
+    const auto model = load_model(name);
     VecX moved = model->default_input_values();
     const double pattern[] = {0.01, -0.006, 0.0035, -0.008, 0.005, -0.002};
     for (int i = 0; i < moved.size(); ++i) moved[i] += pattern[i % 6];

@@ -14,15 +14,13 @@
 #include "pcr/robots/shooting/shooting_robot_solver.hpp"
 #include "pcr/robots/urdf_loader.hpp"
 #include "pcr/rods/shooting/rod_shooting.hpp"
+#include "robot_fixtures.hpp"
 
 using namespace pcr;
+using test::load_model;
+using test::tight_shooting;
 
 namespace {
-
-std::shared_ptr<const RobotModel> load(const std::string& name) {
-  return std::make_shared<const RobotModel>(
-      load_robot_model(std::string(PCR_MODEL_DIR) + "/" + name + ".urdf"));
-}
 
 /// Collocation finer than the minimum (mixed, degree 6, 8 elements): degree 8, 16 elements,
 /// tolerance 1e-11. Measured differences to shooting (platform position; IK: inputs; at the Greville
@@ -40,16 +38,6 @@ KinematicsOptions tight_collocation() {
   o.assembly.discretization = {RodFormulation::Mixed, 8, 16};
   o.assembly.use_model_hints = false;
   o.tolerance = 1e-11;
-  return o;
-}
-
-/// Shooting with Dormand-Prince at 1e-12, converged to 1e-12 (scaled residual).
-ShootingRobotOptions tight_shooting() {
-  ShootingRobotOptions o;
-  o.integrator = IntegratorMethod::DormandPrince;
-  o.integration_relative_tolerance = 1e-12;
-  o.integration_absolute_tolerance = 1e-12;
-  o.tolerance = 1e-12;
   return o;
 }
 
@@ -120,7 +108,7 @@ void check_platform_balance(const RobotModel& m, const RobotSolution& s) {
 
 BOOST_AUTO_TEST_CASE(forward_kinematics_agrees_with_collocation) {
   for (const char* name : {"stewart_gough", "stewart_gough_teleop"}) {
-    const auto model = load(name);
+    const auto model = load_model(name);
     ForwardKinematics fk(model, tight_collocation());
     ShootingRobotSolver shooting(model, tight_shooting());
     for (double move : {0.0, 0.005}) {
@@ -253,7 +241,7 @@ BOOST_AUTO_TEST_CASE(inverse_kinematics_agrees_with_collocation) {
   Pose r5b;  // step 30 of the teleoperation path: (0, 0.02, 0.48) + 30 (0, 0.001, 0.001)
   r5b.position = Vec3(0, 0.05, 0.51);
   for (const Case& c : {Case{"stewart_gough", r5a}, Case{"stewart_gough_teleop", r5b}}) {
-    const auto model = load(c.model);
+    const auto model = load_model(c.model);
     LinkTarget t;
     t.link = "platform";
     t.pose = c.target;
@@ -279,7 +267,7 @@ BOOST_AUTO_TEST_CASE(inverse_kinematics_agrees_with_collocation) {
 
 BOOST_AUTO_TEST_CASE(rk4_converges_to_the_dormand_prince_solution) {
   // Fixed-step RK4 is 4th order: the R5a FK pose error falls by ~16 per doubling of the steps.
-  const auto model = load("stewart_gough");
+  const auto model = load_model("stewart_gough");
   const VecX u = moved_inputs(*model, 0.005);
   ShootingRobotSolver reference(model, tight_shooting());
   const RobotSolution ref = reference.fk(u);
@@ -304,7 +292,7 @@ BOOST_AUTO_TEST_CASE(rk4_converges_to_the_dormand_prince_solution) {
 BOOST_AUTO_TEST_CASE(warm_started_path_matches_cold_solves) {
   // IK along five steps of the R5b path, warm-started, equals cold solves at each point (to the
   // solver tolerance: 1e-9 m on the inputs).
-  const auto model = load("stewart_gough_teleop");
+  const auto model = load_model("stewart_gough_teleop");
   ShootingRobotSolver path(model, tight_shooting());
   for (int step = 0; step < 5; ++step) {
     Pose target;
@@ -321,7 +309,7 @@ BOOST_AUTO_TEST_CASE(warm_started_path_matches_cold_solves) {
 BOOST_AUTO_TEST_CASE(joint_driven_bases_agree_with_collocation) {
   // slider_actuated: the rods' clamped bases ride on prismatic joints (the inputs), so the base frames
   // follow the joint values; FK at the default and moved slider positions.
-  const auto model = load("slider_actuated");
+  const auto model = load_model("slider_actuated");
   ForwardKinematics fk(model, tight_collocation());
   ShootingRobotSolver shooting(model, tight_shooting());
   for (double move : {0.0, 0.01}) {
@@ -352,9 +340,9 @@ BOOST_AUTO_TEST_CASE(unsupported_models_and_bad_inputs_are_rejected_by_name) {
     return std::string();
   };
   // two_stage: rods start on the first platform.
-  BOOST_TEST(message_of([&] { ShootingRobotSolver s(load("two_stage")); }).find("two-stage") !=
+  BOOST_TEST(message_of([&] { ShootingRobotSolver s(load_model("two_stage")); }).find("two-stage") !=
              std::string::npos);
-  const auto model = load("stewart_gough");
+  const auto model = load_model("stewart_gough");
   ShootingRobotSolver s(model);
   VecX u = model->default_input_values();
   u[2] = 5.0;

@@ -10,9 +10,11 @@
 #include "pcr/robots/io/solution_writers.hpp"
 #include "pcr/robots/kinematics.hpp"
 #include "pcr/robots/urdf_loader.hpp"
+#include "robot_fixtures.hpp"
 #include "stability/robot_discrete.hpp"
 
 using namespace pcr;
+using test::load_model;
 
 namespace {
 
@@ -20,53 +22,23 @@ namespace {
 // (test_rod_verdict: 0.03 % at 48), irrelevant to states far from critical, as all compared here.
 constexpr int kDiscreteSegments = 16;
 
-std::shared_ptr<const RobotModel> load(const std::string& name) {
-  return std::make_shared<const RobotModel>(load_robot_model(PCR_MODEL_DIR "/" + name + ".urdf"));
-}
-
 KinematicsOptions with_verdict() {
   KinematicsOptions o;
   o.stability_verdict = true;
   return o;
 }
 
-// The fed column of test_stability_monitor: a steel rod with a 2 mm x 1 mm section clamped upright in the
-// base and fed through it (input: its length), its upper end clamped to a massless platform under a dead
-// load of 1 N down plus `lateral` N along x and y. Clamped-free Euler column (Timoshenko & Gere §2.1):
-// the straight column has its first unstable mode from L_cr = (pi / 2) sqrt(E I_min / F) (weak plane), its
-// second from 2 L_cr (strong plane, I_max = 4 I_min) and its third from 3 L_cr (weak plane, second mode).
-constexpr double kE = 200e9, kWidth = 2e-3, kHeight = 1e-3, kLoad = 1.0;  // Pa, m, m, N
-const double kEulerLength = M_PI / 2 * std::sqrt(kE * kWidth * std::pow(kHeight, 3) / 12 / kLoad);
-
-std::shared_ptr<const RobotModel> fed_column(double lateral) {
-  const std::string force =
-      std::to_string(lateral) + " " + std::to_string(lateral) + " " + std::to_string(-kLoad);
-  const std::string xml = R"(<robot name="fed_column">
-  <link name="base"/>
-  <link name="platform"/>
-  <joint name="platform_pose" type="floating">
-    <parent link="base"/>
-    <child link="platform"/>
-    <origin xyz="0 0 0.1" rpy="0 0 0"/>
-  </joint>
-  <pcr_load link="platform" xyz="0 0 0" force=")" +
-                          force + R"(" torque="0 0 0"/>
-  <pcr_rod name="column">
-    <start link="base" xyz="0 0 0" rpy="0 0 0" coupling="clamped"/>
-    <end link="platform" xyz="0 0 0" rpy="0 0 0" coupling="clamped"/>
-    <material youngs_modulus="200e9" shear_modulus="80e9" density="8000"/>
-    <section type="rectangle" width="0.002" height="0.001"/>
-    <length value="0.1" actuated="true" lower="0.05" upper="1.0"/>
-  </pcr_rod>
-</robot>)";
-  return std::make_shared<const RobotModel>(parse_robot_model(xml, "fed_column"));
-}
+// The fed column of test_stability_monitor (robot_fixtures.hpp): load kLoad, Euler length kEulerLength
+// (first unstable mode from L_cr, the second from 2 L_cr, the third from 3 L_cr).
+constexpr double kLoad = test::kFedColumnLoad;  // N
+const double kEulerLength = test::fed_column_euler_length();
+using test::fed_column;
 
 }  // namespace
 
 // R5a at its default lengths: stable, as the discrete model says; the IK result of R5a's IK scene too.
 BOOST_AUTO_TEST_CASE(stewart_gough_default_pose_is_stable) {
-  const auto model = load("stewart_gough");
+  const auto model = load_model("stewart_gough");
   ForwardKinematics fk(model, with_verdict());
   const RobotSolution s = fk.solve(model->default_input_values());
   BOOST_TEST_REQUIRE(s.summary.converged());
@@ -96,7 +68,7 @@ BOOST_AUTO_TEST_CASE(stewart_gough_default_pose_is_stable) {
 // 2 cm below that line acts as an inverted pendulum, stronger than the middle rod's bending and the
 // platform's hanging weight resist). The discrete model finds the same one negative eigenvalue.
 BOOST_AUTO_TEST_CASE(planar_three_rod_default_pose_has_one_unstable_mode) {
-  const auto model = load("planar_three_rod");
+  const auto model = load_model("planar_three_rod");
   ForwardKinematics fk(model, with_verdict());
   const RobotSolution s = fk.solve(model->default_input_values());
   BOOST_TEST_REQUIRE(s.summary.converged());
@@ -177,7 +149,7 @@ BOOST_AUTO_TEST_CASE(dead_torque_gives_unknown) {
 
 // Not asked (the default for robots): nothing computed, nothing claimed.
 BOOST_AUTO_TEST_CASE(not_checked_unless_asked) {
-  const auto model = load("stewart_gough");
+  const auto model = load_model("stewart_gough");
   ForwardKinematics fk(model);
   const RobotSolution s = fk.solve(model->default_input_values());
   BOOST_TEST(to_string(s.stability_verdict.verdict) == std::string("not_checked"));
@@ -185,7 +157,7 @@ BOOST_AUTO_TEST_CASE(not_checked_unless_asked) {
 
 // The verdict in the results table and JSON (docs/results_format.md), only when checked.
 BOOST_AUTO_TEST_CASE(verdict_in_table_and_json) {
-  const auto model = load("planar_three_rod");
+  const auto model = load_model("planar_three_rod");
   ForwardKinematics fk(model, with_verdict());
   const RobotSolution s = fk.solve(model->default_input_values());
   BOOST_TEST_REQUIRE(s.summary.converged());

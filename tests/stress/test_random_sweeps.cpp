@@ -21,8 +21,10 @@
 
 #include "pcr/robots/kinematics.hpp"
 #include "pcr/robots/urdf_loader.hpp"
+#include "robot_fixtures.hpp"
 
 using namespace pcr;
+using test::load_model;
 
 namespace {
 
@@ -35,11 +37,6 @@ long argument(const std::string& name, long fallback) {
     if (a.compare(0, prefix.size(), prefix) == 0) return std::strtol(a.c_str() + prefix.size(), nullptr, 10);
   }
   return fallback;
-}
-
-std::shared_ptr<const RobotModel> load(const std::string& name) {
-  return std::make_shared<const RobotModel>(
-      load_robot_model(std::string(PCR_MODEL_DIR) + "/" + name + ".urdf"));
 }
 
 /// Worst violations of the global checks of one converged solution (0 = exact).
@@ -237,7 +234,7 @@ void report(const std::string& name, const std::string& mode, const Stats& s) {
 /// --solves=N; one cold solve per 5 warm ones.
 void sweep(const std::string& name, unsigned seed, long ci_solves) {
   const long solves = argument("solves", ci_solves);
-  const auto model = load(name);
+  const auto model = load_model(name);
   KinematicsOptions o;  // defaults: Newton, tolerance 1e-10
   std::mt19937 rng(seed + static_cast<unsigned>(argument("seed", 0)));
   std::vector<std::uniform_real_distribution<double>> draw;
