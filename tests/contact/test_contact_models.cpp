@@ -4,9 +4,11 @@
 
 #include <cmath>
 #include <memory>
+#include <sstream>
 #include <string>
 
 #include "pcr/core/error.hpp"
+#include "pcr/robots/io/solution_writers.hpp"
 #include "pcr/robots/kinematics.hpp"
 #include "pcr/robots/urdf_loader.hpp"
 
@@ -173,6 +175,15 @@ BOOST_AUTO_TEST_CASE(planar_post_model_fk_and_ik_with_contact) {
   // The centerline dips into the post between the midpoints (the gap is enforced at them only): by
   // 3e-5 m in this solve; bound 1e-4 m, 0.5 % of the post radius.
   BOOST_TEST(c.min_gap > -1e-4);
+
+  // The results name the contact: a "contacts" member in the JSON, a line in the table.
+  std::ostringstream json, table;
+  BOOST_TEST(write_solution_json(json, *model, at_default) == 0);
+  write_solution_table(table, *model, at_default);
+  BOOST_TEST(json.str().find("\"contacts\": [") != std::string::npos, json.str());
+  BOOST_TEST(json.str().find("\"obstacle\": \"post\"") != std::string::npos);
+  BOOST_TEST(json.str().find("\"s_begin\"") != std::string::npos);
+  BOOST_TEST(table.str().find("contact middle / post: [") != std::string::npos, table.str());
 
   VecX u = model->default_input_values();
   u += Vec3(0.001, 0.002, 0.001);  // a longer middle rod bows further onto the post
