@@ -3,6 +3,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
+#include <fstream>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -200,4 +201,43 @@ BOOST_AUTO_TEST_CASE(planar_post_model_fk_and_ik_with_contact) {
   BOOST_TEST_REQUIRE(back.contacts.size() == 1u);
   BOOST_TEST((back.contacts[0].force - moved.contacts[0].force).norm() <
              1e-6 * (1.0 + moved.contacts[0].force.norm()));
+}
+
+BOOST_AUTO_TEST_CASE(obstacles_on_links_fixed_to_the_world) {
+  // A floor given in the frame of a link mounted upside down 0.5 m below the base by a fixed joint is the
+  // world floor at z = -0.002: the same problem, so the same solution (to round-off, 1e-12 m).
+  const std::string contact = R"(<contact obstacles="floor"/>
+    <discretization degree="4" elements="32"/>)";
+  const std::string world =
+      R"(<pcr_obstacle name="floor" type="half_space" xyz="0 0 -0.002" normal="0 0 1"/>)";
+  const std::string on_link = R"(<link name="table"/>
+  <joint name="table_mount" type="fixed"><parent link="base"/><child link="table"/>
+    <origin xyz="0 0 -0.5" rpy="3.141592653589793 0 0"/></joint>
+  <pcr_obstacle name="floor" type="half_space" link="table" xyz="0.1 0 -0.498" normal="0 0 -1"/>)";
+  ForwardKinematics a(
+      std::make_shared<const RobotModel>(parse_robot_model(cantilever_xml(world, contact, "1.0", "0 0 0"))));
+  ForwardKinematics b(std::make_shared<const RobotModel>(
+      parse_robot_model(cantilever_xml(on_link, contact, "1.0", "0 0 0"))));
+  const RobotSolution sa = a.solve(VecX()), sb = b.solve(VecX());
+  BOOST_TEST_REQUIRE(sa.summary.converged());
+  BOOST_TEST_REQUIRE(sb.summary.converged());
+  for (size_t i = 0; i < sa.rods[0].centerline.size(); ++i)
+    BOOST_TEST((sa.rods[0].centerline[i] - sb.rods[0].centerline[i]).norm() < 1e-12);
+
+  // An obstacle on a moving link (the platform) is rejected: its reaction on the link is not modelled.
+  std::ifstream file(std::string(PCR_MODEL_DIR) + "/planar_post.urdf");
+  std::stringstream text;
+  text << file.rdbuf();
+  std::string xml = text.str();
+  const std::string post = R"(<pcr_obstacle name="post" type="capsule")";
+  BOOST_TEST_REQUIRE(xml.find(post) != std::string::npos);
+  xml.replace(xml.find(post), post.size(), R"(<pcr_obstacle name="post" type="capsule" link="platform")");
+  try {
+    RobotAssembly assembly(std::make_shared<const RobotModel>(parse_robot_model(xml)));
+    BOOST_FAIL("an obstacle on a moving link was accepted");
+  } catch (const InputError& e) {
+    BOOST_TEST(
+        std::string(e.what()).find("obstacle 'post' on link 'platform': the link moves") != std::string::npos,
+        e.what());
+  }
 }
