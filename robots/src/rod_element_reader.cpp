@@ -169,9 +169,11 @@ RodElement read_rod(const TiXmlElement& e, const std::string& source, const Urdf
   }
   const std::string label = quoted("pcr_rod", rod.name);
   XmlElementReader element(e, source, label);
-  static const char* const known[] = {
-      "start",           "end", "material", "section", "length", "intrinsic_curvature", "discretization",
-      "distributed_load"};
+  static const char* const known[] = {"start",          "end",
+                                      "material",       "section",
+                                      "length",         "intrinsic_curvature",
+                                      "discretization", "distributed_load",
+                                      "contact"};
   for (const TiXmlElement* c = e.FirstChildElement(); c; c = c->NextSiblingElement()) {
     bool ok = false;
     for (const char* k : known) ok = ok || c->ValueStr() == k;

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "model_text_check.hpp"
+#include "obstacle_reader.hpp"
 #include "pcr/core/error.hpp"
 #include "rod_element_reader.hpp"
 #include "urdf_part_reader.hpp"
@@ -154,11 +155,12 @@ RobotModel parse_document(const std::string& xml, const std::string& source) {
     } else if (tag == "pcr_joint") {
       read_pcr_joint(*e, source, tree, joints);
       joint_elements.push_back(e);
-    } else if (tag.compare(0, 4, "pcr_") == 0) {
+    } else if (tag.compare(0, 4, "pcr_") == 0 && tag != "pcr_obstacle") {
       XmlElementReader reader(*e, source, "<" + tag + ">");
-      reader.fail("unknown pcr element (pcr_rod, pcr_gravity, pcr_load or pcr_joint)");
+      reader.fail("unknown pcr element (pcr_rod, pcr_gravity, pcr_load, pcr_joint or pcr_obstacle)");
     }
   }
+  std::vector<ObstacleElement> obstacles = read_obstacles(*robot, source, tree, rods);
   for (std::size_t i = 0; i < loads.size(); ++i) {
     if (carrying_floating_link(tree, loads[i].link) >= 0 ||
         moved_by_passive_joint(tree, joints, loads[i].link))
@@ -192,7 +194,7 @@ RobotModel parse_document(const std::string& xml, const std::string& source) {
   // Cross-element checks (well-posedness, platform hold) live in RobotModel; prefix the file name.
   try {
     return RobotModel(robot_name, std::move(links), std::move(joints), std::move(platforms), std::move(rods),
-                      std::move(loads), gravity);
+                      std::move(loads), gravity, std::move(obstacles));
   } catch (const InputError& e) {
     throw InputError(source + ": " + e.what());
   }

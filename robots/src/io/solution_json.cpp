@@ -1,3 +1,4 @@
+#include "contact_output.hpp"
 #include "pcr/math/so3.hpp"
 #include "pcr/robots/io/json_writer.hpp"
 #include "pcr/robots/io/solution_writers.hpp"
@@ -220,6 +221,7 @@ void write_solution_object(JsonWriter& json, const RobotModel& model, const Robo
     json.end_object();
   }
   json.end_object();
+  write_contacts_member(json, solution.contacts);
   write_stability_member(json, solution.stability_verdict);
   json.key("summary");
   write_summary(json, solution.summary);

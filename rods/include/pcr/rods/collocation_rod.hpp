@@ -66,6 +66,9 @@ struct RodDiscretization {
   int degree = 4;                                     ///< polynomial degree p >= 2
   int elements = 4;                                   ///< number of equal knot spans >= 1
   MixedPoints mixed_points = MixedPoints::Midpoints;  ///< mixed form only (the condensed form: midpoints)
+  /// Mixed form at the midpoints only: one contact force density unknown F_j (3, N/m) per midpoint in its
+  /// force balance n' + f + F_j = 0, to be tied to obstacles by add_rod_contact (rod_contact.hpp).
+  bool contact_forces = false;
 };
 
 /// Memory [bytes] that one rod's discretisation of this degree and element count is estimated to take
@@ -116,6 +119,8 @@ struct RodVariables {
   int control_point_offset = 0;  ///< index in x of the first control point (they are contiguous)
   int length_offset = 0;         ///< index in x of L
   int wrench_offset = -1;        ///< index in x of the wrench block (condensed form), else -1
+  /// RodDiscretization::contact_forces: F_j (3) per midpoint u_j, j = 0 .. n - 2; empty otherwise.
+  std::vector<VariableId> contact_forces;
 };
 
 /// Which end conditions of the model the rod adds itself (robots add coupling blocks instead).
