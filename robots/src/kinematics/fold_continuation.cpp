@@ -3,11 +3,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <sstream>
 
 #include "arclength_corrector.hpp"
 #include "pcr/math/quaternion.hpp"
 #include "pcr/robots/robot_stability.hpp"
+#include "pcr/solve/newton_solver.hpp"
 
 namespace pcr::kinematics {
 
@@ -19,6 +21,9 @@ int unstable_mode_count(const RobotAssembly& assembly, const VecX& x) {
 }
 
 namespace {
+
+/// Steps the snap may follow the curve past a fold before it tries Newton from other starts.
+constexpr int kSnapBranchSteps = 60;
 
 std::vector<Pose> platform_poses(const RobotAssembly& a, const VecX& x) {
   std::vector<Pose> out;
@@ -40,7 +45,7 @@ class SegmentTracer {
  public:
   SegmentTracer(const RobotAssembly& a, const VecX& u_a, const VecX& u_b, int segment, double tolerance,
                 const PathThroughFoldsOptions& o)
-      : a_(a), arc_(a, u_a, u_b, tolerance), segment_(segment), o_(o) {}
+      : a_(a), arc_(a, u_a, u_b, tolerance), segment_(segment), tolerance_(tolerance), o_(o) {}
 
   SegmentOutcome run(const VecX& x_start, int modes_start);
 
@@ -63,13 +68,17 @@ class SegmentTracer {
   void locate_bifurcation(const ArcPoint& p, double ds, int nu, int nu_q);
   bool finish_at_end(const ArcPoint& p, const ArcPoint& q);
   bool snap(const ArcPoint& fold, int nu_fold_side, ArcPoint& landing, int& nu_landing);
-  bool snap_along_branch(const ArcPoint& fold, double target, ArcPoint& landing, int& nu_landing);
-  bool snap_along_fold_mode(const ArcPoint& fold, double target, ArcPoint& landing, int& nu_landing);
+  using Acceptable = std::function<bool(int)>;
+  bool snap_along_branch(const ArcPoint& fold, double target, const Acceptable& acceptable, ArcPoint& landing,
+                         int& nu_landing);
+  bool snap_by_newton(const ArcPoint& fold, double target, const Acceptable& acceptable, ArcPoint& landing,
+                      int& nu_landing);
   bool budget_left() const { return out_.steps < o_.max_steps; }
 
   const RobotAssembly& a_;
   ArcCorrector arc_;
   int segment_;
+  double tolerance_;
   const PathThroughFoldsOptions& o_;
   SegmentOutcome out_;
 };
@@ -181,28 +190,34 @@ bool SegmentTracer::finish_at_end(const ArcPoint& p, const ArcPoint& q) {
 bool SegmentTracer::snap(const ArcPoint& fold, int nu_fold_side, ArcPoint& landing, int& nu_landing) {
   // The snap happens when the input passes the fold's: the landing point is at the fold's inputs.
   const double target = fold.lambda + 1e-12;
-  if (snap_along_branch(fold, target, landing, nu_landing)) return true;
-  if (snap_along_fold_mode(fold, target, landing, nu_landing)) return true;
+  // A landing point no less stable than the ending branch (stable for a robot whose branch was stable);
+  // an unknown verdict only where the ending branch's was unknown too.
+  const auto acceptable = [nu_fold_side](int nu) {
+    return nu_fold_side < 0 || (nu >= 0 && nu <= nu_fold_side);
+  };
+  if (snap_along_branch(fold, target, acceptable, landing, nu_landing)) return true;
+  if (snap_by_newton(fold, target, acceptable, landing, nu_landing)) return true;
   std::ostringstream why;
-  why << "no stable equilibrium found to snap to at path parameter " << segment_ + fold.lambda
-      << " (the ending branch had " << nu_fold_side << " unstable modes)";
+  why << "no equilibrium as stable as the ending branch (" << nu_fold_side
+      << " unstable modes) found to snap to at path parameter " << segment_ + fold.lambda;
   out_.stopped = why.str();
   return false;
 }
 
 /// Follows the curve past the fold (the branch beyond it, lambda decreasing) until it comes back to the
-/// fold's inputs going forward at a stable point (an S-shaped curve: past a second fold).
-bool SegmentTracer::snap_along_branch(const ArcPoint& fold, double target, ArcPoint& landing,
-                                      int& nu_landing) {
+/// fold's inputs going forward at an acceptable point (an S-shaped curve: past a second fold), within
+/// kSnapBranchSteps steps.
+bool SegmentTracer::snap_along_branch(const ArcPoint& fold, double target, const Acceptable& acceptable,
+                                      ArcPoint& landing, int& nu_landing) {
   ArcPoint p = fold, q;
   int nu = count(fold.x), nu_q = 0;
   double ds = 0.25 * o_.max_step, used = 0.0;
-  while (budget_left() && p.lambda > -1.0) {
+  for (int k = 0; k < kSnapBranchSteps && budget_left() && p.lambda > -1.0; ++k) {
     if (!step(p, nu, ds, q, nu_q, used)) return false;
     if (p.tau() > 0.0 && q.tau() > 0.0 && p.lambda < target && q.lambda >= target &&
         arc_.at_lambda(p, q.tangent, target, landing)) {
       nu_landing = unstable_mode_count(a_, landing.x);
-      if (nu_landing <= 0) return true;  // stable (or not counted: the first return)
+      if (acceptable(nu_landing)) return true;
     }
     p = q;
     nu = nu_q;
@@ -210,19 +225,37 @@ bool SegmentTracer::snap_along_branch(const ArcPoint& fold, double target, ArcPo
   return false;
 }
 
-/// Newton at the fold's inputs from the fold state pushed along the fold mode (the tangent there, which
-/// points from the ending branch to the one beyond it), farther and farther; a stable result only.
-bool SegmentTracer::snap_along_fold_mode(const ArcPoint& fold, double target, ArcPoint& landing,
-                                         int& nu_landing) {
-  VecX e_lambda = VecX::Zero(fold.tangent.size());
-  e_lambda[e_lambda.size() - 1] = 1.0;
-  for (double amplitude : {0.25, 0.5, 1.0, 2.0, 4.0}) {
-    const ArcPoint pushed = arc_.predictor(fold, amplitude * o_.max_step);
-    if (!arc_.at_lambda(pushed, e_lambda, target, landing)) continue;
-    const VecX d = arc_.free_vector(landing.x, 0.0) - arc_.free_vector(fold.x, 0.0);
-    if (std::sqrt(arc_.weighted_dot(d, d)) < 0.1 * amplitude * o_.max_step) continue;  // back at the fold
-    nu_landing = unstable_mode_count(a_, landing.x);
-    if (nu_landing <= 0) return true;
+/// Damped Newton (NewtonSolver) on the FK system at the fold's inputs from starts away from the fold: the
+/// fold state pushed along the fold mode (the tangent there, pointing from the ending branch to the one
+/// beyond it) by growing amounts, either way, then the assembly's straight initial guess. The first
+/// acceptable equilibrium that is not the fold state itself.
+bool SegmentTracer::snap_by_newton(const ArcPoint& fold, double target, const Acceptable& acceptable,
+                                   ArcPoint& landing, int& nu_landing) {
+  NewtonOptions no;
+  no.tolerance = tolerance_;
+  NewtonSolver newton(a_.problem(), no);
+  const VecX u = arc_.inputs_at(target);
+  const Vec3 fold_position =
+      a_.model().platforms().empty() ? Vec3::Zero() : a_.platform_pose(fold.x, 0).position;
+  std::vector<VecX> starts;
+  for (double amplitude : {0.5, 1.0, 2.0, 4.0, -0.5, -1.0, -2.0})
+    starts.push_back(arc_.predictor(fold, amplitude * o_.max_step).x);
+  starts.push_back(a_.initial_guess());
+  for (VecX& x : starts) {
+    a_.set_inputs(x, u);
+    if (!newton.solve(x, 60).converged()) continue;
+    const double moved =
+        a_.model().platforms().empty() ? 1.0 : (a_.platform_pose(x, 0).position - fold_position).norm();
+    if (moved < 1e-4 * a_.length_scale()) continue;  // back near the fold
+    nu_landing = unstable_mode_count(a_, x);
+    if (!acceptable(nu_landing)) continue;
+    // The landing point with its tangent, by the corrector at the same inputs.
+    ArcPoint guess = fold;
+    guess.x = x;
+    guess.lambda = target;
+    VecX e_lambda = VecX::Zero(fold.tangent.size());
+    e_lambda[e_lambda.size() - 1] = 1.0;
+    if (arc_.at_lambda(guess, e_lambda, target, landing)) return true;
   }
   return false;
 }
