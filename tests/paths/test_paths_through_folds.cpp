@@ -20,6 +20,7 @@
 #include "stability/robot_discrete.hpp"
 
 using namespace pcr;
+namespace tt = boost::test_tools;
 
 namespace {
 
@@ -241,4 +242,62 @@ BOOST_AUTO_TEST_CASE(arch_fold_located_and_counted) {
   BOOST_TEST_REQUIRE(far.beyond != nullptr);
   BOOST_TEST(far.beyond->unstable_modes == 1);
   BOOST_TEST(test::discrete_robot_inertia(*a, far.beyond->state, kDiscreteSegments).negative == 1);
+}
+
+namespace {
+
+std::shared_ptr<const RobotAssembly> shipped(const std::string& name) {
+  return std::make_shared<const RobotAssembly>(
+      std::make_shared<const RobotModel>(load_robot_model(PCR_MODEL_DIR "/" + name + ".urdf")));
+}
+
+}  // namespace
+
+// planar_three_rod, its middle rod fed from its default length (0.2912 m) to 0.34 m: the branch (1
+// unstable mode: out of the plane, test_stability_verdict) ends at a fold where an in-plane mode turns
+// unstable (2 beyond it), located to 1e-6 m against Newton bisection. The robot snaps to an equilibrium
+// at the fold's inputs with 1 unstable mode (the out-of-plane one), its platform centimetres away; the
+// discrete energy model gives the same counts before the fold, on the branch beyond it and at the landing.
+BOOST_AUTO_TEST_CASE(planar_robot_fold_and_snap) {
+  const auto a = shipped("planar_three_rod");
+  VecX u0 = a->model().default_input_values(), u1 = u0;
+  u1[1] = 0.34;  // middle
+  const std::vector<VecX> path = {u0, u1};
+  PathThroughFoldsOptions o;
+  o.at_fold = FoldPolicy::Snap;
+  o.keep_trace = true;
+  const PathThroughFoldsResult r = solve_path_through_folds(a, KinematicsOptions{}, path, o);
+  BOOST_TEST_MESSAGE(r.summary());
+  for (const PathEvent& e : r.events) BOOST_TEST_MESSAGE(e.description);
+  BOOST_TEST_REQUIRE(r.events.size() >= 2u);
+  const PathEvent& fold = r.events[0];
+  const PathEvent& snap = r.events[1];
+  BOOST_TEST(to_string(fold.kind) == std::string("fold"));
+  BOOST_TEST(fold.unstable_modes_before == 1);
+  BOOST_TEST(fold.unstable_modes_after == 2);
+  const double error = fold_error(*a, r, path);
+  BOOST_TEST_MESSAGE("planar fold: continuation vs Newton bisection " << error << " m");
+  BOOST_TEST(error < 1e-6);
+  BOOST_TEST(to_string(snap.kind) == std::string("snap"));
+  BOOST_TEST(snap.path_parameter == fold.path_parameter, tt::tolerance(1e-11));
+  BOOST_TEST(snap.unstable_modes_after == 1);
+  // The platform jumps: more than the steps of the continuation near the fold would move it (mm).
+  BOOST_TEST(snap.jump_position > 5e-3);
+  BOOST_TEST(r.points[1].summary.converged(), r.points[1].summary.message);
+
+  const AroundFold around = around_fold(r, fold.path_parameter, 0.02);
+  BOOST_TEST_REQUIRE((around.before && around.beyond));
+  BOOST_TEST(test::discrete_robot_inertia(*a, r.trace.front().state, kDiscreteSegments).negative == 1);
+  BOOST_TEST(around.beyond->unstable_modes == 2);
+  BOOST_TEST(test::discrete_robot_inertia(*a, around.beyond->state, kDiscreteSegments).negative == 2);
+  // The landing point (in the trace as the point the path goes on from).
+  const TracePoint* landed = nullptr;
+  for (const TracePoint& t : r.trace)
+    if ((platform_position(*a, t.state) - snap.platforms_after[0].position).norm() < 1e-12) {
+      landed = &t;
+      break;
+    }
+  BOOST_TEST_REQUIRE(landed != nullptr);
+  BOOST_TEST(test::discrete_robot_inertia(*a, landed->state, kDiscreteSegments).negative ==
+             landed->unstable_modes);
 }

@@ -289,6 +289,7 @@ bool SegmentTracer::pass_fold(ArcPoint& p, int& nu, const ArcPoint& fold, int nu
        << " unstable modes";
   s.description = text.str();
   out_.events.push_back(s);
+  if (o_.keep_trace) out_.trace.push_back({segment_ + landing.lambda, landing.tau(), nu_landing, landing.x});
   p = landing;
   nu = nu_landing;
   out_.x = p.x;
