@@ -301,3 +301,37 @@ BOOST_AUTO_TEST_CASE(planar_robot_fold_and_snap) {
   BOOST_TEST(test::discrete_robot_inertia(*a, landed->state, kDiscreteSegments).negative ==
              landed->unstable_modes);
 }
+
+// stewart_gough, legs 0, 2 and 4 fed from 0.45 m to 0.49 m (the other three held): the platform tilts until
+// the three short legs, compressed, buckle: no fold, the count of unstable modes steps from 0 to 2 at once
+// (round legs: both bending planes together, a double bifurcation) and then to 3. The counts at the path
+// points agree with the discrete energy model.
+BOOST_AUTO_TEST_CASE(stewart_gough_legs_buckle_without_a_fold) {
+  const auto a = shipped("stewart_gough");
+  VecX u0 = a->model().default_input_values(), u1 = u0, u_mid = u0;
+  for (int leg : {0, 2, 4}) {
+    u1[leg] = 0.49;
+    u_mid[leg] = 0.47;
+  }
+  KinematicsOptions ko;
+  ko.stability_verdict = true;
+  PathThroughFoldsOptions o;
+  o.keep_trace = true;
+  o.event_tolerance = 1e-6;  // of the segment (0.02 m): where the counts change is not asserted here
+  const PathThroughFoldsResult r = solve_path_through_folds(a, ko, {u0, u_mid, u1}, o);
+  BOOST_TEST_MESSAGE(r.summary());
+  for (const PathEvent& e : r.events) BOOST_TEST_MESSAGE(e.description);
+  for (const RobotSolution& p : r.points) BOOST_TEST_REQUIRE(p.summary.converged(), p.summary.message);
+  BOOST_TEST_REQUIRE(r.events.size() == 2u);
+  BOOST_TEST(to_string(r.events[0].kind) == std::string("bifurcation"));
+  BOOST_TEST(r.events[0].unstable_modes_before == 0);
+  BOOST_TEST(r.events[0].unstable_modes_after == 2);
+  BOOST_TEST(to_string(r.events[1].kind) == std::string("bifurcation"));
+  BOOST_TEST(r.events[1].unstable_modes_after == 3);
+  const int expected[] = {0, 0, 3};
+  for (int k = 0; k < 3; ++k)
+    BOOST_TEST(r.points[k].stability_verdict.unstable_modes == expected[k], "point " << k);
+  // The last path point is the last trace point.
+  BOOST_TEST_REQUIRE(r.trace.back().path_parameter == 2.0);
+  BOOST_TEST(test::discrete_robot_inertia(*a, r.trace.back().state, kDiscreteSegments).negative == 3);
+}

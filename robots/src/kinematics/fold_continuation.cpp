@@ -184,6 +184,7 @@ bool SegmentTracer::finish_at_end(const ArcPoint& p, const ArcPoint& q) {
   out_.x = end.x;
   out_.unstable_modes = count(end.x);
   out_.reached = true;
+  if (o_.keep_trace) out_.trace.push_back({segment_ + 1.0, end.tau(), out_.unstable_modes, end.x});
   return true;
 }
 

@@ -42,7 +42,8 @@ struct PathThroughFoldsOptions {
   bool keep_trace = false;
 };
 
-/// An accepted point of the continuation (the equilibrium curve; a snap's landing point included).
+/// An accepted point of the continuation (the equilibrium curve; snap landings and the path points after
+/// the first included).
 struct TracePoint {
   double path_parameter = 0.0;  ///< segment + lambda
   double tau = 0.0;             ///< dlambda / dsigma: > 0 where the curve goes forward along the path
