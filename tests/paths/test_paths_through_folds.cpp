@@ -13,6 +13,7 @@
 #include <sstream>
 #include <string>
 
+#include "pcr/robots/branch_check.hpp"
 #include "pcr/robots/kinematics.hpp"
 #include "pcr/robots/path_through_folds.hpp"
 #include "pcr/robots/urdf_loader.hpp"
@@ -258,11 +259,12 @@ std::shared_ptr<const RobotAssembly> shipped(const std::string& name) {
 // unstable (2 beyond it), located to 1e-6 m against Newton bisection. The robot snaps to an equilibrium
 // at the fold's inputs with 1 unstable mode (the out-of-plane one), its platform centimetres away; the
 // discrete energy model gives the same counts before the fold, on the branch beyond it and at the landing.
+// Fed back to the default length, the robot stays on the snapped branch (hysteresis).
 BOOST_AUTO_TEST_CASE(planar_robot_fold_and_snap) {
   const auto a = shipped("planar_three_rod");
   VecX u0 = a->model().default_input_values(), u1 = u0;
-  u1[1] = 0.34;  // middle
-  const std::vector<VecX> path = {u0, u1};
+  u1[1] = 0.34;                                 // middle
+  const std::vector<VecX> path = {u0, u1, u0};  // and back
   PathThroughFoldsOptions o;
   o.at_fold = FoldPolicy::Snap;
   o.keep_trace = true;
@@ -300,6 +302,20 @@ BOOST_AUTO_TEST_CASE(planar_robot_fold_and_snap) {
   BOOST_TEST_REQUIRE(landed != nullptr);
   BOOST_TEST(test::discrete_robot_inertia(*a, landed->state, kDiscreteSegments).negative ==
              landed->unstable_modes);
+
+  // Back at the default lengths the robot stays on the branch it snapped to (hysteresis): centimetres
+  // from the default pose that a cold solve reaches, and stable (the out-of-plane mode too), as the
+  // discrete model says.
+  BOOST_TEST_REQUIRE(r.points[2].summary.converged(), r.points[2].summary.message);
+  const BranchComparison c = compare_with_cold_solve(ForwardKinematics(a), r.points[2]);
+  BOOST_TEST_MESSAGE(c.description);
+  BOOST_TEST(c.cold_converged);
+  BOOST_TEST(c.different_branch);
+  BOOST_TEST(c.platform_distance > 1e-2);
+  BOOST_TEST((c.cold.platforms[0].position - r.points[0].platforms[0].position).norm() < 1e-9);
+  BOOST_TEST(r.trace.back().path_parameter == 2.0);
+  BOOST_TEST(r.trace.back().unstable_modes == 0);
+  BOOST_TEST(test::discrete_robot_inertia(*a, r.trace.back().state, kDiscreteSegments).negative == 0);
 }
 
 // stewart_gough, legs 0, 2 and 4 fed from 0.45 m to 0.49 m (the other three held): the platform tilts until
