@@ -3,9 +3,10 @@
 //  2. Newton from the last solution (when the extrapolated start failed);
 //  3. continuation in the inputs from the last solution (input_continuation.hpp);
 //  4. continuation from the model's default inputs, solved from the straight initial guess, along the line;
-//  5. pseudo-arclength continuation from the default inputs along the line, through folds, following the
-//     stable equilibrium the robot snaps to at a fold (fold_continuation.hpp);
-//  6. continuation from the default inputs one input at a time.
+//  5. continuation from the default inputs one input at a time;
+//  6. pseudo-arclength continuation from the default inputs along the line, through folds, following the
+//     equilibrium the robot snaps to at a fold (fold_continuation.hpp). Last, so that it costs nothing
+//     where an earlier strategy converges (where it fails it can take longer than all of them together).
 // The warm path starts in a deformed state that may be far from the new inputs and fails more often than
 // the cold one (random input sweeps), hence the attempts from the default inputs after it. The direct
 // attempts, which have a continuation to fall back on, and each continuation step get a limited number
@@ -168,8 +169,8 @@ constexpr FkStrategy kStrategies[] = {
     {"the last solution", from_last_solution},
     {"continuation in the inputs from the last solution", continuation_from_last_solution},
     {"continuation in the inputs from the default inputs", continuation_from_default_inputs},
-    {"fold-aware arclength continuation from the default inputs", arclength_from_default_inputs},
     {"continuation from the default inputs one input at a time", one_input_at_a_time},
+    {"fold-aware arclength continuation from the default inputs", arclength_from_default_inputs},
 };
 
 }  // namespace
