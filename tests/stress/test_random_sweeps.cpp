@@ -180,7 +180,8 @@ bool solve_and_check(const std::string& name, ForwardKinematics& fk, const VecX&
     // An explicit failure: a status, a message saying why, and still finite (last good) values.
     BOOST_TEST(!sum.message.empty(), name << ": non-converged solve without a message at " << u.transpose());
     if (!sum.message.empty()) ++stats.failed_with_message;
-    BOOST_TEST_MESSAGE(name << ": " << to_string(sum.status) << " at " << u.transpose() << ": " << sum.message);
+    BOOST_TEST_MESSAGE(name << ": " << to_string(sum.status) << " at " << u.transpose() << ": "
+                            << sum.message);
     const Consistency c = check_solution(model, out);
     BOOST_TEST(c.finite, name << ": non-finite values returned with status " << to_string(sum.status));
     return false;
