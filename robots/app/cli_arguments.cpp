@@ -23,6 +23,7 @@ constexpr OptionScope kOptionScopes[] = {
     {"--components", "ik path"},
     {"--link", "fk ik path"},
     {"--inputs", "path"},
+    {"--folds", "path"},
     {"--targets", "path"},
     {"--samples", "workspace"},
     {"--threads", "workspace"},
@@ -111,6 +112,8 @@ bool apply_solve_option(SolveArguments& a, const std::string& arg, const std::st
   } else if (arg == "--tolerance") {
     a.tolerance = parse_number(value, arg);
     if (!(a.tolerance > 0.0)) throw UsageError("--tolerance " + value + ": must be positive");
+  } else if (arg == "--folds") {
+    a.folds = expect(arg, value, {"stop", "snap"});
   } else if (arg == "--points") {
     a.centerline_points = parse_count(value, arg, 2);
   } else if (arg == "--json-file") {
@@ -163,6 +166,8 @@ void check_command(const SolveArguments& a) {
           "FILE.csv (inverse kinematics along its rows)");
     if (!a.inputs_file.empty() && (!a.components.empty() || !a.objective.empty() || a.max_stress > 0.0))
       throw UsageError("--components, --objective and --max-stress are for a path of --targets");
+    if (!a.folds.empty() && (a.inputs_file.empty() || a.solver == "ipopt"))
+      throw UsageError("--folds is for a path of --inputs solved by Newton");
     if (!a.targets_file.empty() && !a.solver.empty())
       throw UsageError("--solver is for a path of --inputs (inverse kinematics picks its solver)");
   }
@@ -200,7 +205,7 @@ SolveArguments parse_solve_arguments(const std::string& command, int argc, const
       a.help = true;
     } else if (arg == "--json") {
       a.json = true;
-    } else if (arg == "--stability" && (command == "fk" || command == "ik")) {
+    } else if (arg == "--stability" && (command == "fk" || command == "ik" || command == "path")) {
       a.stability = true;
     } else if (arg.size() > 1 && arg[0] == '-') {
       if (!accepts(command, arg))

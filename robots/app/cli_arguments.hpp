@@ -44,7 +44,10 @@ struct SolveArguments {
   double tolerance = 0.0;                 ///< 0 = not given
   int centerline_points = 0;              ///< 0 = not given
   bool json = false;
-  bool stability = false;  ///< --stability (fk, ik): the stability verdict of the result
+  bool stability = false;  ///< --stability (fk, ik, path): the stability verdict of the result
+  /// path of --inputs: --folds stop|snap, pseudo-arclength continuation between the points, folds
+  /// reported ("": the points solved one after the other by forward kinematics).
+  std::string folds;
   /// --csv: a directory for fk and ik (one file per table), a file for path and workspace (one table).
   std::string json_file, csv, vtk_path, png_path;
   bool help = false;

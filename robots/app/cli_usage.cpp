@@ -62,7 +62,13 @@ void print_solve_usage(std::ostream& out, const std::string& command) {
       << "                     robot (R5b) the solver added about 1e-2 T m to the inputs (docs/cli.md)\n";
   if (command != "workspace")
     out << "  --points N         centerline points per rod in the results (default 21)\n";
-  if (command == "fk" || command == "ik")
+  if (command == "path")
+    out << "  --folds stop|snap  along --inputs: pseudo-arclength continuation from point to point, which\n"
+        << "                     passes folds (limit points); each fold is reported (path parameter,\n"
+        << "                     inputs, unstable modes on both sides); stop: the points past it fail (the\n"
+        << "                     branch ends); snap: the path follows the stable equilibrium the robot\n"
+        << "                     snaps to and reports the jump; bifurcations are reported too\n";
+  if (command != "workspace")
     out << "  --stability        stability verdict of the result: stable, or unstable with the number\n"
         << "                     of unstable modes, and a margin (costs about one more cold solve)\n";
   out << "  --json             JSON to stdout instead of the table\n"

@@ -7,6 +7,7 @@
 
 #include "path_files.hpp"
 #include "pcr/robots/io/path_writers.hpp"
+#include "pcr/robots/path_through_folds.hpp"
 #include "progress_bar.hpp"
 #include "solve_command.hpp"
 #include "targets.hpp"
@@ -32,6 +33,28 @@ std::vector<pcr::PathPoint> fk_path(const SolveArguments& args,
     points.push_back(std::move(point));
     bar.update(static_cast<std::int64_t>(points.size()), failed);
   }
+  return points;
+}
+
+/// --folds: pseudo-arclength continuation between the rows (path_through_folds.hpp); events into `events`.
+std::vector<pcr::PathPoint> fold_path(const SolveArguments& args,
+                                      const std::shared_ptr<const pcr::RobotAssembly>& assembly,
+                                      const pcr::KinematicsOptions& options,
+                                      std::vector<pcr::PathEvent>& events) {
+  const pcr::RobotModel& model = assembly->model();
+  const std::vector<pcr::VecX> rows =
+      path_inputs(model, read_number_table(args.inputs_file), resolve_inputs(model, args.inputs));
+  pcr::PathThroughFoldsOptions fold_options;
+  fold_options.at_fold = args.folds == "snap" ? pcr::FoldPolicy::Snap : pcr::FoldPolicy::Stop;
+  pcr::PathThroughFoldsResult result = pcr::solve_path_through_folds(assembly, options, rows, fold_options);
+  std::vector<pcr::PathPoint> points;
+  for (pcr::RobotSolution& solution : result.points) {
+    pcr::PathPoint point;
+    point.solution = std::move(solution);
+    point.extras.links = pcr::link_poses(model, point.solution, args.links);
+    points.push_back(std::move(point));
+  }
+  events = std::move(result.events);
   return points;
 }
 
@@ -64,7 +87,7 @@ std::vector<pcr::PathPoint> ik_path(const SolveArguments& args,
 
 /// One line per point: status, iterations, residual, time, platform positions [mm].
 void write_path_table(std::ostream& out, const pcr::RobotModel& model,
-                      const std::vector<pcr::PathPoint>& points) {
+                      const std::vector<pcr::PathPoint>& points, const std::vector<pcr::PathEvent>* events) {
   out << "point  status          iterations  residual   time [ms]";
   for (const pcr::Platform& platform : model.platforms()) out << "  " << platform.name << " x, y, z [mm]";
   out << "\n";
@@ -90,25 +113,33 @@ void write_path_table(std::ostream& out, const pcr::RobotModel& model,
   std::snprintf(total, sizeof total, "%.3g s", seconds);
   out << "model " << model.name() << ": " << points.size() << " points, " << points.size() - failed
       << " converged, " << failed << " failed; " << iterations << " iterations in " << total << "\n";
+  if (!events) return;
+  for (const pcr::PathEvent& e : *events) out << pcr::to_string(e.kind) << ": " << e.description << "\n";
+  out << (events->empty() ? "no fold, snap or bifurcation along the path\n" : "");
 }
 
+/// events: those of a path through folds (--folds), else null.
 int write_path_outputs(const SolveArguments& args, const pcr::RobotModel& model,
-                       const std::vector<pcr::PathPoint>& points, std::ostream& out, std::ostream& err) {
+                       const std::vector<pcr::PathPoint>& points, const std::vector<pcr::PathEvent>* events,
+                       std::ostream& out, std::ostream& err) {
   try {
     if (args.json) {
-      const int non_finite = pcr::write_path_json(out, model, points);
+      const int non_finite = pcr::write_path_json(out, model, points, events);
       if (non_finite > 0) err << "pcr path: " << non_finite << " non-finite values written as null\n";
     } else {
-      write_path_table(out, model, points);
+      write_path_table(out, model, points, events);
     }
     if (!args.json_file.empty()) {
       std::ofstream file = open_output("--json-file", args.json_file);
-      pcr::write_path_json(file, model, points);
+      pcr::write_path_json(file, model, points, events);
       close_output(file, "--json-file", args.json_file);
     }
     if (!args.csv.empty()) {
       std::ofstream file = open_output("--csv", args.csv);
-      pcr::write_path_csv(file, model, points);
+      if (events)
+        pcr::write_path_csv(file, model, points, *events);
+      else
+        pcr::write_path_csv(file, model, points);
       close_output(file, "--csv", args.csv);
     }
   } catch (const pcr::InputError& e) {
@@ -130,9 +161,13 @@ int path_command(int argc, const char* const* argv, std::ostream& out, std::ostr
   for (const std::string& link : args.links) model->link_index(link);  // InputError naming an unknown link
   const pcr::KinematicsOptions options = kinematics_options(args);
   const auto assembly = std::make_shared<const pcr::RobotAssembly>(model, options.assembly);
-  const std::vector<pcr::PathPoint> points = args.inputs_file.empty() ? ik_path(args, assembly, options, err)
-                                                                      : fk_path(args, assembly, options, err);
-  const int written = write_path_outputs(args, *model, points, out, err);
+  std::vector<pcr::PathEvent> events;
+  const std::vector<pcr::PathPoint> points = !args.folds.empty() ? fold_path(args, assembly, options, events)
+                                             : args.inputs_file.empty()
+                                                 ? ik_path(args, assembly, options, err)
+                                                 : fk_path(args, assembly, options, err);
+  const int written =
+      write_path_outputs(args, *model, points, args.folds.empty() ? nullptr : &events, out, err);
   size_t failed = 0, first_failed = points.size();
   for (size_t k = 0; k < points.size(); ++k)
     if (!points[k].solution.summary.converged()) {

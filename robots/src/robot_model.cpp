@@ -137,13 +137,15 @@ std::string twist_rule_violation(const RodElement& rod) {
 
 RobotModel::RobotModel(std::string name, std::vector<Link> links, std::vector<Joint> joints,
                        std::vector<Platform> platforms, std::vector<RodElement> rods,
-                       std::vector<ExternalLoad> loads, const Vec3& gravity)
+                       std::vector<ExternalLoad> loads, const Vec3& gravity,
+                       std::vector<ObstacleElement> obstacles)
     : name_(std::move(name)),
       links_(std::move(links)),
       joints_(std::move(joints)),
       platforms_(std::move(platforms)),
       rods_(std::move(rods)),
       loads_(std::move(loads)),
+      obstacles_(std::move(obstacles)),
       gravity_(gravity) {
   require(gravity_.allFinite(), "gravity is not finite: [", gravity_.transpose(), "]");
   build_tables();

@@ -149,6 +149,13 @@ void read_discretization(XmlElementReader& reader, RodElement& rod) {
   reader.finish();
 }
 
+// The drawing speed c of a rod in steady axial motion (docs/model_format.md), checked against the rod's
+// material, section and intrinsic strains (RodModel::drawing_speed_problem: the admissibility limits).
+void check_drawing_speed(XmlElementReader& element, const RodModel& rod) {
+  const std::string problem = rod.drawing_speed_problem();
+  if (!problem.empty()) element.fail("drawing_speed", element.text("drawing_speed"), problem);
+}
+
 }  // namespace
 
 RodElement read_rod(const TiXmlElement& e, const std::string& source, const UrdfTree& tree) {
@@ -157,13 +164,16 @@ RodElement read_rod(const TiXmlElement& e, const std::string& source, const Urdf
     XmlElementReader reader(e, source, "pcr_rod");
     rod.name = reader.text("name");
     if (rod.name.empty()) reader.fail("name", rod.name, "is empty");
+    rod.rod.drawing_speed = reader.number_or("drawing_speed", 0.0);
     reader.finish();
   }
   const std::string label = quoted("pcr_rod", rod.name);
   XmlElementReader element(e, source, label);
-  static const char* const known[] = {
-      "start",           "end", "material", "section", "length", "intrinsic_curvature", "discretization",
-      "distributed_load"};
+  static const char* const known[] = {"start",          "end",
+                                      "material",       "section",
+                                      "length",         "intrinsic_curvature",
+                                      "discretization", "distributed_load",
+                                      "contact"};
   for (const TiXmlElement* c = e.FirstChildElement(); c; c = c->NextSiblingElement()) {
     bool ok = false;
     for (const char* k : known) ok = ok || c->ValueStr() == k;
@@ -199,6 +209,7 @@ RodElement read_rod(const TiXmlElement& e, const std::string& source, const Urdf
     rod.rod.intrinsic.curvature = reader.vec3("xyz");
     reader.finish();
   }
+  check_drawing_speed(element, rod.rod);
   if (const TiXmlElement* c = child("discretization", false)) {
     XmlElementReader reader(*c, source, label + " <discretization>");
     read_discretization(reader, rod);

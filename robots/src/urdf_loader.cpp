@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "model_text_check.hpp"
+#include "obstacle_reader.hpp"
 #include "pcr/core/error.hpp"
 #include "rod_element_reader.hpp"
 #include "urdf_part_reader.hpp"
@@ -154,9 +155,9 @@ PcrElements read_pcr_elements(const TiXmlElement& robot, const std::string& sour
     } else if (tag == "pcr_joint") {
       read_pcr_joint(*e, source, tree, joints);
       pcr.joint_elements.push_back(e);
-    } else if (tag.compare(0, 4, "pcr_") == 0) {
+    } else if (tag.compare(0, 4, "pcr_") == 0 && tag != "pcr_obstacle") {
       XmlElementReader reader(*e, source, "<" + tag + ">");
-      reader.fail("unknown pcr element (pcr_rod, pcr_gravity, pcr_load or pcr_joint)");
+      reader.fail("unknown pcr element (pcr_rod, pcr_gravity, pcr_load, pcr_joint or pcr_obstacle)");
     }
   }
   return pcr;
@@ -228,6 +229,7 @@ RobotModel parse_document(const std::string& xml, const std::string& source) {
   const UrdfTree tree = read_tree(robot, source);
   UrdfPart urdf = read_urdf_part(xml, tree, source);
   PcrElements pcr = read_pcr_elements(robot, source, tree, urdf.joints);
+  std::vector<ObstacleElement> obstacles = read_obstacles(robot, source, tree, pcr.rods);
   check_loads_act_on_movable_links(pcr, source, tree, urdf.joints);
   check_passive_joints_loaded(pcr, source, tree, urdf.joints, urdf.links);
   check_platforms_hold_rods(urdf.platforms, pcr.rods, source, tree);
@@ -235,7 +237,7 @@ RobotModel parse_document(const std::string& xml, const std::string& source) {
   // Cross-element checks (well-posedness, platform hold) live in RobotModel; prefix the file name.
   try {
     return RobotModel(robot_name, std::move(urdf.links), std::move(urdf.joints), std::move(urdf.platforms),
-                      std::move(pcr.rods), std::move(pcr.loads), pcr.gravity);
+                      std::move(pcr.rods), std::move(pcr.loads), pcr.gravity, std::move(obstacles));
   } catch (const InputError& e) {
     throw InputError(source + ": " + e.what());
   }

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include <Eigen/SVD>
 
 #include "pcr/core/error.hpp"
 #include "pcr/math/so3.hpp"
+#include "pcr/rods/drawn_rod.hpp"
 #include "pcr/rods/end_axes.hpp"
 
 namespace pcr {
@@ -14,7 +16,9 @@ namespace {
 
 using Twist = Eigen::Matrix<double, 6, 1>;
 
-bool positive_finite(double v) { return std::isfinite(v) && v > 0.0; }
+bool positive_finite(double v) {
+  return std::isfinite(v) && v > 0.0;
+}
 
 void require_positive(const std::string& rod, const char* what, double v) {
   require(positive_finite(v), "rod '", rod, "': ", what, " must be positive and finite, got ", v);
@@ -61,7 +65,8 @@ Twist free_rigid_motion(const RodModel& m) {
 }  // namespace
 
 Material Material::from_poisson_ratio(double youngs_modulus, double poisson_ratio, double density) {
-  require(poisson_ratio > -1.0 && poisson_ratio < 0.5, "Poisson ratio must lie in (-1, 0.5), got ", poisson_ratio);
+  require(poisson_ratio > -1.0 && poisson_ratio < 0.5, "Poisson ratio must lie in (-1, 0.5), got ",
+          poisson_ratio);
   return Material{youngs_modulus, youngs_modulus / (2.0 * (1.0 + poisson_ratio)), density};
 }
 
@@ -129,7 +134,9 @@ void RodModel::set_material_and_section(const Material& material, const CrossSec
   youngs_modulus = material.youngs_modulus;
 }
 
-Vec3 RodModel::distributed_force() const { return mass_per_length * loads.gravity + loads.force_per_length; }
+Vec3 RodModel::distributed_force() const {
+  return mass_per_length * loads.gravity + loads.force_per_length;
+}
 
 void RodModel::validate() const {
   require_positive(name, "length", length);
@@ -141,8 +148,11 @@ void RodModel::validate() const {
   }
   require(std::isfinite(mass_per_length) && mass_per_length >= 0.0, "rod '", name,
           "': mass per length must be non-negative and finite, got ", mass_per_length);
-  require(loads.gravity.allFinite() && loads.force_per_length.allFinite() && loads.moment_per_length.allFinite(),
-          "rod '", name, "': distributed loads are not finite");
+  require(
+      loads.gravity.allFinite() && loads.force_per_length.allFinite() && loads.moment_per_length.allFinite(),
+      "rod '", name, "': distributed loads are not finite");
+  const std::string drawing = drawing_speed_problem();
+  require(drawing.empty(), "rod '", name, "': ", drawing);
   validate_end(name, "base", base);
   validate_end(name, "tip", tip);
   require(holds_twist(base.kind, base.axis) || holds_twist(tip.kind, tip.axis), "rod '", name,
@@ -155,9 +165,53 @@ void RodModel::validate() const {
           motion.head<3>().transpose(), "] (at the world origin), w = [", motion.tail<3>().transpose(), "]");
 }
 
+std::string RodModel::drawing_speed_problem() const {
+  std::ostringstream msg;
+  const double c = drawing_speed;
+  if (!std::isfinite(c)) {
+    msg << "drawing_speed c = " << c << " m/s is not finite";
+    return msg.str();
+  }
+  if (c == 0.0) return {};
+  if (intrinsic.varying) {
+    msg << "drawing_speed c = " << c << " m/s needs a uniform rod: steady axial motion is defined only for "
+        << "material, section and intrinsic strains that do not vary along the rod, and this rod's "
+        << "intrinsic strains vary with s";
+    return msg.str();
+  }
+  // Admissibility (docs/design.md §1 "Drawn rods"): K_SE - rho A c^2 and K_BT - rho c^2 J_rho positive
+  // definite, i.e. c below each limit speed sqrt(K_i / (rho A)), sqrt(K_BT,i / (rho J_rho,i)).
+  double flux_force = 0.0;
+  Vec3 flux_moment;
+  drawn_flux(*this, flux_force, flux_moment);
+  const char* se[] = {"shear stiffness kGA (d1)", "shear stiffness kGA (d2)", "axial stiffness EA"};
+  const char* bt[] = {"bending stiffness EI1", "bending stiffness EI2", "torsional stiffness GJ"};
+  for (int i = 0; i < 3; ++i) {
+    const double k = shear_extension_stiffness[i];
+    if (flux_force >= k) {
+      msg << "drawing_speed c = " << c << " m/s is at or above the limit of the " << se[i] << " = " << k
+          << " N: rho A c^2 = " << flux_force << " N must stay below it (|c| < "
+          << std::sqrt(k / mass_per_length)
+          << " m/s), else the effective stiffness K_SE - rho A c^2 is not positive definite";
+      return msg.str();
+    }
+  }
+  for (int i = 0; i < 3; ++i) {
+    const double k = bending_torsion_stiffness[i];
+    if (flux_moment[i] >= k) {
+      msg << "drawing_speed c = " << c << " m/s is at or above the limit of the " << bt[i] << " = " << k
+          << " N m^2: rho c^2 J_rho = " << flux_moment[i] << " N m^2 must stay below it (|c| < "
+          << std::abs(c) * std::sqrt(k / flux_moment[i])
+          << " m/s), else the effective stiffness K_BT - rho c^2 J_rho is not positive definite";
+      return msg.str();
+    }
+  }
+  return {};
+}
+
 double checked_arc_length(double s, double length, const std::string& who) {
-  require(std::isfinite(s) && s >= -1e-12 * length && s <= length * (1.0 + 1e-12), who, ": arc length s = ", s,
-          " outside [0, ", length, "]");
+  require(std::isfinite(s) && s >= -1e-12 * length && s <= length * (1.0 + 1e-12), who,
+          ": arc length s = ", s, " outside [0, ", length, "]");
   return std::clamp(s, 0.0, length);
 }
 

@@ -18,6 +18,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "pcr/robots/kinematics.hpp"
 #include "pcr/robots/urdf_loader.hpp"
@@ -136,7 +137,17 @@ struct Stats {
   std::map<int, int> histogram;  // iteration bin upper edge -> count
   double worst_residual = 0.0, worst_force = 0.0, worst_moment = 0.0, worst_coupling = 0.0, seconds = 0.0;
   int cold_warm_pairs = 0, cold_warm_different = 0;
+  std::vector<double> times;              // per solve [s]
+  int stable = 0, verdicts = 0;           // with --stability=1: stable results among the verdicts
+  std::map<std::string, int> strategies;  // converged solves by the strategy that gave them
 };
+
+/// q-quantile (0..1) of the values (nearest rank), 0 for none.
+double quantile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size())))];
+}
 
 int iteration_bin(int iterations) {
   for (int edge : {5, 10, 20, 50, 100, 200, 500, 1000})
@@ -158,6 +169,7 @@ bool solve_and_check(const std::string& name, ForwardKinematics& fk, const VecX&
     return false;
   }
   stats.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  stats.times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   const SolveSummary& sum = out.summary;
   ++stats.statuses[to_string(sum.status)];
   ++stats.histogram[iteration_bin(sum.iterations)];
@@ -165,11 +177,21 @@ bool solve_and_check(const std::string& name, ForwardKinematics& fk, const VecX&
     // An explicit failure: a status, a message saying why, and still finite (last good) values.
     BOOST_TEST(!sum.message.empty(), name << ": non-converged solve without a message at " << u.transpose());
     if (!sum.message.empty()) ++stats.failed_with_message;
+    BOOST_TEST_MESSAGE(name << ": " << to_string(sum.status) << " at " << u.transpose() << ": "
+                            << sum.message);
     const Consistency c = check_solution(model, out);
     BOOST_TEST(c.finite, name << ": non-finite values returned with status " << to_string(sum.status));
     return false;
   }
   ++stats.converged;
+  const size_t by = sum.message.find("converged by ");
+  ++stats.strategies[by == std::string::npos
+                         ? "direct"
+                         : sum.message.substr(by + 13, sum.message.find(" (", by) - by - 13)];
+  if (out.stability_verdict.verdict != StabilityVerdict::NotChecked) {
+    ++stats.verdicts;
+    stats.stable += out.stability_verdict.verdict == StabilityVerdict::Stable ? 1 : 0;
+  }
   const Consistency c = check_solution(model, out);
   BOOST_TEST(c.finite, name << ": converged with non-finite values at " << u.transpose());
   if (!c.finite) return false;
@@ -216,6 +238,11 @@ void report(const std::string& name, const std::string& mode, const Stats& s) {
   }
   std::ostringstream st;
   for (const auto& [status, count] : s.statuses) st << " " << status << ":" << count;
+  std::ostringstream by;
+  for (const auto& [strategy, count] : s.strategies) by << " [" << strategy << "]:" << count;
+  BOOST_TEST_MESSAGE(name << " " << mode << ": time per solve median " << quantile(s.times, 0.5)
+                          << " s, 99th percentile " << quantile(s.times, 0.99) << " s; stable " << s.stable
+                          << "/" << s.verdicts << "; converged by" << by.str());
   BOOST_TEST_MESSAGE(name << " " << mode << ": " << s.converged << "/" << s.solves << " converged ("
                           << (s.solves ? 100.0 * s.converged / s.solves : 0.0) << " %), statuses" << st.str()
                           << "; iterations" << h.str() << "; worst residual " << s.worst_residual
@@ -236,6 +263,7 @@ void sweep(const std::string& name, unsigned seed, long ci_solves) {
   const long solves = argument("solves", ci_solves);
   const auto model = load_model(name);
   KinematicsOptions o;  // defaults: Newton, tolerance 1e-10
+  o.stability_verdict = argument("stability", 0) != 0;
   std::mt19937 rng(seed + static_cast<unsigned>(argument("seed", 0)));
   std::vector<std::uniform_real_distribution<double>> draw;
   for (const ActuationInput& in : model->inputs()) draw.emplace_back(in.lower, in.upper);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "contact_assembly.hpp"
 #include "link_frame.hpp"
 #include "passive_joint_block.hpp"
 #include "pcr/core/error.hpp"
@@ -30,6 +31,7 @@ RodDiscretization discretization_for(const RodElement& e, const AssemblyOptions&
   if (o.condense_mixed_rods && !hinted_mixed && d.formulation == RodFormulation::Mixed &&
       d.mixed_points == MixedPoints::Midpoints)
     d.formulation = RodFormulation::Condensed;
+  assembly::set_contact_discretization(e, o.use_model_hints, d);
   return d;
 }
 
@@ -123,6 +125,10 @@ struct RobotAssembly::Builder {
     a.length_scale_ = std::max(a.length_scale_, rod->length_scale());
     a.force_scale_ = std::max(a.force_scale_, rod->force_scale());
     a.moment_scale_ = std::max(a.moment_scale_, rod->moment_scale());
+    a.rod_contacts_.emplace_back();
+    if (!e.obstacles.empty())
+      a.rod_contacts_.back() = add_rod_contact(a.problem_, *rod, vars,
+                                               assembly::rod_contact_options(m, e, options.contact_function));
     a.rod_couplings_.push_back({-1, -1});
     for (bool at_tip : {false, true})
       if (attached(at_tip ? e.end : e.start)) add_coupling(e, *rod, vars, at_tip);
@@ -225,6 +231,11 @@ RobotAssembly::RobotAssembly(std::shared_ptr<const RobotModel> model, const Asse
   require(free_unknowns == problem_.num_rows(), "robot '", model_->name(), "': the assembly has ",
           problem_.num_rows(), " equations for ", free_unknowns,
           " unknowns (with inputs fixed); check the rod couplings");
+}
+
+const RodContactVariables* RobotAssembly::rod_contact(int i) const {
+  require(i >= 0 && i < num_rods(), "rod_contact: rod ", i, " out of range [0, ", num_rods(), ")");
+  return rod_contacts_[i].blocks.empty() ? nullptr : &rod_contacts_[i];
 }
 
 ResidualId RobotAssembly::platform_balance(int platform) const {

@@ -1,6 +1,7 @@
 #include "pcr/robots/io/path_writers.hpp"
 
 #include "csv_fields.hpp"
+#include "path_events_output.hpp"
 #include "pcr/math/so3.hpp"
 #include "pcr/robots/io/json_writer.hpp"
 
@@ -11,6 +12,11 @@ using io_detail::csv_pose;
 using io_detail::csv_pose_header;
 
 void write_path_csv(std::ostream& out, const RobotModel& model, const std::vector<PathPoint>& points) {
+  write_path_csv(out, model, points, {});
+}
+
+void write_path_csv(std::ostream& out, const RobotModel& model, const std::vector<PathPoint>& points,
+                    const std::vector<PathEvent>& events) {
   const std::vector<LinkPose> no_links;
   const std::vector<LinkTarget> no_targets;
   const std::vector<LinkPose>& links = points.empty() ? no_links : points.front().extras.links;
@@ -22,7 +28,12 @@ void write_path_csv(std::ostream& out, const RobotModel& model, const std::vecto
   for (const LinkTarget& target : targets)
     out << ',' << target.link << ".position_error," << target.link << ".orientation_error";
   out << ",status,iterations,residual_max_abs,wall_time_seconds,message\n";
+  size_t next_event = 0;
   for (size_t k = 0; k < points.size(); ++k) {
+    // Events on the way to point k (path parameter up to k) come before its row.
+    for (; next_event < events.size() && events[next_event].path_parameter <= static_cast<double>(k);
+         ++next_event)
+      io_detail::write_event_row(out, model, events[next_event], links.size(), targets.size());
     const RobotSolution& s = points[k].solution;
     out << k;
     for (size_t i = 0; i < model.inputs().size(); ++i)
@@ -44,9 +55,16 @@ void write_path_csv(std::ostream& out, const RobotModel& model, const std::vecto
         << csv_number(s.summary.residual_max_abs) << ',' << csv_number(s.summary.wall_time_seconds) << ','
         << io_detail::csv_quote(s.summary.message) << '\n';
   }
+  for (; next_event < events.size(); ++next_event)
+    io_detail::write_event_row(out, model, events[next_event], links.size(), targets.size());
 }
 
 int write_path_json(std::ostream& out, const RobotModel& model, const std::vector<PathPoint>& points) {
+  return write_path_json(out, model, points, nullptr);
+}
+
+int write_path_json(std::ostream& out, const RobotModel& model, const std::vector<PathPoint>& points,
+                    const std::vector<PathEvent>* events) {
   int failures = 0;
   for (const PathPoint& point : points) failures += point.solution.summary.converged() ? 0 : 1;
   JsonWriter json(out);
@@ -64,6 +82,7 @@ int write_path_json(std::ostream& out, const RobotModel& model, const std::vecto
   for (const PathPoint& point : points)
     write_solution_object(json, model, point.solution, point.targets, point.extras);
   json.end_array();
+  if (events) io_detail::write_events_json(json, model, *events);
   return json.end_document();
 }
 

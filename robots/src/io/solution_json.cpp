@@ -1,3 +1,4 @@
+#include "contact_output.hpp"
 #include "pcr/math/so3.hpp"
 #include "pcr/robots/io/json_writer.hpp"
 #include "pcr/robots/io/solution_writers.hpp"
@@ -246,6 +247,7 @@ void write_solution_object(JsonWriter& json, const RobotModel& model, const Robo
   write_targets(json, model, solution, targets);
   write_derivatives(json, model, extras);
   write_rods(json, solution.rods);
+  write_contacts_member(json, solution.contacts);
   write_stability_member(json, solution.stability_verdict);
   json.key("summary");
   write_summary(json, solution.summary);

@@ -1,6 +1,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "contact_output.hpp"
 #include "pcr/robots/io/solution_writers.hpp"
 #include "pcr/solve/solve_summary.hpp"
 #include "stability_output.hpp"
@@ -70,6 +71,7 @@ void write_solution_table(std::ostream& out, const RobotModel& model, const Robo
       << format("%.3g", s.wall_time_seconds * 1e3) << " ms)\n";
   if (!s.converged() && !s.message.empty()) out << "  message: " << s.message << "\n";
   write_stability_line(out, solution.stability_verdict);
+  write_contact_lines(out, solution.contacts);
   if (!model.inputs().empty()) {
     out << "inputs:\n";
     for (size_t i = 0; i < model.inputs().size(); ++i) {

@@ -3,15 +3,19 @@
 //  2. Newton from the last solution (when the extrapolated start failed);
 //  3. continuation in the inputs from the last solution (input_continuation.hpp);
 //  4. continuation from the model's default inputs, solved from the straight initial guess, along the line;
-//  5. continuation from the default inputs one input at a time.
+//  5. continuation from the default inputs one input at a time;
+//  6. pseudo-arclength continuation from the default inputs along the line, through folds, following the
+//     equilibrium the robot snaps to at a fold (fold_continuation.hpp). Last, so that it costs nothing
+//     where an earlier strategy converges (where it fails it can take longer than all of them together).
 // The warm path starts in a deformed state that may be far from the new inputs and fails more often than
 // the cold one (random input sweeps), hence the attempts from the default inputs after it. The direct
 // attempts, which have a continuation to fall back on, and each continuation step get a limited number
-// of fresh Jacobians (random sweeps, docs/benchmarks.md "Random FK sweeps": limited fresh Jacobians per step took 5x less
-// time per Stewart-Gough solve than full-budget steps, and more converged).
+// of fresh Jacobians (random sweeps, docs/benchmarks.md "Random FK sweeps": limited fresh Jacobians per step
+// took 5x less time per Stewart-Gough solve than full-budget steps, and more converged).
 #include <string>
 
 #include "fk_data.hpp"
+#include "fold_continuation.hpp"
 #include "input_continuation.hpp"
 
 namespace pcr::kinematics {
@@ -24,6 +28,8 @@ constexpr int kContinuationStepJacobianEvaluations = 8;
 /// Orders tried by the one-input-at-a-time continuation (the last fallback; bounds its cost on inputs
 /// without a reachable equilibrium: at most this many orders of one leg per input).
 constexpr int kOneInputOrders = 3;
+/// Step budget of the fold-aware continuation from the default inputs (snaps included).
+constexpr int kArclengthSteps = 200;
 
 /// One FK solve in progress.
 struct FkAttempt {
@@ -109,6 +115,39 @@ bool continuation_from_default_inputs(FkAttempt& a, const char* how) {
       how);
 }
 
+/// Pseudo-arclength continuation from the default inputs along the straight line, through folds: at a
+/// fold it follows the stable equilibrium the robot snaps to (fold_continuation.hpp). Unstable modes are
+/// counted only at folds and snap landings (a verdict costs about a cold solve).
+bool arclength_from_default_inputs(FkAttempt& a, const char* how) {
+  if (!solve_default_inputs(a)) return false;
+  const FkModel& m = *a.data.model;
+  if (m.options.solver != SolverKind::Newton) return false;
+  PathThroughFoldsOptions o;
+  o.at_fold = FoldPolicy::Snap;
+  o.count_unstable_modes = false;
+  o.max_steps = kArclengthSteps;
+  const SegmentOutcome seg =
+      continue_segment(*m.assembly, a.x_default, -1, m.assembly->model().default_input_values(), a.inputs, 0,
+                       m.options.tolerance, o);
+  a.count(seg.iterations, seg.jacobian_evaluations);
+  if (!seg.reached) {
+    a.summary.message += "; " + std::string(how) + " stopped: " + seg.stopped;
+    return false;
+  }
+  int snaps = 0;
+  for (const PathEvent& e : seg.events) snaps += e.kind == PathEventKind::Snap ? 1 : 0;
+  a.x = seg.x;
+  VecX c;
+  m.assembly->problem().evaluate_residuals(a.x, c);
+  a.summary = SolveSummary{};
+  a.summary.status = SolveStatus::Converged;
+  a.summary.solver = "newton-arclength";
+  a.summary.residual_max_abs = c.size() ? (c - m.assembly->problem().row_lower()).cwiseAbs().maxCoeff() : 0.0;
+  a.summary.message = "converged by " + std::string(how) + " (" + std::to_string(seg.steps) + " steps, " +
+                      std::to_string(snaps) + " snaps)";
+  return true;
+}
+
 bool one_input_at_a_time(FkAttempt& a, const char* how) {
   if (!solve_default_inputs(a)) return false;
   VecX xs = a.x_default;
@@ -131,6 +170,7 @@ constexpr FkStrategy kStrategies[] = {
     {"continuation in the inputs from the last solution", continuation_from_last_solution},
     {"continuation in the inputs from the default inputs", continuation_from_default_inputs},
     {"continuation from the default inputs one input at a time", one_input_at_a_time},
+    {"fold-aware arclength continuation from the default inputs", arclength_from_default_inputs},
 };
 
 }  // namespace

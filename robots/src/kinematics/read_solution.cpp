@@ -48,6 +48,9 @@ RobotSolution read_solution(const RobotAssembly& a, const VecX& x,
     rod.sample_centerline(x, v, bases, r.centerline, stretches);
     r.min_axial_stretch = *std::min_element(stretches.begin(), stretches.end());
     s.rods.push_back(std::move(r));
+    if (const RodContactVariables* contact = a.rod_contact(i)) {
+      for (ObstacleContact& c : read_rod_contact(rod, v, *contact, x)) s.contacts.push_back(std::move(c));
+    }
   }
   return s;
 }

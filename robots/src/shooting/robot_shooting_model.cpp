@@ -36,6 +36,9 @@ void check_joints(const RobotModel& m) {
             m.links()[joint.child_link].name, "' carried by platform '", k >= 0 ? m.platforms()[k].name : "",
             "' (moving joints on platforms are not supported by the shooting solver)");
   }
+  for (const RodElement& rod : m.rods())
+    require(rod.obstacles.empty(), "ShootingRobotSolver: rod '", rod.name,
+            "' may touch obstacles (<contact>), which the shooting solver does not model");
 }
 
 RodSetup rod_setup(const RobotModel& m, int i, const VecX& joints, const std::vector<Pose>& poses0) {

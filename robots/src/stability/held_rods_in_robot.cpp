@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <sstream>
 
+#include "pcr/rods/drawn_rod.hpp"
 #include "pcr/rods/stability/rod_stability.hpp"
 #include "robot_stability_parts.hpp"
 
@@ -14,6 +15,8 @@ std::string robot_assumption_failure(const RobotModel& model) {
   for (const RodElement& rod : model.rods()) {
     const std::string rod_failure = nonconservative_loads(rod.rod);
     if (!rod_failure.empty()) add(rod_failure);
+    if (!rod.obstacles.empty())
+      add("rod '" + rod.name + "' may touch obstacles: contact is not in the second variation");
   }
   for (const ExternalLoad& load : model.loads())
     if (!load.torque.isZero(0.0))
@@ -66,8 +69,11 @@ HeldRodIndex held_rod_in_robot(const RobotAssembly& assembly, const VecX& x, int
   const double L = rod.length(x, vars);
   HeldRod held;
   held.length = L;
-  held.shear_extension_stiffness = rod.model().shear_extension_stiffness;
-  held.bending_torsion_stiffness = rod.model().bending_torsion_stiffness;
+  // Drawn rods: the effective stiffnesses (drawn_rod.hpp), as jacobi_states gives N, M.
+  const DrawnConstants d =
+      drawn_constants(rod.model(), rod.model().intrinsic.shear_extension, rod.model().intrinsic.curvature);
+  held.shear_extension_stiffness = d.k_se;
+  held.bending_torsion_stiffness = d.k_bt;
   held.base = held_coupling(model, element.start, q, platforms, states(0.0).rotation);
   held.tip = held_coupling(model, element.end, q, platforms, states(L).rotation);
   HeldRodOptions options;

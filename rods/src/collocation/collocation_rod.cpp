@@ -72,6 +72,9 @@ CollocationRod::CollocationRod(RodModel model, RodDiscretization discretization)
       break;
   }
   require(form_ != nullptr, "rod '", model_.name, "': unknown formulation");
+  require(!discretization.contact_forces || form_ == &mixed_midpoint_form(), "rod '", model_.name,
+          "': contact forces need the mixed form at the midpoints (formulation ",
+          to_string(discretization.formulation), ", points ", to_string(discretization.mixed_points), ")");
   knots_ = std::make_shared<const KnotVector>(
       KnotVector::open_uniform(discretization.degree, discretization.elements));
   if (loaded_condensed_) integral_weights_ = basis_integrals(*knots_, 1.0);  // also integrals_at()
@@ -186,6 +189,13 @@ RodVariables CollocationRod::add_to_problem(Problem& problem, const RodEndOption
   vars.length = problem.add_variable_block(name + ".length", VecX::Constant(1, model_.length));
   if (group >= 0) problem.set_variable_group(vars.length, group);
   if (!free_length) problem.fix_variable(vars.length, VecX::Constant(1, model_.length));
+  if (discretization_.contact_forces) {
+    for (int j = 0; j + 1 < n; ++j) {
+      vars.contact_forces.push_back(
+          problem.add_variable_block(name + ".contact_force" + std::to_string(j), VecX::Zero(3)));
+      if (group >= 0) problem.set_variable_group(vars.contact_forces.back(), group);
+    }
+  }
   vars.control_point_offset = problem.variable(vars.control_points[0]).offset;
   vars.length_offset = problem.variable(vars.length).offset;
 

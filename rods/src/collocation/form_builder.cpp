@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "pcr/math/quaternion.hpp"
+#include "pcr/rods/drawn_rod.hpp"
 #include "pcr/rods/end_axes.hpp"
 #include "pcr/splines/basis.hpp"
 
@@ -40,6 +41,10 @@ PointConstants FormBuilder::constants_at(double u) const {
   }
   c.eps0 *= load_factor_;
   c.kappa0 *= load_factor_;
+  // Drawn rods: the effective constants (M4) of the unknowns N, M (drawn_rod.hpp; uniform rods only, so
+  // eps0_s = kappa0_s = 0). Nothing changes at c = 0.
+  drawn_flux(model, c.flux_force, c.flux_moment);
+  apply_drawn_constants(c.flux_force, c.flux_moment, c.k_se, c.k_bt, c.eps0, c.kappa0);
   c.f = load_factor_ * model.distributed_force();
   c.l = load_factor_ * model.loads.moment_per_length;
   return c;

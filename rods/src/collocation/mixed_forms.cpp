@@ -31,6 +31,33 @@ void add_mixed_end(const FormBuilder& b, bool at_tip) {
   });
 }
 
+/// MixedZ with the contact force density F_j (3, a direct block after L) of
+/// RodDiscretization::contact_forces.
+struct MixedContactZ {
+  enum Entry { q, q_u, p_u, n, n_u, m, m_u, L, F, kEntries };
+  static constexpr LocalLayout<kEntries> layout{{{{kMixedPoint.q, 4, 0},
+                                                  {kMixedPoint.q, 4, 1},
+                                                  {kMixedPoint.p, 3, 1},
+                                                  {kMixedPoint.n, 3, 0},
+                                                  {kMixedPoint.n, 3, 1},
+                                                  {kMixedPoint.m, 3, 0},
+                                                  {kMixedPoint.m, 3, 1},
+                                                  {kDirect, 1},
+                                                  {kDirect, 3}}}};
+};
+static_assert(MixedContactZ::layout.offset(MixedContactZ::F) == MixedZ::layout.size(),
+              "MixedContactZ is MixedZ followed by F");
+
+/// mixed_field with the contact force density F added to f: n' + f + F = 0 (rod_contact.hpp).
+template <typename T>
+void mixed_contact_field(const Eigen::Matrix<T, MixedContactZ::layout.size(), 1>& z, const PointConstants& c,
+                         T* r) {
+  const MixedLocal<T> head = z.template head<MixedZ::layout.size()>();
+  mixed_field(head, c, r);
+  const double fr = c.length_scale / c.force_scale;
+  for (int i = 0; i < 3; ++i) r[i] += get<MixedContactZ, MixedContactZ::F>(z)[i] * fr;
+}
+
 class MixedForm : public RodForm {
  public:
   const PointLayout& layout() const override { return kMixedPoint; }
@@ -46,9 +73,17 @@ class MixedMidpointForm final : public MixedForm {
  public:
   void add_blocks(const FormBuilder& b) const override {
     std::optional<KernelPattern<MixedZ::layout.size(), 12>> pattern;
+    std::optional<KernelPattern<MixedContactZ::layout.size(), 12>> contact_pattern;
+    const std::vector<VariableId>& F = b.vars().contact_forces;
     for (int j = 0; j + 1 < b.num_control_points(); ++j) {
       const double u = b.midpoint(j);
       const PointConstants c = b.constants_at(u);
+      if (!F.empty()) {
+        b.add_detected<MixedContactZ, 12>(
+            "rod.mixed_field", u, b.basis_at(u, 1), {b.vars().length, F[j]},
+            [c](const auto& z, auto* r) { mixed_contact_field(z, c, r); }, contact_pattern);
+        continue;
+      }
       b.add_detected<MixedZ, 12>(
           "rod.mixed_field", u, b.basis_at(u, 1), {b.vars().length},
           [c](const auto& z, auto* r) { mixed_field(z, c, r); }, pattern);

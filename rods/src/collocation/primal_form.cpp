@@ -3,6 +3,7 @@
 // m' + p' x n + l = 0 (3) and |q|^2 = 1 (1), with n = R K_SE (eps - eps0), m = R K_BT (kappa - kappa0)
 // (primal_interior); at u = 0 and u = 1 the 7 end conditions with the same n, m.
 #include "form_builder.hpp"
+#include "pcr/rods/drawn_rod.hpp"
 
 namespace pcr::collocation {
 namespace {
@@ -40,11 +41,13 @@ class PrimalForm final : public RodForm {
 
   void internal_wrench(const CollocationRod& rod, const VecX&, const RodVariables&, const BasisDerivatives&,
                        const PointValues&, RodState& st) const override {
+    // The constitutive law (M4): N, M for a drawn rod (the model's n, m otherwise).
     const RodModel& m = rod.model();
     Vec3 eps0, kappa0;
     m.intrinsic.at(st.s, eps0, kappa0);
-    st.force = st.rotation * m.shear_extension_stiffness.cwiseProduct(st.shear_extension_body - eps0);
-    st.moment = st.rotation * m.bending_torsion_stiffness.cwiseProduct(st.curvature_body - kappa0);
+    const DrawnConstants d = drawn_constants(m, eps0, kappa0);
+    st.force = st.rotation * d.k_se.cwiseProduct(st.shear_extension_body - d.eps0);
+    st.moment = st.rotation * d.k_bt.cwiseProduct(st.curvature_body - d.kappa0);
   }
 
  private:

@@ -3,6 +3,7 @@
 #include "pcr/math/dual.hpp"
 #include "pcr/math/so3.hpp"
 #include "pcr/rods/collocation/equations.hpp"
+#include "pcr/rods/drawn_rod.hpp"
 #include "pcr/splines/basis.hpp"
 
 namespace pcr {
@@ -55,10 +56,16 @@ RodEndEvaluator::RodEndEvaluator(const CollocationRod& rod, const RodVariables& 
     derivative_basis_.push_back(d.values(1, i));
   }
   variables_.push_back(variables.length);
+  // The constitutive law of the unknowns: for a drawn rod the effective one (M4, drawn_rod.hpp), so that
+  // y holds N, M as in the other formulations.
   const RodModel& m = rod.model();
-  k_se_ = m.shear_extension_stiffness;
-  k_bt_ = m.bending_torsion_stiffness;
-  m.intrinsic.at(u * m.length, eps0_, kappa0_);
+  Vec3 eps0, kappa0;
+  m.intrinsic.at(u * m.length, eps0, kappa0);
+  const DrawnConstants drawn = drawn_constants(m, eps0, kappa0);
+  k_se_ = drawn.k_se;
+  k_bt_ = drawn.k_bt;
+  eps0_ = drawn.eps0;
+  kappa0_ = drawn.kappa0;
 }
 
 void RodEndEvaluator::evaluate(const double* const* values, RodEndVector& y,

@@ -4,6 +4,7 @@
 #include "form_builder.hpp"
 #include "pcr/math/quaternion.hpp"
 #include "pcr/rods/collocation_rod.hpp"
+#include "pcr/rods/drawn_rod.hpp"
 #include "pcr/splines/basis.hpp"
 
 namespace pcr {
@@ -51,6 +52,14 @@ RodState CollocationRod::state_with_basis(const VecX& x, const RodVariables& var
   st.curvature_body = body_curvature<double>(st.quaternion, q_s);
   st.shear_extension_body = st.rotation.transpose() * p_s - Vec3::UnitZ();
   form_->internal_wrench(*this, x, vars, d, value, st);
+  if (model_.drawing_speed != 0.0) {
+    // Drawn rods: the unknowns are the effective N, M (drawn_rod.hpp); report the section's n, m.
+    Vec3 eps0, kappa0, n, m;
+    model_.intrinsic.at(s, eps0, kappa0);
+    section_wrench(drawn_constants(model_, eps0, kappa0), st.rotation, st.force, st.moment, n, m);
+    st.force = n;
+    st.moment = m;
+  }
   return st;
 }
 

@@ -47,12 +47,15 @@ RodOde::RodOde(const RodModel& model, double load_factor) {
   model.validate();
   length_ = model.length;
   load_factor_ = load_factor;
-  compliance_se_ = model.shear_extension_stiffness.cwiseInverse();
-  compliance_bt_ = model.bending_torsion_stiffness.cwiseInverse();
+  // Drawn rods: the effective constants (M4); the model's own otherwise (drawn_rod.hpp). s-varying
+  // intrinsic strains (varying_) only occur at c = 0 (RodModel::validate).
+  drawn_ = drawn_constants(model, model.intrinsic.shear_extension, model.intrinsic.curvature);
+  compliance_se_ = drawn_.k_se.cwiseInverse();
+  compliance_bt_ = drawn_.k_bt.cwiseInverse();
   f_ = load_factor * model.distributed_force();
   l_ = load_factor * model.loads.moment_per_length;
-  eps0_ = model.intrinsic.shear_extension;
-  kappa0_ = model.intrinsic.curvature;
+  eps0_ = drawn_.eps0;
+  kappa0_ = drawn_.kappa0;
   if (model.intrinsic.varying) varying_ = std::make_shared<IntrinsicStrains>(model.intrinsic);
   // Characteristic force and moment: the bending scale EI/L^2, EI/L, or the applied loads if larger
   // (then round-off in n and m grows with the loads, and tolerances must follow).
@@ -64,6 +67,76 @@ RodOde::RodOde(const RodModel& model, double load_factor) {
   moment_scale_ = std::max(bending * length_, load_factor * moments + force_scale_ * length_);
   state_scale_ << Vec3::Constant(length_), Quat::Ones(), Vec3::Constant(force_scale_),
       Vec3::Constant(moment_scale_);
+}
+
+namespace {
+
+using Block36 = Eigen::Matrix<double, 3, kRodTangentCount>;
+
+// x -> R (A R^T x + b) for a diagonal A and a body-frame vector b, with the tangents
+// d = R (omega x (A R^T x + b) + A (R^T dx - omega x R^T x)) for dR = R hat(omega) (columns).
+void body_affine(const Mat3& R, const Vec3& A, const Vec3& b, const Block36* omega, Eigen::Ref<Vec3> x,
+                 Eigen::Ref<Block36> dx) {
+  const Vec3 x_body = R.transpose() * x;
+  const Vec3 y_body = A.cwiseProduct(x_body) + b;
+  if (omega) dx = R * (-hat(y_body) * *omega + A.asDiagonal() * (R.transpose() * dx + hat(x_body) * *omega));
+  x = R * y_body;
+}
+
+// The section's n, m from N, M (to_section) or back: n = R (A_n R^T N + b_n), A_n = K_SE / K_SE,eff,
+// b_n = rho A c^2 (eps0_eff + e3); m = R (A_m R^T M + b_m), A_m = K_BT / K_BT,eff,
+// b_m = rho c^2 J_rho kappa0_eff (drawn_rod.hpp); the inverse has A^-1, -A^-1 b.
+void convert(const DrawnConstants& d, bool to_section, RodStateWithTangents& Y, bool tangents) {
+  if (!d.drawn()) return;
+  Vec3 A_n = Vec3::Ones() + Vec3::Constant(d.flux_force).cwiseQuotient(d.k_se);
+  Vec3 b_n = d.flux_force * (d.eps0 + Vec3::UnitZ());
+  Vec3 A_m = Vec3::Ones() + d.flux_moment.cwiseQuotient(d.k_bt);
+  Vec3 b_m = d.flux_moment.cwiseProduct(d.kappa0);
+  if (!to_section) {
+    A_n = A_n.cwiseInverse();
+    b_n = -A_n.cwiseProduct(b_n);
+    A_m = A_m.cwiseInverse();
+    b_m = -A_m.cwiseProduct(b_m);
+  }
+  const Quat q = Y.col(0).segment<4>(RodStateIndex::q);
+  const Mat3 R = rotation_of(q);
+  Block36 omega = Block36::Zero();
+  if (tangents) {
+    // omega = 2 vec(conj(q) (x) dq) / |q|^2 per tangent column (as in RodOde::derivative).
+    Eigen::Matrix<double, 3, 4> G;
+    G.col(0) = -q.tail<3>();
+    G.rightCols<3>() = q[0] * Mat3::Identity() - hat(Vec3(q.tail<3>()));
+    omega = (2.0 / q.squaredNorm()) * G * Y.block<4, kRodTangentCount>(RodStateIndex::q, 1);
+  }
+  body_affine(R, A_n, b_n, tangents ? &omega : nullptr, Y.col(0).segment<3>(RodStateIndex::n),
+              Y.block<3, kRodTangentCount>(RodStateIndex::n, 1));
+  body_affine(R, A_m, b_m, tangents ? &omega : nullptr, Y.col(0).segment<3>(RodStateIndex::m),
+              Y.block<3, kRodTangentCount>(RodStateIndex::m, 1));
+}
+
+}  // namespace
+
+void RodOde::to_effective(RodStateWithTangents& Y) const {
+  convert(drawn_, false, Y, true);
+}
+void RodOde::to_section(RodStateWithTangents& Y) const {
+  convert(drawn_, true, Y, true);
+}
+
+void RodOde::to_effective(RodStateVector& y) const {
+  if (!drawn()) return;
+  RodStateWithTangents Y = RodStateWithTangents::Zero();
+  Y.col(0) = y;
+  convert(drawn_, false, Y, false);
+  y = Y.col(0);
+}
+
+void RodOde::to_section(RodStateVector& y) const {
+  if (!drawn()) return;
+  RodStateWithTangents Y = RodStateWithTangents::Zero();
+  Y.col(0) = y;
+  convert(drawn_, true, Y, false);
+  y = Y.col(0);
 }
 
 void RodOde::intrinsic_at(double s, Vec3& eps0, Vec3& kappa0) const {

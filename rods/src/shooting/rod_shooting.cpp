@@ -38,7 +38,12 @@ ShootingState ShootingSolution::at(double s_query) const {
   const size_t i = it == s.begin() ? 0 : static_cast<size_t>(it - s.begin()) - 1;
   const double h = s_query - s[i];
   if (h <= 0.0) return states[i];
-  return ShootingState::from_vector(rod_single_step(*ode_, s[i], h, states[i].to_vector(), method_));
+  // The states hold the section's n, m; the ODE a drawn rod's N, M (rod_ode.hpp).
+  RodStateVector y = states[i].to_vector();
+  ode_->to_effective(y);
+  y = rod_single_step(*ode_, s[i], h, y, method_);
+  ode_->to_section(y);
+  return ShootingState::from_vector(y);
 }
 
 std::vector<ShootingState> ShootingSolution::sample(const std::vector<double>& s_values) const {
@@ -76,7 +81,10 @@ bool unloaded_tip(const RodModel& model, const IntegratorOptions& integrator, Ro
   base.p = model.base.position;
   base.q = model.base.orientation.normalized();
   tip = base.to_vector();
-  return integrate_rod(ode, 0.0, model.length, tip, integrator).success && tip.allFinite();
+  ode.to_effective(tip);
+  const bool ok = integrate_rod(ode, 0.0, model.length, tip, integrator).success && tip.allFinite();
+  ode.to_section(tip);
+  return ok;
 }
 
 // Continuation in the load factor after a failed full-load solve: lambda from 0 to 1, increments
@@ -170,6 +178,7 @@ ShootingSolution solve_rod_shooting(const RodModel& model, const ShootingOptions
   solution.ode_ = std::make_shared<RodOde>(model);
   solution.method_ = options.integrator;
   RodStateVector y = y0;
+  solution.ode_->to_effective(y);  // the ODE's state (rod_ode.hpp: N, M of a drawn rod)
   RodTrajectory trajectory;
   RodTrajectory* record = options.store_trajectory ? &trajectory : nullptr;
   // On the mesh Newton converged on (if frozen), so that the reported residual is the converged one.
@@ -178,6 +187,7 @@ ShootingSolution solve_rod_shooting(const RodModel& model, const ShootingOptions
       on_mesh ? integrate_rod_on_mesh(*solution.ode_, outcome.mesh, y, options.integrator, record)
               : integrate_rod(*solution.ode_, 0.0, model.length, y, integrator, record);
   solution.base = ShootingState::from_vector(y0);
+  solution.ode_->to_section(y);
   if (report.success && y.allFinite()) {
     solution.tip = ShootingState::from_vector(y);
     const Vec6 r = shooting::tip_residual(model.tip, y);
@@ -187,8 +197,10 @@ ShootingSolution solve_rod_shooting(const RodModel& model, const ShootingOptions
     summary.integration_steps = report.steps;
     solution.s = trajectory.s;
     solution.states.reserve(trajectory.y.size());
-    for (const RodStateVector& state : trajectory.y)
+    for (RodStateVector state : trajectory.y) {
+      solution.ode_->to_section(state);
       solution.states.push_back(ShootingState::from_vector(state));
+    }
   } else {
     // Never report NaN: keep the base state, no tip, and say why.
     solution.tip = solution.base;

@@ -29,17 +29,22 @@ void RodShootingSystem::evaluate(const RodStateVector& y0, bool with_jacobian, E
       (!on_mesh && integrator_.method == IntegratorMethod::DormandPrince) ? &trajectory : nullptr;
   RodStateVector tip;
   if (with_jacobian) {
+    // The ends are written for the section's n, m; the ODE integrates a drawn rod's N, M (rod_ode.hpp).
     RodStateWithTangents Y;
     base_tangents(model_.base, y0, Y);
+    ode_.to_effective(Y);
     report = on_mesh ? integrate_rod_on_mesh(ode_, mesh_, Y, integrator_.method)
                      : integrate_rod(ode_, 0.0, model_.length, Y, integrator_, record);
+    ode_.to_section(Y);
     tip = Y.col(0);
     if (report.success && Y.allFinite())
       e.jacobian = scale_.cwiseInverse().asDiagonal() * tip_residual_jacobian(model_.tip, Y);
   } else {
     tip = y0;
+    ode_.to_effective(tip);
     report = on_mesh ? integrate_rod_on_mesh(ode_, mesh_, tip, integrator_.method)
                      : integrate_rod(ode_, 0.0, model_.length, tip, integrator_, record);
+    ode_.to_section(tip);
   }
   e.mesh = std::move(trajectory.s);
   e.steps = report.steps;

@@ -5,24 +5,26 @@
 #include <sstream>
 
 #include "pcr/math/quaternion.hpp"
+#include "pcr/rods/drawn_rod.hpp"
 
 namespace pcr {
 
 namespace {
 
-/// The Jacobi state at s from the rotation and internal wrench there: p' = R (K_SE^-1 R^T n + e3 + eps0),
-/// u = K_BT^-1 R^T m + kappa0 (rod_ode.hpp).
+/// The Jacobi state at s from the rotation and the section force and moment there: p' = R (K_SE^-1 R^T n +
+/// e3 + eps0), u = K_BT^-1 R^T m + kappa0 (rod_ode.hpp). A drawn rod's steady problem is the static problem
+/// of the effective rod (drawn_rod.hpp: N, M and the constants of (M4)), whose energy the verdict tests.
 JacobiState jacobi_state(const RodModel& model, double s, const Mat3& R, const Vec3& n, const Vec3& m) {
   Vec3 eps0, kappa0;
   model.intrinsic.at(s, eps0, kappa0);
+  const DrawnConstants d = drawn_constants(model, eps0, kappa0);
   JacobiState y;
   y.rotation = R;
   y.force = n;
   y.moment = m;
-  y.tangent = R * (model.shear_extension_stiffness.cwiseInverse().cwiseProduct(R.transpose() * n) +
-                   Vec3::UnitZ() + eps0);
-  y.curvature =
-      (model.bending_torsion_stiffness.cwiseInverse().cwiseProduct(R.transpose() * m) + kappa0).norm();
+  if (d.drawn()) effective_wrench(d, R, n, m, y.force, y.moment);
+  y.tangent = R * (d.k_se.cwiseInverse().cwiseProduct(R.transpose() * y.force) + Vec3::UnitZ() + d.eps0);
+  y.curvature = (d.k_bt.cwiseInverse().cwiseProduct(R.transpose() * y.moment) + d.kappa0).norm();
   return y;
 }
 
@@ -36,6 +38,29 @@ Stability verdict(const RodModel& model, double length, const JacobiStateAt& sta
   HeldRodOptions options;
   options.min_segments = std::max(options.min_segments, min_segments);
   return held_rod_stability(held_rod_index(rod, states, options));
+}
+
+// A drawn rod's end conditions hold for the section's n, m (end_equations.hpp); they are natural
+// conditions of the effective rod's energy only where they say the same for N, M: clamped ends, and
+// spherical ends without an applied moment on a rod without intrinsic curvature (m = 0 iff M = 0 there,
+// drawn_rod.hpp). A loaded or free end (n(L) = F, i.e. N(L) = F - rho A c^2 p'(L)) and the moment rows of
+// the other joints are not.
+std::string drawn_end_problem(const RodModel& model) {
+  if (model.drawing_speed == 0.0) return {};
+  std::ostringstream msg;
+  const RodEnd* ends[2] = {&model.base, &model.tip};
+  const char* names[2] = {"base", "tip"};
+  for (int k = 0; k < 2; ++k) {
+    const RodEndKind kind = ends[k]->kind;
+    const bool natural =
+        kind == RodEndKind::Clamped || (kind == RodEndKind::Spherical && ends[k]->moment.isZero(0.0) &&
+                                        model.intrinsic.curvature.isZero(0.0));
+    if (!natural)
+      msg << (msg.tellp() > 0 ? "; " : "") << "rod '" << model.name << "': drawn rod (drawing_speed "
+          << model.drawing_speed << " m/s) with a " << to_string(kind) << " " << names[k]
+          << ": its conditions on the section force or moment are not those of the effective rod's energy";
+  }
+  return msg.str();
 }
 
 }  // namespace
@@ -54,6 +79,8 @@ std::string nonconservative_loads(const RodModel& model) {
       msg << (msg.tellp() > 0 ? "; " : "") << "rod '" << model.name << "': dead couple at the " << names[k]
           << " (" << to_string(kind) << " end) has no potential";
   }
+  const std::string drawn = drawn_end_problem(model);
+  if (!drawn.empty()) msg << (msg.tellp() > 0 ? "; " : "") << drawn;
   return msg.str();
 }
 
@@ -72,8 +99,10 @@ HeldEnd held_end(RodEndKind kind, const Mat3& end_frame, const Vec3& axis, const
 HeldRod held_rod(const RodModel& model, const Mat3& base_rotation, const Mat3& tip_rotation) {
   HeldRod rod;
   rod.length = model.length;
-  rod.shear_extension_stiffness = model.shear_extension_stiffness;
-  rod.bending_torsion_stiffness = model.bending_torsion_stiffness;
+  // Drawn rods: the effective stiffnesses (M4); the model's own otherwise.
+  const DrawnConstants d = drawn_constants(model, model.intrinsic.shear_extension, model.intrinsic.curvature);
+  rod.shear_extension_stiffness = d.k_se;
+  rod.bending_torsion_stiffness = d.k_bt;
   rod.base =
       held_end(model.base.kind, rotation_matrix(model.base.orientation), model.base.axis, base_rotation);
   rod.tip = held_end(model.tip.kind, rotation_matrix(model.tip.orientation), model.tip.axis, tip_rotation);
@@ -88,9 +117,8 @@ JacobiStateAt jacobi_states(const CollocationRod& rod, const VecX& x, const RodV
     const Vec3 v = st.rotation.transpose() * y.tangent;
     Vec3 eps0, kappa0;
     rod.model().intrinsic.at(s, eps0, kappa0);
-    const Vec3 u = rod.model().bending_torsion_stiffness.cwiseInverse().cwiseProduct(st.rotation.transpose() *
-                                                                                     st.moment) +
-                   kappa0;
+    const DrawnConstants d = drawn_constants(rod.model(), eps0, kappa0);
+    const Vec3 u = d.k_bt.cwiseInverse().cwiseProduct(st.rotation.transpose() * y.moment) + d.kappa0;
     y.strain_mismatch = std::max((v - Vec3::UnitZ() - st.shear_extension_body).norm(),
                                  (u - st.curvature_body).norm() * rod.length(x, vars));
     return y;

@@ -19,6 +19,7 @@
 
 #include "pcr/robots/robot_model.hpp"
 #include "pcr/rods/collocation_rod.hpp"
+#include "pcr/rods/rod_contact.hpp"
 #include "pcr/solve/problem.hpp"
 
 namespace pcr {
@@ -44,6 +45,9 @@ struct AssemblyOptions {
   /// the same accuracy (test_shooting_crosscheck: within 0.49-1.006x the mixed error against shooting).
   /// Off: such rods stay mixed.
   bool condense_mixed_rods = true;
+  /// Complementarity function of the contact rows of rods with obstacles (rod_contact.hpp,
+  /// docs/contact.md); such rods are always discretised in the mixed form at the midpoints.
+  ComplementarityFunction contact_function = ComplementarityFunction::FischerBurmeister;
 };
 
 /// Radius of gyration over length, sqrt(min(EI1, EI2) / EA) / L, with the longest length of a fed
@@ -74,6 +78,8 @@ class RobotAssembly {
   int num_rods() const { return static_cast<int>(rods_.size()); }
   const CollocationRod& rod(int i) const { return *rods_[i]; }
   const RodVariables& rod_variables(int i) const { return rod_variables_[i]; }
+  /// The contact rows of rod i (docs/contact.md), or nullptr when it touches no obstacle.
+  const RodContactVariables* rod_contact(int i) const;
   VariableId platform_variable(int platform) const { return platform_variables_[platform]; }
   /// Variable block (size 1) of model input i (a rod length or a joint value).
   VariableId input_variable(int input) const { return input_variables_[input]; }
@@ -110,6 +116,7 @@ class RobotAssembly {
   Problem problem_;
   std::vector<std::shared_ptr<const CollocationRod>> rods_;
   std::vector<RodVariables> rod_variables_;
+  std::vector<RodContactVariables> rod_contacts_;  // per rod (no obstacles: empty)
   std::vector<VariableId> platform_variables_, joint_variables_, input_variables_;
   std::vector<ResidualId> platform_balances_, passive_joint_balances_;
   std::vector<std::array<ResidualId, 2>> rod_couplings_;  // per rod: start, end (-1 when free)

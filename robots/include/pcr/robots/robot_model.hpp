@@ -9,6 +9,7 @@
 
 #include "pcr/core/types.hpp"
 #include "pcr/robots/pose.hpp"
+#include "pcr/rods/obstacle.hpp"
 #include "pcr/rods/rod_model.hpp"
 
 namespace pcr {
@@ -83,6 +84,16 @@ struct RodElement {
   RodFormulationHint formulation = RodFormulationHint::Auto;  ///< discretisation hints; 0 = solver's choice
   int degree = 0;
   int elements = 0;
+  /// Obstacles the rod may touch (indices into RobotModel::obstacles(); docs/contact.md) and its contact
+  /// radius [m] (the section's outer radius unless given).
+  std::vector<int> obstacles;
+  double contact_radius = 0.0;
+};
+
+/// A rigid obstacle (<pcr_obstacle>): its geometry in the frame of `link` (the base link: the world).
+struct ObstacleElement {
+  Obstacle obstacle;
+  int link = -1;
 };
 
 /// A dead wrench on a link carried by a platform or moved by a passive joint: force and torque in the
@@ -119,7 +130,7 @@ class RobotModel {
   /// and name tables. `platforms` need only link, mass and center_of_mass; throws InputError.
   RobotModel(std::string name, std::vector<Link> links, std::vector<Joint> joints,
              std::vector<Platform> platforms, std::vector<RodElement> rods, std::vector<ExternalLoad> loads,
-             const Vec3& gravity);
+             const Vec3& gravity, std::vector<ObstacleElement> obstacles = {});
 
   const std::string& name() const { return name_; }
   const std::vector<Link>& links() const { return links_; }
@@ -127,6 +138,7 @@ class RobotModel {
   const std::vector<Platform>& platforms() const { return platforms_; }
   const std::vector<RodElement>& rods() const { return rods_; }
   const std::vector<ExternalLoad>& loads() const { return loads_; }
+  const std::vector<ObstacleElement>& obstacles() const { return obstacles_; }
   /// Order: actuated rod lengths (rod order), then moving joints that are not passive (joint order).
   const std::vector<ActuationInput>& inputs() const { return inputs_; }
   /// Indices (into joints()) of the passive joints, in joint order.
@@ -190,6 +202,7 @@ class RobotModel {
   std::vector<Platform> platforms_;
   std::vector<RodElement> rods_;
   std::vector<ExternalLoad> loads_;
+  std::vector<ObstacleElement> obstacles_;
   std::vector<ActuationInput> inputs_;
   std::vector<int> passive_joints_;
   Vec3 gravity_ = Vec3::Zero();

@@ -7,6 +7,7 @@
 
 #include "pcr/core/types.hpp"
 #include "pcr/robots/pose.hpp"
+#include "pcr/rods/rod_contact.hpp"
 #include "pcr/rods/stability/stability.hpp"
 #include "pcr/solve/solve_summary.hpp"
 
@@ -37,6 +38,9 @@ struct RobotSolution {
   std::vector<Pose> platforms;  ///< in the model's platform order
   std::vector<RodResult> rods;
   VecX passive_joints;  ///< passive joint values [m or rad], in RobotModel::passive_joints() order
+  /// Collocation only: per rod with obstacles (rod order) one entry per obstacle it may touch, with its
+  /// contact intervals and forces (docs/contact.md).
+  std::vector<ObstacleContact> contacts;
   /// Collocation only: with KinematicsOptions::check_stability: sign of det J, J = dR/dx of
   /// the FK system (inputs fixed at the solution's) over its free unknowns at the solution: +1 or -1; 0 when
   /// not checked, not converged or singular.

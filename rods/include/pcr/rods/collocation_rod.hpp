@@ -56,8 +56,8 @@ const char* to_string(RodFormulation formulation);
 ///  - Greville (Weeger, Yeung & Dunn 2017; docs/design.md §2): balance laws at the n - 2 interior points,
 ///    constitutive laws at all n. The forces n(u) then have a second mode besides the constant one
 ///    that the balance rows do not see; only the compliant constitutive rows fix it, weakly when
-///    n = p + E is odd. Measured (docs/benchmarks.md "Midpoints against Greville points"): errors 100-1000x larger at
-///    p = 5, E = 8. Kept to reproduce the published scheme and as the baseline of that comparison.
+///    n = p + E is odd. Measured (docs/benchmarks.md "Midpoints against Greville points"): errors 100-1000x
+///    larger at p = 5, E = 8. Kept to reproduce the published scheme and as the baseline of that comparison.
 enum class MixedPoints { Midpoints, Greville };
 const char* to_string(MixedPoints points);
 
@@ -66,6 +66,9 @@ struct RodDiscretization {
   int degree = 4;                                     ///< polynomial degree p >= 2
   int elements = 4;                                   ///< number of equal knot spans >= 1
   MixedPoints mixed_points = MixedPoints::Midpoints;  ///< mixed form only (the condensed form: midpoints)
+  /// Mixed form at the midpoints only: one contact force density unknown F_j (3, N/m) per midpoint in its
+  /// force balance n' + f + F_j = 0, to be tied to obstacles by add_rod_contact (rod_contact.hpp).
+  bool contact_forces = false;
 };
 
 /// Memory [bytes] that one rod's discretisation of this degree and element count is estimated to take
@@ -87,10 +90,12 @@ std::string rod_memory_excess(int degree, int elements);
 struct RodState {
   double s = 0.0;
   Vec3 position = Vec3::Zero();
-  Quat quaternion = Quat(1, 0, 0, 0);        ///< as interpolated (|q| ~ 1)
-  Mat3 rotation = Mat3::Identity();          ///< R(q)
-  Vec3 force = Vec3::Zero();                 ///< n: force of the part s+ on the part s-
-  Vec3 moment = Vec3::Zero();                ///< m
+  Quat quaternion = Quat(1, 0, 0, 0);  ///< as interpolated (|q| ~ 1)
+  Mat3 rotation = Mat3::Identity();    ///< R(q)
+  /// n: force of the part s+ on the part s- (the section force; for a drawn rod not the effective
+  /// N = n - rho A c^2 p' of the unknowns, drawn_rod.hpp)
+  Vec3 force = Vec3::Zero();
+  Vec3 moment = Vec3::Zero();  ///< m (the section moment; drawn rods: M = m - rho c^2 R J_rho kappa)
   Vec3 shear_extension_body = Vec3::Zero();  ///< eps = R^T p' - e3
   Vec3 curvature_body = Vec3::Zero();        ///< kappa
 };
@@ -114,6 +119,8 @@ struct RodVariables {
   int control_point_offset = 0;  ///< index in x of the first control point (they are contiguous)
   int length_offset = 0;         ///< index in x of L
   int wrench_offset = -1;        ///< index in x of the wrench block (condensed form), else -1
+  /// RodDiscretization::contact_forces: F_j (3) per midpoint u_j, j = 0 .. n - 2; empty otherwise.
+  std::vector<VariableId> contact_forces;
 };
 
 /// Which end conditions of the model the rod adds itself (robots add coupling blocks instead).

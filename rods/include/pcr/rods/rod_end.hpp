@@ -7,7 +7,8 @@
 // the rod's wrench block [n, h]; with distributed loads the tip's n, m also read L and the integral of p:
 // the end control point's running integral T, or every control point (collocation_rod.hpp). Primal form: p, q
 // from the end control point, n = R K_SE (eps - eps0) and m = R K_BT (kappa - kappa0) from the p+1 end
-// control points and L.
+// control points and L. Drawn rods (drawn_rod.hpp): n, m are the effective N, M of the unknowns (the
+// primal form with the effective constants), so robot couplings balance N, M at a guide.
 #include <vector>
 
 #include "pcr/rods/collocation_rod.hpp"

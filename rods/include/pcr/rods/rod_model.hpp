@@ -52,8 +52,9 @@ const char* to_string(RodEndKind kind);
 
 struct RodEnd {
   RodEndKind kind = RodEndKind::Free;
-  Vec3 position = Vec3::Zero();         ///< prescribed position (Clamped, Collar, Spherical)
-  Quat orientation = Quat(1, 0, 0, 0);  ///< prescribed frame (Clamped, Universal, Revolute) or axis R e3 (Collar)
+  Vec3 position = Vec3::Zero();  ///< prescribed position (Clamped, Collar, Spherical)
+  Quat orientation =
+      Quat(1, 0, 0, 0);  ///< prescribed frame (Clamped, Universal, Revolute) or axis R e3 (Collar)
   /// Universal: the first joint axis a; Revolute: the pin axis a. A vector in the end frame
   /// (`orientation`), normalised where used (end_axes.hpp), not along its z axis for Universal.
   Vec3 axis = Vec3::UnitX();
@@ -91,6 +92,11 @@ struct RodModel {
   double youngs_modulus = 0.0;   ///< E [Pa], for stresses from forces (0 = unknown)
   IntrinsicStrains intrinsic;
   DistributedLoads loads;
+  /// Drawing speed c [m/s]: the rod's material moves steadily along the fixed shape at c reference
+  /// lengths per second (a rod drawn through guides; docs/design.md §1 "Drawn rods"). 0 = at rest. The
+  /// steady shape depends on c^2 only. Needs a uniform rod (no s-varying intrinsic strains) and
+  /// K_SE - rho A c^2, K_BT - rho c^2 J_rho positive definite (drawing_speed_problem).
+  double drawing_speed = 0.0;
   RodEnd base;  ///< end at s = 0
   RodEnd tip;   ///< end at s = L
 
@@ -105,6 +111,10 @@ struct RodModel {
   /// and spherical joints at both ends leave a free twist), and the two ends together must hold the rod
   /// as a rigid body (e.g. a universal or revolute end with the other end free does not).
   void validate() const;
+  /// Why drawing_speed is not usable (empty when it is): not finite, c != 0 on a rod with s-varying
+  /// intrinsic strains, or an effective stiffness (drawn_rod.hpp) not positive, naming the limit and its
+  /// value. Also checked by validate().
+  std::string drawing_speed_problem() const;
 };
 
 /// Arc length s checked against [0, length] and clamped into it. Up to 1e-12 length beyond either

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "pcr/robots/io/solution_writers.hpp"
+#include "pcr/robots/path_through_folds.hpp"
 
 namespace pcr {
 
@@ -19,9 +20,17 @@ struct PathPoint {
 /// LINK.orientation_error per target of the first point, then status, iterations, residual_max_abs,
 /// wall_time_seconds and message (quoted). Non-finite numbers are empty fields.
 void write_path_csv(std::ostream& out, const RobotModel& model, const std::vector<PathPoint>& points);
+/// The same with the events of a path through folds as rows of their own, in path order before the
+/// point they lead to: point = fold, snap or bifurcation, the inputs and platform poses at the event
+/// (a snap: where it lands), status = the kind, message = its description (docs/results_format.md).
+void write_path_csv(std::ostream& out, const RobotModel& model, const std::vector<PathPoint>& points,
+                    const std::vector<PathEvent>& events);
 
 /// JSON object {model, command: "path", points, failures, results: [one write_solution_object per
 /// point], non_finite_values}; returns how many numbers were not finite (written as null).
 int write_path_json(std::ostream& out, const RobotModel& model, const std::vector<PathPoint>& points);
+/// The same with "events": [one object per event of a path through folds] when events is given.
+int write_path_json(std::ostream& out, const RobotModel& model, const std::vector<PathPoint>& points,
+                    const std::vector<PathEvent>* events);
 
 }  // namespace pcr

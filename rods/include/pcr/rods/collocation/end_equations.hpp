@@ -5,6 +5,7 @@
 // Neumann conditions fix n and m. Sign: n, m are the force and moment that the part s+ exerts on s-,
 // so an external load (F, M) on the rod gives n = F, m = M at s = L and n = -F, m = -M at s = 0.
 #include "pcr/rods/collocation/equations.hpp"
+#include "pcr/rods/drawn_rod.hpp"
 #include "pcr/rods/rod_model.hpp"
 
 namespace pcr::collocation {
@@ -66,11 +67,12 @@ void revolute_conditions(const EndTarget<T>& target, const EndLoads& loads, cons
   r[6] = q.squaredNorm() - 1.0;
 }
 
-/// r[0..7) from p, q, n, m at the end (all world frame), scaled by the rod's reference scales.
+/// r[0..7) from p, q and the section force and moment n, m at the end (all world frame), scaled by the
+/// rod's reference scales.
 template <typename T>
-void end_conditions(RodEndKind kind, const EndTarget<T>& target, const EndLoads& loads,
-                    const PointConstants& c, const V3<T>& p, const V4<T>& q, const V3<T>& n, const V3<T>& m,
-                    T* r) {
+void section_end_conditions(RodEndKind kind, const EndTarget<T>& target, const EndLoads& loads,
+                            const PointConstants& c, const V3<T>& p, const V4<T>& q, const V3<T>& n,
+                            const V3<T>& m, T* r) {
   const double L0 = c.length_scale, F0 = c.force_scale, M0 = c.moment_scale;
   switch (kind) {
     case RodEndKind::Universal: universal_conditions(target, loads, c, p, q, m, r); return;
@@ -105,6 +107,25 @@ void end_conditions(RodEndKind kind, const EndTarget<T>& target, const EndLoads&
       r[6] = q.squaredNorm() - 1.0;
       return;
   }
+}
+
+/// r[0..7) from p, q, n, m at the end (all world frame), scaled by the rod's reference scales. For a
+/// drawn rod (c.flux_force or c.flux_moment set) n, m are the effective N, M of the unknowns and the
+/// conditions hold for the section's n = N + rho A c^2 p', m = M + rho c^2 R J_rho kappa
+/// (section_from_effective): a load (F, M) applied to the material section at s = L gives n(L) = F,
+/// i.e. N(L) = F - rho A c^2 p'(L).
+template <typename T>
+void end_conditions(RodEndKind kind, const EndTarget<T>& target, const EndLoads& loads,
+                    const PointConstants& c, const V3<T>& p, const V4<T>& q, const V3<T>& n, const V3<T>& m,
+                    T* r) {
+  if (c.flux_force == 0.0 && c.flux_moment.isZero(0.0)) {
+    section_end_conditions<T>(kind, target, loads, c, p, q, n, m, r);
+    return;
+  }
+  V3<T> n_section, m_section;
+  section_from_effective<T>(rotation(q), n, m, c.flux_force, c.flux_moment, c.k_se, c.k_bt, c.eps0, c.kappa0,
+                            n_section, m_section);
+  section_end_conditions<T>(kind, target, loads, c, p, q, n_section, m_section, r);
 }
 
 }  // namespace pcr::collocation

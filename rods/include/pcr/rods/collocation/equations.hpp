@@ -24,10 +24,14 @@ template <typename T>
 using M3 = Eigen::Matrix<T, 3, 3>;
 
 /// Constants of the equations at one point (material, intrinsic strains and their s-derivatives,
-/// distributed loads already multiplied by the load factor) and the row scales.
+/// distributed loads already multiplied by the load factor) and the row scales. For a drawn rod
+/// (drawn_rod.hpp) k_se, k_bt, eps0, kappa0 are the effective constants of (M4) and the unknowns n, m
+/// of the equations are the effective N, M; flux_force and flux_moment convert them to the section's.
 struct PointConstants {
   Vec3 k_se = Vec3::Ones(), k_bt = Vec3::Ones();
   Vec3 eps0 = Vec3::Zero(), kappa0 = Vec3::Zero();
+  double flux_force = 0.0;          ///< drawn rods: rho A c^2 [N]
+  Vec3 flux_moment = Vec3::Zero();  ///< drawn rods: diagonal of rho c^2 J_rho [N m^2]
   Vec3 eps0_s = Vec3::Zero(), kappa0_s = Vec3::Zero();
   Vec3 f = Vec3::Zero(), l = Vec3::Zero();  ///< distributed force and moment per length (world)
   double length_scale = 1.0;                ///< L0 [m]

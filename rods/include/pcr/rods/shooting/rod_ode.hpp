@@ -18,9 +18,16 @@
 //   dp' = R (omega x v + dv),  dq' = 1/2 (dq (x) [0,u] + q (x) [0,du]),  dn' = 0,
 //   dm' = -(dp' x n + p' x dn).
 // Integrated with the same steps as the state they give the exact derivative of the discrete map.
+//
+// Drawn rods (RodModel::drawing_speed, pcr/rods/drawn_rod.hpp): the state holds the effective force and
+// moment N = n - rho A c^2 p', M = m - rho c^2 R J_rho kappa, whose balance laws are the static ones
+// above, and K_SE, K_BT, eps0, kappa0 are the effective constants (M4). to_effective / to_section
+// convert a state (and its tangents) between the section's n, m and N, M: the shooting ends are written
+// for n, m.
 #include <memory>
 
 #include "pcr/core/types.hpp"
+#include "pcr/rods/drawn_rod.hpp"
 #include "pcr/rods/rod_model.hpp"
 
 namespace pcr {
@@ -72,6 +79,14 @@ class RodOde {
   /// Per-component scale of the state (the absolute tolerance is multiplied by it).
   const RodStateVector& state_scale() const { return state_scale_; }
 
+  /// Drawn rods: a state (with its tangents) with the section's n, m turned into one with N, M, and back.
+  /// Nothing changes for a rod that is not drawn.
+  bool drawn() const { return drawn_.drawn(); }
+  void to_effective(RodStateVector& y) const;
+  void to_section(RodStateVector& y) const;
+  void to_effective(RodStateWithTangents& Y) const;
+  void to_section(RodStateWithTangents& Y) const;
+
   /// dy/ds at (s, y).
   void derivative(double s, const RodStateVector& y, RodStateVector& dyds) const;
   /// dY/ds for the state (column 0) and its tangents (columns 1..6).
@@ -85,6 +100,7 @@ class RodOde {
   Vec3 compliance_se_, compliance_bt_;  ///< diagonals of K_SE^-1, K_BT^-1
   Vec3 f_, l_;
   Vec3 eps0_, kappa0_;
+  DrawnConstants drawn_;                             ///< effective constants (the model's own when not drawn)
   std::shared_ptr<const IntrinsicStrains> varying_;  ///< set only for s-dependent strains
   double force_scale_ = 1.0, moment_scale_ = 1.0, bending_force_scale_ = 1.0;
   RodStateVector state_scale_;

@@ -1,0 +1,49 @@
+#include "contact_output.hpp"
+
+namespace pcr {
+
+void write_contacts_member(JsonWriter& json, const std::vector<ObstacleContact>& contacts) {
+  if (contacts.empty()) return;
+  json.key("contacts");
+  json.begin_array();
+  for (const ObstacleContact& c : contacts) {
+    json.begin_object();
+    json.key("rod");
+    json.value(c.rod);
+    json.key("obstacle");
+    json.value(c.obstacle);
+    json.key("force");
+    json.array(c.force);
+    json.key("min_gap");
+    json.value(c.min_gap);
+    json.key("min_gap_arc_length");
+    json.value(c.min_gap_arc_length);
+    json.key("intervals");
+    json.begin_array();
+    for (const ContactInterval& interval : c.intervals) {
+      json.begin_object();
+      json.key("s_begin");
+      json.value(interval.s_begin);
+      json.key("s_end");
+      json.value(interval.s_end);
+      json.key("force");
+      json.array(interval.force);
+      json.end_object();
+    }
+    json.end_array();
+    json.end_object();
+  }
+  json.end_array();
+}
+
+void write_contact_lines(std::ostream& out, const std::vector<ObstacleContact>& contacts) {
+  for (const ObstacleContact& c : contacts) {
+    out << "contact " << c.rod << " / " << c.obstacle << ":";
+    if (c.intervals.empty()) out << " none";
+    for (const ContactInterval& i : c.intervals)
+      out << " [" << i.s_begin << ", " << i.s_end << "] m force (" << i.force.transpose() << ") N;";
+    out << " min gap " << c.min_gap << " m at s = " << c.min_gap_arc_length << " m\n";
+  }
+}
+
+}  // namespace pcr

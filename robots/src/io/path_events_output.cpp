@@ -1,0 +1,65 @@
+// The events of a path through folds in CSV and JSON (path_events_output.hpp).
+#include "path_events_output.hpp"
+
+#include "csv_fields.hpp"
+
+namespace pcr::io_detail {
+
+void write_event_row(std::ostream& out, const RobotModel& model, const PathEvent& event, size_t links,
+                     size_t targets) {
+  out << to_string(event.kind);
+  for (size_t i = 0; i < model.inputs().size(); ++i)
+    out << ','
+        << (static_cast<int>(i) < event.inputs.size() ? csv_number(event.inputs[static_cast<int>(i)]) : "");
+  for (size_t p = 0; p < model.platforms().size(); ++p)
+    out << (p < event.platforms.size() ? csv_pose(event.platforms[p]) : ",,,,,,");
+  for (size_t l = 0; l < links; ++l) out << ",,,,,,,";
+  for (size_t t = 0; t < targets; ++t) out << ",,";
+  out << ',' << to_string(event.kind) << ",,,," << csv_quote(event.description) << '\n';
+}
+
+void write_events_json(JsonWriter& json, const RobotModel& model, const std::vector<PathEvent>& events) {
+  json.key("events");
+  json.begin_array();
+  for (const PathEvent& e : events) {
+    json.begin_object();
+    json.key("kind");
+    json.value(to_string(e.kind));
+    json.key("path_parameter");
+    json.value(e.path_parameter);
+    json.key("inputs");
+    json.begin_object();
+    for (size_t i = 0; i < model.inputs().size() && static_cast<int>(i) < e.inputs.size(); ++i) {
+      json.key(model.inputs()[i].name);
+      json.value(e.inputs[static_cast<int>(i)]);
+    }
+    json.end_object();
+    json.key("unstable_modes_before");
+    json.value(e.unstable_modes_before);
+    json.key("unstable_modes_after");
+    json.value(e.unstable_modes_after);
+    json.key("platforms");
+    json.begin_array();
+    for (size_t p = 0; p < e.platforms.size() && p < model.platforms().size(); ++p) {
+      json.begin_object();
+      json.key("name");
+      json.value(model.platforms()[p].name);
+      json.key("position");
+      json.array(e.platforms[p].position);
+      json.key("orientation");
+      json.array(VecX(e.platforms[p].orientation));
+      json.end_object();
+    }
+    json.end_array();
+    json.key("jump_position");
+    json.value(e.jump_position);
+    json.key("jump_rotation");
+    json.value(e.jump_rotation);
+    json.key("description");
+    json.value(e.description);
+    json.end_object();
+  }
+  json.end_array();
+}
+
+}  // namespace pcr::io_detail

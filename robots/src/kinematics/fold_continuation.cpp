@@ -1,0 +1,355 @@
+// One segment of a path through folds (fold_continuation.hpp).
+#include "fold_continuation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <sstream>
+
+#include "arclength_corrector.hpp"
+#include "pcr/math/quaternion.hpp"
+#include "pcr/robots/robot_stability.hpp"
+#include "pcr/solve/newton_solver.hpp"
+
+namespace pcr::kinematics {
+
+int unstable_mode_count(const RobotAssembly& assembly, const VecX& x) {
+  const Stability s = robot_stability(assembly, x);
+  const bool counted = s.verdict == StabilityVerdict::Stable || s.verdict == StabilityVerdict::Unstable ||
+                       s.verdict == StabilityVerdict::Critical;
+  return counted ? s.unstable_modes : -1;
+}
+
+namespace {
+
+/// Steps the snap may follow the curve past a fold before it tries Newton from other starts.
+constexpr int kSnapBranchSteps = 60;
+
+std::vector<Pose> platform_poses(const RobotAssembly& a, const VecX& x) {
+  std::vector<Pose> out;
+  for (int p = 0; p < static_cast<int>(a.model().platforms().size()); ++p)
+    out.push_back(a.platform_pose(x, p));
+  return out;
+}
+
+/// Largest platform displacement [m] and rotation angle [rad] between two sets of poses.
+void jump_between(const std::vector<Pose>& before, const std::vector<Pose>& after, PathEvent& e) {
+  for (size_t p = 0; p < before.size(); ++p) {
+    e.jump_position = std::max(e.jump_position, (after[p].position - before[p].position).norm());
+    const Quat dq = quat_multiply(after[p].orientation, quat_conjugate(before[p].orientation));
+    e.jump_rotation = std::max(e.jump_rotation, 2.0 * std::atan2(dq.tail<3>().norm(), std::abs(dq[0])));
+  }
+}
+
+class SegmentTracer {
+ public:
+  SegmentTracer(const RobotAssembly& a, const VecX& u_a, const VecX& u_b, int segment, double tolerance,
+                const PathThroughFoldsOptions& o)
+      : a_(a), arc_(a, u_a, u_b, tolerance), segment_(segment), tolerance_(tolerance), o_(o) {}
+
+  SegmentOutcome run(const VecX& x_start, int modes_start);
+
+ private:
+  int count(const VecX& x) const { return o_.count_unstable_modes ? unstable_mode_count(a_, x) : -1; }
+  PathEvent event(PathEventKind kind, const ArcPoint& at, int before, int after) const {
+    PathEvent e;
+    e.kind = kind;
+    e.path_parameter = segment_ + at.lambda;
+    e.inputs = arc_.inputs_at(at.lambda);
+    e.unstable_modes_before = before;
+    e.unstable_modes_after = after;
+    e.platforms = platform_poses(a_, at.x);
+    return e;
+  }
+  /// One accepted step from p (step length ds adapted, nu at the new point); false when it cannot go on.
+  bool step(const ArcPoint& p, int nu, double& ds, ArcPoint& q, int& nu_q, double& used);
+  bool pass_fold(ArcPoint& p, int& nu, const ArcPoint& fold, int nu_beyond);
+  ArcPoint locate_fold(const ArcPoint& p, double ds, const ArcPoint& q);
+  void locate_bifurcation(const ArcPoint& p, double ds, int nu, int nu_q);
+  bool finish_at_end(const ArcPoint& p, const ArcPoint& q);
+  bool snap(const ArcPoint& fold, int nu_fold_side, ArcPoint& landing, int& nu_landing);
+  using Acceptable = std::function<bool(int)>;
+  bool snap_along_branch(const ArcPoint& fold, double target, const Acceptable& acceptable, ArcPoint& landing,
+                         int& nu_landing);
+  bool snap_by_newton(const ArcPoint& fold, double target, const Acceptable& acceptable, ArcPoint& landing,
+                      int& nu_landing);
+  bool budget_left() const { return out_.steps < o_.max_steps; }
+
+  const RobotAssembly& a_;
+  ArcCorrector arc_;
+  int segment_;
+  double tolerance_;
+  const PathThroughFoldsOptions& o_;
+  SegmentOutcome out_;
+};
+
+bool SegmentTracer::step(const ArcPoint& p, int nu, double& ds, ArcPoint& q, int& nu_q, double& used) {
+  while (ds >= o_.min_step) {
+    const int before = arc_.iterations();
+    if (!arc_.arclength_step(p, ds, q)) {
+      ds *= 0.5;
+      continue;
+    }
+    // Too sharp a turn of the tangent: the step may have jumped to another branch; shorter.
+    if (arc_.weighted_dot(p.tangent, q.tangent) < 0.9 && ds > 16 * o_.min_step) {
+      ds *= 0.5;
+      continue;
+    }
+    nu_q = count(q.x);
+    // Resolve events one at a time: the count changes by one at a fold or a simple bifurcation.
+    if (nu >= 0 && nu_q >= 0 && std::abs(nu_q - nu) > 1 && ds > 1e-4) {
+      ds *= 0.5;
+      continue;
+    }
+    ++out_.steps;
+    used = ds;
+    if (o_.keep_trace) out_.trace.push_back({segment_ + q.lambda, q.tau(), nu_q, q.x});
+    const int iterations = std::max(1, arc_.iterations() - before);
+    const double grow = std::clamp(std::sqrt(3.0 / iterations), 0.5, 2.0);
+    ds = std::min(o_.max_step, ds * grow);
+    return true;
+  }
+  std::ostringstream why;
+  why << "continuation step below " << o_.min_step << " at path parameter " << segment_ + p.lambda;
+  out_.stopped = why.str();
+  return false;
+}
+
+/// The fold between p (tau > 0) and q = p + ds (tau <= 0): Illinois (modified regula falsi) on the lambda
+/// component tau(sigma) of the tangent along the arc from p. lambda(sigma) = lambda* - kappa (sigma -
+/// sigma*)^2 / 2 near it, so the input error is quadratic in the arclength error.
+ArcPoint SegmentTracer::locate_fold(const ArcPoint& p, double ds, const ArcPoint& q) {
+  double lo = 0.0, f_lo = p.tau(), hi = ds, f_hi = q.tau();
+  ArcPoint best = std::abs(f_lo) < std::abs(f_hi) ? p : q, r;
+  int side = 0;
+  for (int it = 0; it < 60 && hi - lo > 1e-9 * ds; ++it) {
+    double c = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+    if (!(c > lo && c < hi)) c = 0.5 * (lo + hi);
+    if (!arc_.arclength_step(p, c, r) && !arc_.arclength_step(p, c = 0.5 * (lo + hi), r)) break;
+    const double f = r.tau();
+    if (std::abs(f) <= std::abs(best.tau())) best = r;
+    if (f == 0.0 || std::abs(f) < 1e-14) break;
+    if ((f > 0.0) == (f_lo > 0.0)) {
+      lo = c;
+      f_lo = f;
+      if (side == -1) f_hi *= 0.5;  // Illinois: halve the stale end's value
+      side = -1;
+    } else {
+      hi = c;
+      f_hi = f;
+      if (side == 1) f_lo *= 0.5;
+      side = 1;
+    }
+  }
+  // The point with the smallest |tau| found: its lambda is within kappa (sigma - sigma*)^2 / 2 of the fold's.
+  return best;
+}
+
+void SegmentTracer::locate_bifurcation(const ArcPoint& p, double ds, int nu, int nu_q) {
+  double lo = 0.0, hi = ds;
+  ArcPoint r, at_lo = p, at_hi;
+  for (int it = 0; it < 50; ++it) {
+    const double c = 0.5 * (lo + hi);
+    if (!arc_.arclength_step(p, c, r)) break;
+    const int nu_c = count(r.x);
+    if (nu_c == nu) {
+      lo = c;
+      at_lo = r;
+    } else {
+      hi = c;
+      at_hi = r;
+    }
+    if (at_hi.x.size() > 0 && std::abs(at_hi.lambda - at_lo.lambda) < o_.event_tolerance) break;
+  }
+  ArcPoint at = at_lo;
+  if (at_hi.x.size() > 0) at.lambda = 0.5 * (at_lo.lambda + at_hi.lambda);
+  PathEvent e = event(PathEventKind::Bifurcation, at, nu, nu_q);
+  std::ostringstream d;
+  d << "bifurcation at path parameter " << e.path_parameter << ": unstable modes " << nu << " -> " << nu_q
+    << " without a fold (multiplicity " << std::abs(nu_q - nu) << "); the path stays on its branch";
+  e.description = d.str();
+  out_.events.push_back(e);
+}
+
+bool SegmentTracer::finish_at_end(const ArcPoint& p, const ArcPoint& q) {
+  // Start from the chord between the points either side of lambda = 1.
+  ArcPoint guess = q, end;
+  const double theta = (1.0 - p.lambda) / (q.lambda - p.lambda);
+  if (std::isfinite(theta)) guess.x = p.x + theta * (q.x - p.x);
+  if (!arc_.at_lambda(guess, q.tangent, 1.0, end) && !arc_.at_lambda(p, p.tangent, 1.0, end)) {
+    out_.stopped =
+        "no convergence onto the path point from path parameter " + std::to_string(segment_ + p.lambda);
+    return false;
+  }
+  out_.x = end.x;
+  out_.unstable_modes = count(end.x);
+  out_.reached = true;
+  if (o_.keep_trace) out_.trace.push_back({segment_ + 1.0, end.tau(), out_.unstable_modes, end.x});
+  return true;
+}
+
+bool SegmentTracer::snap(const ArcPoint& fold, int nu_fold_side, ArcPoint& landing, int& nu_landing) {
+  // The snap happens when the input passes the fold's: the landing point is at the fold's inputs.
+  const double target = fold.lambda + 1e-12;
+  // A landing point no less stable than the ending branch (stable for a robot whose branch was stable);
+  // an unknown verdict only where the ending branch's was unknown too.
+  const auto acceptable = [nu_fold_side](int nu) {
+    return nu_fold_side < 0 || (nu >= 0 && nu <= nu_fold_side);
+  };
+  if (snap_along_branch(fold, target, acceptable, landing, nu_landing)) return true;
+  if (snap_by_newton(fold, target, acceptable, landing, nu_landing)) return true;
+  std::ostringstream why;
+  why << "no equilibrium as stable as the ending branch (" << nu_fold_side
+      << " unstable modes) found to snap to at path parameter " << segment_ + fold.lambda;
+  out_.stopped = why.str();
+  return false;
+}
+
+/// Follows the curve past the fold (the branch beyond it, lambda decreasing) until it comes back to the
+/// fold's inputs going forward at an acceptable point (an S-shaped curve: past a second fold), within
+/// kSnapBranchSteps steps.
+bool SegmentTracer::snap_along_branch(const ArcPoint& fold, double target, const Acceptable& acceptable,
+                                      ArcPoint& landing, int& nu_landing) {
+  ArcPoint p = fold, q;
+  int nu = count(fold.x), nu_q = 0;
+  double ds = 0.25 * o_.max_step, used = 0.0;
+  for (int k = 0; k < kSnapBranchSteps && budget_left() && p.lambda > -1.0; ++k) {
+    if (!step(p, nu, ds, q, nu_q, used)) return false;
+    if (p.tau() > 0.0 && q.tau() > 0.0 && p.lambda < target && q.lambda >= target &&
+        arc_.at_lambda(p, q.tangent, target, landing)) {
+      nu_landing = unstable_mode_count(a_, landing.x);
+      if (acceptable(nu_landing)) return true;
+    }
+    p = q;
+    nu = nu_q;
+  }
+  return false;
+}
+
+/// Damped Newton (NewtonSolver) on the FK system at the fold's inputs from starts away from the fold: the
+/// fold state pushed along the fold mode (the tangent there, pointing from the ending branch to the one
+/// beyond it) by growing amounts, either way, then the assembly's straight initial guess. The first
+/// acceptable equilibrium that is not the fold state itself.
+bool SegmentTracer::snap_by_newton(const ArcPoint& fold, double target, const Acceptable& acceptable,
+                                   ArcPoint& landing, int& nu_landing) {
+  NewtonOptions no;
+  no.tolerance = tolerance_;
+  NewtonSolver newton(a_.problem(), no);
+  const VecX u = arc_.inputs_at(target);
+  const Vec3 fold_position =
+      a_.model().platforms().empty() ? Vec3::Zero() : a_.platform_pose(fold.x, 0).position;
+  std::vector<VecX> starts;
+  for (double amplitude : {0.5, 1.0, 2.0, 4.0, -0.5, -1.0, -2.0})
+    starts.push_back(arc_.predictor(fold, amplitude * o_.max_step).x);
+  starts.push_back(a_.initial_guess());
+  for (VecX& x : starts) {
+    a_.set_inputs(x, u);
+    if (!newton.solve(x, 60).converged()) continue;
+    const double moved =
+        a_.model().platforms().empty() ? 1.0 : (a_.platform_pose(x, 0).position - fold_position).norm();
+    if (moved < 1e-4 * a_.length_scale()) continue;  // back near the fold
+    nu_landing = unstable_mode_count(a_, x);
+    if (!acceptable(nu_landing)) continue;
+    // The landing point with its tangent, by the corrector at the same inputs.
+    ArcPoint guess = fold;
+    guess.x = x;
+    guess.lambda = target;
+    VecX e_lambda = VecX::Zero(fold.tangent.size());
+    e_lambda[e_lambda.size() - 1] = 1.0;
+    if (arc_.at_lambda(guess, e_lambda, target, landing)) return true;
+  }
+  return false;
+}
+
+/// The fold between p and q: report it; Stop ends the segment there (false), Snap lands on the stable
+/// equilibrium it jumps to (p, nu: the landing point, true).
+bool SegmentTracer::pass_fold(ArcPoint& p, int& nu, const ArcPoint& fold, int nu_beyond) {
+  PathEvent e = event(PathEventKind::Fold, fold, nu, nu_beyond);
+  std::ostringstream d;
+  d << "fold at path parameter " << e.path_parameter << ": the branch with " << nu
+    << " unstable modes ends (beyond the fold: " << nu_beyond << ")";
+  e.description = d.str();
+  out_.events.push_back(e);
+  out_.x = fold.x;
+  if (o_.at_fold == FoldPolicy::Stop) {
+    out_.ended_at_fold = true;
+    out_.stopped = e.description;
+    return false;
+  }
+  ArcPoint landing;
+  int nu_landing = -1;
+  if (!snap(fold, nu, landing, nu_landing)) return false;
+  PathEvent s = event(PathEventKind::Snap, fold, nu, nu_landing);
+  s.platforms_before = platform_poses(a_, fold.x);
+  s.platforms_after = platform_poses(a_, landing.x);
+  s.platforms = s.platforms_after;
+  jump_between(s.platforms_before, s.platforms_after, s);
+  std::ostringstream text;
+  text << "snap-through at path parameter " << s.path_parameter << ": the platforms jump by "
+       << s.jump_position << " m and " << s.jump_rotation << " rad to an equilibrium with " << nu_landing
+       << " unstable modes";
+  s.description = text.str();
+  out_.events.push_back(s);
+  if (o_.keep_trace) out_.trace.push_back({segment_ + landing.lambda, landing.tau(), nu_landing, landing.x});
+  p = landing;
+  nu = nu_landing;
+  out_.x = p.x;
+  out_.unstable_modes = nu;
+  return true;
+}
+
+SegmentOutcome SegmentTracer::run(const VecX& x_start, int modes_start) {
+  out_.x = x_start;
+  out_.unstable_modes = modes_start;
+  ArcPoint p, q;
+  if (arc_.start(x_start, p)) {
+    int nu = modes_start, nu_q = 0;
+    double ds = 0.5 * o_.max_step, used = 0.0;
+    while (budget_left() && step(p, nu, ds, q, nu_q, used)) {
+      if (p.tau() > 0.0 && q.tau() <= 0.0) {  // a fold between p and q
+        const ArcPoint fold = locate_fold(p, used, q);
+        if (fold.lambda >= 1.0) {  // the path point comes before it
+          finish_at_end(p, fold);
+          break;
+        }
+        int nu_beyond = nu_q;
+        if (!o_.count_unstable_modes) {  // counted at the fold's sides only
+          nu = unstable_mode_count(a_, p.x);
+          nu_beyond = unstable_mode_count(a_, q.x);
+        }
+        if (!pass_fold(p, nu, fold, nu_beyond)) break;
+        ds = 0.25 * o_.max_step;
+        continue;
+      }
+      if (q.lambda >= 1.0) {
+        if (finish_at_end(p, q) && nu >= 0 && out_.unstable_modes >= 0 && out_.unstable_modes != nu)
+          locate_bifurcation(p, used, nu, out_.unstable_modes);
+        break;
+      }
+      if (nu >= 0 && nu_q >= 0 && nu_q != nu) locate_bifurcation(p, used, nu, nu_q);
+      p = q;
+      nu = nu_q;
+      out_.x = p.x;
+      out_.unstable_modes = nu;
+    }
+    if (!out_.reached && out_.stopped.empty())
+      out_.stopped = "step budget (" + std::to_string(o_.max_steps) + ") used up at path parameter " +
+                     std::to_string(segment_ + p.lambda);
+  } else {
+    out_.stopped = "the bordered Jacobian is singular at path parameter " + std::to_string(segment_);
+  }
+  out_.iterations = arc_.iterations();
+  out_.jacobian_evaluations = arc_.jacobian_evaluations();
+  return out_;
+}
+
+}  // namespace
+
+SegmentOutcome continue_segment(const RobotAssembly& assembly, const VecX& x_start, int modes_start,
+                                const VecX& u_a, const VecX& u_b, int segment, double tolerance,
+                                const PathThroughFoldsOptions& options) {
+  SegmentTracer tracer(assembly, u_a, u_b, segment, tolerance, options);
+  return tracer.run(x_start, modes_start);
+}
+
+}  // namespace pcr::kinematics

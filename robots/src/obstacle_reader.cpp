@@ -1,0 +1,118 @@
+#include "obstacle_reader.hpp"
+
+#include <tinyxml.h>
+
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include "pcr/core/error.hpp"
+#include "xml_element_reader.hpp"
+
+namespace pcr {
+namespace {
+
+// A unit vector attribute (|1 - |a|| <= 1e-9: a direction, not a scaled one).
+Vec3 unit_vector(XmlElementReader& reader, const char* attribute) {
+  const Vec3 a = reader.vec3(attribute);
+  if (std::abs(a.norm() - 1.0) > 1e-9) reader.fail(attribute, reader.text(attribute), "is not a unit vector");
+  return a;
+}
+
+// <pcr_obstacle name type link xyz normal | radius | end radius | axis radius>.
+ObstacleElement read_obstacle(const TiXmlElement& e, const std::string& source, const UrdfTree& tree) {
+  XmlElementReader reader(e, source, "pcr_obstacle");
+  ObstacleElement out;
+  Obstacle& o = out.obstacle;
+  o.name = reader.text("name");
+  if (o.name.empty()) reader.fail("name", o.name, "is empty");
+  XmlElementReader element(e, source, quoted("pcr_obstacle", o.name));
+  element.text("name");
+  const std::string type = element.text("type");
+  static const std::map<std::string, ObstacleShape> shapes{{"half_space", ObstacleShape::HalfSpace},
+                                                           {"sphere", ObstacleShape::Sphere},
+                                                           {"capsule", ObstacleShape::Capsule},
+                                                           {"cylinder", ObstacleShape::Cylinder}};
+  const auto shape = shapes.find(type);
+  if (shape == shapes.end())
+    element.fail("type", type, "is not an obstacle type (half_space, sphere, capsule, cylinder)");
+  o.shape = shape->second;
+  if (element.has("link")) {
+    const std::string link = element.text("link");
+    const auto it = tree.link_index.find(link);
+    if (it == tree.link_index.end()) element.fail("link", link, "is not a link of the robot");
+    out.link = it->second;
+  }
+  o.position = element.vec3("xyz");
+  switch (o.shape) {
+    case ObstacleShape::HalfSpace: o.direction = unit_vector(element, "normal"); break;
+    case ObstacleShape::Sphere: o.radius = element.positive("radius"); break;
+    case ObstacleShape::Capsule:
+      o.end = element.vec3("end");
+      if (o.end == o.position)
+        element.fail("end", element.text("end"), "is the same point as xyz (use a sphere)");
+      o.radius = element.positive("radius");
+      break;
+    case ObstacleShape::Cylinder:
+      o.direction = unit_vector(element, "axis");
+      o.radius = element.positive("radius");
+      break;
+  }
+  element.finish();
+  return out;
+}
+
+// <contact obstacles="a b" radius="r"> of one pcr_rod.
+void read_rod_contact(const TiXmlElement& c, const std::string& source, const std::string& rod_name,
+                      const std::map<std::string, int>& obstacle_index, RodElement& rod) {
+  XmlElementReader reader(c, source, quoted("pcr_rod", rod_name) + " <contact>");
+  std::istringstream names(reader.text("obstacles"));
+  for (std::string name; names >> name;) {
+    const auto it = obstacle_index.find(name);
+    if (it == obstacle_index.end()) reader.fail("obstacles", name, "is not the name of a pcr_obstacle");
+    for (int k : rod.obstacles)
+      if (k == it->second) reader.fail("obstacles", name, "is named twice");
+    rod.obstacles.push_back(it->second);
+  }
+  if (rod.obstacles.empty()) reader.fail("obstacles", "", "names no obstacle");
+  if (reader.has("radius")) {
+    rod.contact_radius = reader.positive("radius");
+  } else {
+    rod.contact_radius = rod.rod.outer_radius;
+    if (!(rod.contact_radius > 0.0)) reader.fail("the section has no outer radius; give radius");
+  }
+  reader.finish();
+}
+
+}  // namespace
+
+std::vector<ObstacleElement> read_obstacles(const TiXmlElement& robot, const std::string& source,
+                                            const UrdfTree& tree, std::vector<RodElement>& rods) {
+  std::vector<ObstacleElement> obstacles;
+  std::map<std::string, int> index, lines;
+  for (const TiXmlElement* e = robot.FirstChildElement("pcr_obstacle"); e;
+       e = e->NextSiblingElement("pcr_obstacle")) {
+    obstacles.push_back(read_obstacle(*e, source, tree));
+    const std::string& name = obstacles.back().obstacle.name;
+    if (!index.emplace(name, static_cast<int>(obstacles.size()) - 1).second) {
+      XmlElementReader reader(*e, source, quoted("pcr_obstacle", name));
+      reader.fail("name", name, "is already used by the pcr_obstacle on line " + std::to_string(lines[name]));
+    }
+    lines[name] = e->Row();
+  }
+  for (const TiXmlElement* e = robot.FirstChildElement("pcr_rod"); e; e = e->NextSiblingElement("pcr_rod")) {
+    const char* name = e->Attribute("name");
+    const TiXmlElement* c = e->FirstChildElement("contact");
+    if (name == nullptr || c == nullptr) continue;
+    if (c->NextSiblingElement("contact") != nullptr) {
+      XmlElementReader reader(*c->NextSiblingElement("contact"), source,
+                              quoted("pcr_rod", name) + " <contact>");
+      reader.fail("is given more than once");
+    }
+    for (RodElement& rod : rods)
+      if (rod.name == name) read_rod_contact(*c, source, name, index, rod);
+  }
+  return obstacles;
+}
+
+}  // namespace pcr

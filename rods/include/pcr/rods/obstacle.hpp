@@ -1,0 +1,50 @@
+#pragma once
+// Rigid obstacles a rod may touch (docs/contact.md) and their gap functions for a rod of contact radius r
+// (tube approximation: the rod's surface is the set of points within r of the centerline, exact for an
+// unshearable rod with a circular section). For a centerline point p (world frame):
+//   half-space {x: nu . (x - x0) <= 0}:  g = nu . (p - x0) - r,                nu the unit outward normal;
+//   sphere (centre x0, radius R):         g = |p - x0| - R - r,                 nu = (p - x0) / |p - x0|;
+//   capsule (segment x0 x1, radius R):    g = |p - x(t*)| - R - r, x(t*) the point of the segment
+//                                         nearest to p, t* = clamp((p - x0) . e / |e|^2, 0, 1), e = x1 - x0;
+//   cylinder (infinite, axis a through x0, radius R; a roller):  g = |(I - a a^T)(p - x0)| - R - r.
+// nu is the unit normal of the obstacle's surface at the contact, pointing from the obstacle to the rod;
+// a frictionless contact force on the rod is lambda nu with lambda >= 0 (O'Reilly, "On steady motions of
+// an elastic rod with application to contact problems", Int. J. Solids Struct. 34 (1997), §5-6).
+#include <string>
+
+#include "pcr/core/types.hpp"
+
+namespace pcr {
+
+enum class ObstacleShape { HalfSpace, Sphere, Capsule, Cylinder };
+const char* to_string(ObstacleShape shape);
+
+/// An obstacle's geometry in one frame (the world frame, or a link frame before the assembly places it).
+struct Obstacle {
+  std::string name;
+  ObstacleShape shape = ObstacleShape::HalfSpace;
+  Vec3 position = Vec3::Zero();    ///< half-space: a point of the plane; sphere: centre; capsule: x0;
+                                   ///< cylinder: a point of the axis [m]
+  Vec3 direction = Vec3::UnitZ();  ///< half-space: unit outward normal; cylinder: unit axis (unused else)
+  Vec3 end = Vec3::Zero();         ///< capsule: the other end x1 of its segment [m]
+  double radius = 0.0;             ///< sphere, capsule, cylinder [m] (> 0)
+
+  /// Throws InputError naming the obstacle and the value: non-finite numbers, a non-unit direction
+  /// (|1 - |a|| > 1e-9), a non-positive radius, a capsule of zero length.
+  void validate() const;
+  /// The same obstacle in the parent frame of `rotation`, `translation` (x_parent = t + R x).
+  Obstacle transformed(const Mat3& rotation, const Vec3& translation) const;
+};
+
+/// Gap g [m], unit normal nu and d nu / d p at a centerline point p of a rod of contact radius r.
+struct ObstacleGap {
+  double gap = 0.0;
+  Vec3 normal = Vec3::UnitZ();
+  Mat3 normal_derivative = Mat3::Zero();  ///< d nu / d p (0 for a half-space)
+};
+/// The gap function of the header's table. On the axis or at the centre of a round obstacle (where nu is
+/// undefined; the rod's centerline is then deep inside it) nu is taken along the world z axis (or any
+/// normal of the axis) and d nu / d p as 0.
+ObstacleGap obstacle_gap(const Obstacle& obstacle, const Vec3& p, double rod_radius);
+
+}  // namespace pcr

@@ -1,0 +1,81 @@
+#pragma once
+// Frictionless unilateral contact of a collocation rod with rigid obstacles (docs/contact.md).
+//
+// Discretisation (mixed form collocated at the midpoints u_j of the Greville abscissae, the only
+// formulation supported): the force balance at u_j reads n'(u_j) + f + F_j = 0 with one contact force
+// density unknown F_j (N/m, world frame; RodVariables::contact_forces) per midpoint, and
+//   F_j = sum_k lambda_jk nu_k(p(u_j)),   lambda_jk >= 0,   g_k(p(u_j)) >= 0,   lambda_jk g_k = 0
+// for each obstacle k the rod may touch (gap g_k and normal nu_k: obstacle.hpp). The force acts through
+// the centerline (no couple: frictionless contact of a round section). The complementarity conditions
+// are one equation each, phi(g_k / L0, lambda_jk L0 / F0) = 0, so the system stays square and pcr's
+// Newton solves it as a semismooth Newton method:
+//  - Fischer-Burmeister: phi(a, b) = a + b - sqrt(a^2 + b^2) (Fischer, Optimization 24 (1992) 269-284);
+//    phi = 0 iff a >= 0, b >= 0, a b = 0. At (0, 0) the generalised Jacobian element (1 - 1/sqrt 2) (1, 1)
+//    is used.
+//  - Min: phi(a, b) = min(a, b), the primal-dual active set method as a semismooth Newton method
+//    (Hintermueller, Ito & Kunisch, SIAM J. Optim. 13 (2002) 865-888).
+// The collocated densities converge to the contact measure only in the sense of resultants: the point
+// forces at the ends of a contact interval (e.g. at a touchdown) are spread over the cells next to them,
+// so an interval end is resolved to about one cell L (tau_{j+1} - tau_j).
+#include <string>
+#include <vector>
+
+#include "pcr/rods/collocation_rod.hpp"
+#include "pcr/rods/obstacle.hpp"
+#include "pcr/solve/problem.hpp"
+
+namespace pcr {
+
+enum class ComplementarityFunction { FischerBurmeister, Min };
+const char* to_string(ComplementarityFunction function);
+
+struct RodContactOptions {
+  std::vector<Obstacle> obstacles;  ///< world frame, validated
+  double radius = 0.0;              ///< contact radius r of the rod [m] (> 0)
+  ComplementarityFunction function = ComplementarityFunction::FischerBurmeister;
+};
+
+/// What add_rod_contact added: per midpoint j the multipliers lambda_jk (one block of K values).
+struct RodContactVariables {
+  RodContactOptions options;
+  std::vector<double> midpoints;        ///< u_j
+  std::vector<VariableId> multipliers;  ///< per midpoint, size K = options.obstacles.size()
+  std::vector<int> multiplier_offsets;  ///< their indices in x
+  std::vector<ResidualId> blocks;       ///< per midpoint: "rod.contact" (3 + K rows)
+};
+
+/// Adds the multipliers and the contact rows of a rod added with RodDiscretization::contact_forces.
+/// Throws InputError for an unsupported formulation, no obstacle, a bad radius or obstacle, or an initial
+/// configuration (the problem's initial values) whose centerline penetrates an obstacle at a midpoint
+/// (gap < -1e-9 L0), naming the rod, the obstacle, the arc length and the gap.
+RodContactVariables add_rod_contact(Problem& problem, const CollocationRod& rod, const RodVariables& vars,
+                                    const RodContactOptions& options);
+
+/// One run of collocation cells [tau_j, tau_{j+1}] (arc lengths) in contact with an obstacle: from the first
+/// to the last cell carrying force, across cells between them that touch without carrying force.
+struct ContactInterval {
+  double s_begin = 0.0, s_end = 0.0;  ///< [m]
+  Vec3 force = Vec3::Zero();          ///< resultant on the rod: sum_j lambda_j nu_j L (tau_{j+1} - tau_j) [N]
+};
+
+/// The contact of one rod with one obstacle in a solution.
+struct ObstacleContact {
+  std::string rod, obstacle;
+  std::vector<ContactInterval> intervals;
+  Vec3 force = Vec3::Zero();  ///< resultant of all intervals [N]
+  /// Smallest gap along the centerline (sampled at 8 points per cell) and where; negative values are
+  /// penetration between the collocation points.
+  double min_gap = 0.0, min_gap_arc_length = 0.0;
+  /// Per midpoint: arc length s_j, density lambda_j [N/m] and gap g_j [m].
+  std::vector<double> arc_lengths, densities, gaps;
+};
+
+/// The contact set of a rod: one entry per obstacle it may touch. A cell carries force when its density
+/// exceeds 1e-8 F0 / L0 (the solver's residual tolerance scale); it touches when its gap is below 1e-6 L0.
+/// The densities of a contact interval may alternate between large and vanishing values from cell to cell
+/// (a checkerboard mode of the collocated densities, seen on a beam lying on a plane): their sums over
+/// the cells, the resultants, are what converges.
+std::vector<ObstacleContact> read_rod_contact(const CollocationRod& rod, const RodVariables& vars,
+                                              const RodContactVariables& contact, const VecX& x);
+
+}  // namespace pcr
