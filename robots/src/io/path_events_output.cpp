@@ -2,6 +2,7 @@
 #include "path_events_output.hpp"
 
 #include "csv_fields.hpp"
+#include "pose_output.hpp"
 
 namespace pcr::io_detail {
 
@@ -39,18 +40,10 @@ void write_events_json(JsonWriter& json, const RobotModel& model, const std::vec
     json.key("unstable_modes_after");
     json.value(e.unstable_modes_after);
     json.key("platforms");
-    json.begin_array();
-    for (size_t p = 0; p < e.platforms.size() && p < model.platforms().size(); ++p) {
-      json.begin_object();
-      json.key("name");
-      json.value(model.platforms()[p].name);
-      json.key("position");
-      json.array(e.platforms[p].position);
-      json.key("orientation");
-      json.array(VecX(e.platforms[p].orientation));
-      json.end_object();
-    }
-    json.end_array();
+    json.begin_object();
+    for (size_t p = 0; p < e.platforms.size() && p < model.platforms().size(); ++p)
+      write_pose_object(json, model.platforms()[p].name, e.platforms[p]);
+    json.end_object();
     json.key("jump_position");
     json.value(e.jump_position);
     json.key("jump_rotation");

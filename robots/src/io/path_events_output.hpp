@@ -14,7 +14,7 @@ namespace pcr::io_detail {
 void write_event_row(std::ostream& out, const RobotModel& model, const PathEvent& event, size_t links,
                      size_t targets);
 /// "events": [{kind, path_parameter, inputs {NAME: value}, unstable_modes_before, unstable_modes_after,
-/// platforms [{name, position, orientation}], jump_position, jump_rotation, description}].
+/// platforms {NAME: {position, quaternion_wxyz, rpy}}, jump_position, jump_rotation, description}].
 void write_events_json(JsonWriter& json, const RobotModel& model, const std::vector<PathEvent>& events);
 
 }  // namespace pcr::io_detail

@@ -3,10 +3,13 @@
 #include "pcr/robots/io/json_writer.hpp"
 #include "pcr/robots/io/solution_writers.hpp"
 #include "pcr/solve/solve_summary.hpp"
+#include "pose_output.hpp"
 #include "stability_output.hpp"
 
 namespace pcr {
 namespace {
+
+using io_detail::write_pose_object;
 
 const char* mode_name(LinkTarget::Mode mode) {
   switch (mode) {
@@ -24,23 +27,6 @@ void write_wrench(JsonWriter& json, const char* name, const Vec3& force, const V
   json.array(force);
   json.key("moment");
   json.array(moment);
-  json.end_object();
-}
-
-void write_pose_members(JsonWriter& json, const Pose& pose) {
-  json.key("position");
-  json.array(pose.position);
-  json.key("quaternion_wxyz");
-  json.array(VecX(pose.orientation));
-  json.key("rpy");
-  json.array(pose.rpy());
-}
-
-/// name: {position, quaternion_wxyz, rpy}.
-void write_pose_object(JsonWriter& json, const std::string& name, const Pose& pose) {
-  json.key(name);
-  json.begin_object();
-  write_pose_members(json, pose);
   json.end_object();
 }
 
