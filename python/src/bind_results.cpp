@@ -1,4 +1,5 @@
-// Python bindings of the results: SolveSummary, RodResult, RobotSolution (read-only values).
+// Python bindings of the results: SolveSummary, RodResult, Stability, contacts, RobotSolution (read-only
+// values).
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
@@ -72,6 +73,30 @@ void bind_stability(py::module_& m) {
       });
 }
 
+void bind_contacts(py::module_& m) {
+  py::class_<ContactInterval>(m, "ContactInterval",
+                              "An arc-length interval of a rod in contact (world frame).")
+      .def_readonly("s_begin", &ContactInterval::s_begin, "[m]")
+      .def_readonly("s_end", &ContactInterval::s_end, "[m]")
+      .def_readonly("force", &ContactInterval::force, "resultant contact force on the rod [N]");
+  py::class_<ObstacleContact>(m, "ObstacleContact",
+                              "The contact of one rod with one obstacle (docs/contact.md), world frame.")
+      .def_readonly("rod", &ObstacleContact::rod)
+      .def_readonly("obstacle", &ObstacleContact::obstacle)
+      .def_readonly("intervals", &ObstacleContact::intervals)
+      .def_readonly("force", &ObstacleContact::force, "resultant of all intervals [N]")
+      .def_readonly("min_gap", &ObstacleContact::min_gap,
+                    "smallest gap along the centerline [m]; negative: penetration between collocation points")
+      .def_readonly("min_gap_arc_length", &ObstacleContact::min_gap_arc_length, "[m]")
+      .def_readonly("arc_lengths", &ObstacleContact::arc_lengths, "contact cell midpoints s_j [m]")
+      .def_readonly("densities", &ObstacleContact::densities, "contact force density per cell [N/m]")
+      .def_readonly("gaps", &ObstacleContact::gaps, "gap at each cell midpoint [m]")
+      .def("__repr__", [](const ObstacleContact& c) {
+        return "<pcr.ObstacleContact " + c.rod + " on " + c.obstacle + ", " +
+               std::to_string(c.intervals.size()) + " intervals>";
+      });
+}
+
 void bind_robot_solution(py::module_& m) {
   py::class_<RobotSolution>(m, "RobotSolution", "Inputs, platform poses, rods and the summary of one solve.")
       .def_readonly("summary", &RobotSolution::summary)
@@ -80,6 +105,7 @@ void bind_robot_solution(py::module_& m) {
       .def_readonly("platforms", &RobotSolution::platforms, "world poses, model platform order")
       .def_readonly("rods", &RobotSolution::rods)
       .def_readonly("passive_joints", &RobotSolution::passive_joints, "model passive-joint order")
+      .def_readonly("contacts", &RobotSolution::contacts, "per rod and obstacle it may touch (empty without)")
       .def_readonly("jacobian_sign", &RobotSolution::jacobian_sign)
       .def_readonly("jacobian_sign_changed", &RobotSolution::jacobian_sign_changed)
       .def_readonly("stability", &RobotSolution::stability_verdict,
@@ -96,6 +122,7 @@ void bind_results(py::module_& m) {
   bind_summary(m);
   bind_rod_result(m);
   bind_stability(m);
+  bind_contacts(m);
   bind_robot_solution(m);
 }
 

@@ -141,3 +141,22 @@ def test_stability_verdict_equals_the_tool(planar, stewart):
         assert result.stability.unstable_modes == ref["unstable_modes"]
         assert result.stability.margin == ref["margin"]
     assert pcr.ForwardKinematics(planar).solve(planar.default_inputs).stability.verdict == "not_checked"
+
+
+def test_contacts_equal_the_tool_bit_for_bit():
+    # planar_post: the middle rod presses on a post (docs/contact.md); same solve as the tool's.
+    model = pcr.load_model(model_path("planar_post"))
+    result = pcr.ForwardKinematics(model).solve(model.default_inputs)
+    assert result.converged, result.summary.message
+    ref = run_tool("fk", model_path("planar_post"))
+    assert len(result.contacts) == len(ref["contacts"]) == 1
+    for contact, r in zip(result.contacts, ref["contacts"]):
+        assert (contact.rod, contact.obstacle) == (r["rod"], r["obstacle"])
+        assert contact.force.tolist() == r["force"]
+        assert np.linalg.norm(contact.force) > 0.0  # the rod does touch the post
+        assert [contact.min_gap, contact.min_gap_arc_length] == [r["min_gap"], r["min_gap_arc_length"]]
+        assert len(contact.intervals) == len(r["intervals"])
+        for interval, ri in zip(contact.intervals, r["intervals"]):
+            assert [interval.s_begin, interval.s_end] == [ri["s_begin"], ri["s_end"]]
+            assert interval.force.tolist() == ri["force"]
+        assert len(contact.arc_lengths) == len(contact.densities) == len(contact.gaps) > 0
