@@ -80,6 +80,9 @@ void collocation_sweep(const RodScene& scene, const ErrorOf& error_of, const All
           o.solver = solver;
           o.tolerance = 1e-10;
           o.max_load_steps = 40;  // successful mixed-form solves took <= 20 steps (bench_rods)
+          // The solve alone, as shooting's: the stability verdict is an extra output (its cost is in
+          // docs/benchmarks.md, "Stability verdict of single rods").
+          o.stability_verdict = false;
           RodSolution sol;
           const Timing t = time_repeated([&] { sol = solve_rod(scene.model, o); }, config.repeats());
           const double error =
