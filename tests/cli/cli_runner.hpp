@@ -1,8 +1,10 @@
 #pragma once
 // Running the built pcr tool from the CLI tests (test_cli, test_cli_tools): each test executable defines
-// PCR_CLI_WORK_DIRECTORY, its own directory under the system's temporary one (emptied at the first use),
-// so that the executables can run at the same time.
+// PCR_CLI_WORK_DIRECTORY, its own directory under the system's temporary one, named with the process id
+// (created at the first use, removed at exit), so that the executables, and two runs of one of them (two
+// build trees tested on one machine), can run at the same time.
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -31,14 +33,24 @@ std::string read_text(const fs::path& path) {
   return text.str();
 }
 
+/// The test's work directory, removed with its contents when the process ends.
+struct WorkDirectory {
+  fs::path path;
+  WorkDirectory()
+      : path(fs::temp_directory_path() /
+             (std::string(PCR_CLI_WORK_DIRECTORY) + "_" + std::to_string(getpid()))) {
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~WorkDirectory() {
+    std::error_code ignored;
+    fs::remove_all(path, ignored);
+  }
+};
+
 fs::path work_directory() {
-  static const fs::path dir = [] {
-    const fs::path d = fs::temp_directory_path() / PCR_CLI_WORK_DIRECTORY;
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
-  }();
-  return dir;
+  static const WorkDirectory dir;
+  return dir.path;
 }
 
 /// Runs the built pcr tool with the given arguments (shell words), capturing stdout and stderr; `prefix`
