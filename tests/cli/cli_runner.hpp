@@ -67,15 +67,15 @@ Run run_pcr(const std::string& arguments, const std::string& prefix = "") {
   return run;
 }
 
-std::string model(const std::string& name) {
+[[maybe_unused]] std::string model(const std::string& name) {
   return std::string("'") + PCR_MODEL_DIR + "/" + name + "'";
 }
 
-bool contains(const std::string& text, const std::string& part) {
+[[maybe_unused]] bool contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
 }
 
-std::string number(double x) {
+[[maybe_unused]] std::string number(double x) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.17g", x);
   return buffer;

@@ -1,4 +1,5 @@
 #define BOOST_TEST_MODULE io
+#include <unistd.h>
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
@@ -6,6 +7,8 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "mini_json.hpp"
 #include "pcr/core/error.hpp"
@@ -57,10 +60,23 @@ std::string read_text(const std::filesystem::path& path) {
   return text.str();
 }
 
+/// Directories made by fresh_directory, removed when the process ends.
+struct MadeDirectories {
+  std::vector<std::filesystem::path> paths;
+  ~MadeDirectories() {
+    std::error_code ignored;
+    for (const auto& path : paths) std::filesystem::remove_all(path, ignored);
+  }
+};
+
 std::filesystem::path fresh_directory(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("pcr_test_io_" + name);
+  static MadeDirectories made;
+  // Named with the process id: two runs of this test on one machine (two build trees) do not collide.
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("pcr_test_io_" + name + "_" + std::to_string(getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
+  made.paths.push_back(dir);
   return dir;
 }
 

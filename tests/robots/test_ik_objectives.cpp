@@ -27,6 +27,9 @@
 #include "pcr/solve/jacobian_check.hpp"
 #include "robot_fixtures.hpp"
 
+#define PCR_CLI_WORK_DIRECTORY "pcr_test_ik_objectives"
+#include "cli/cli_runner.hpp"
+
 using namespace pcr;
 using test::load_model;
 using test::model_path;
@@ -532,38 +535,6 @@ BOOST_AUTO_TEST_CASE(formulation_is_chosen_by_slenderness_unless_given) {
   bad.primal_min_gyration_ratio = 0.0;
   BOOST_CHECK_THROW(RobotAssembly(slender, bad), InputError);
 }
-
-namespace {
-
-struct Run {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-/// Runs the built pcr tool (shell words), capturing stdout and stderr.
-Run run_pcr(const std::string& arguments) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "pcr_test_ik_objectives";
-  std::filesystem::create_directories(dir);
-  const std::filesystem::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string command =
-      std::string("'") + PCR_TOOL + "' " + arguments + " > '" + out.string() + "' 2> '" + err.string() + "'";
-  const int status = std::system(command.c_str());
-  Run run;
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  for (auto [path, text] : {std::pair{out, &run.out}, std::pair{err, &run.err}}) {
-    std::ifstream in(path);
-    std::stringstream b;
-    b << in.rdbuf();
-    *text = b.str();
-  }
-  return run;
-}
-
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
-
-}  // namespace
 
 BOOST_AUTO_TEST_CASE(cli_objective_and_stress_options) {
   const std::string ik = "ik '" + model_path("stewart_gough") + "' --target platform=0.01,-0.015,0.41";
