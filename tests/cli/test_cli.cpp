@@ -249,3 +249,45 @@ BOOST_AUTO_TEST_CASE(ik_position_and_orientation_targets_are_reached) {
   BOOST_CHECK_SMALL(sign * q[2].number - s, 1e-9);
   BOOST_CHECK_SMALL(sign * q[3].number, 1e-9);
 }
+
+// pcr path --folds on the planar robot with its middle rod fed past a fold (docs/cli.md). The fold's
+// place and mode counts are checked against Newton bisection and an independent discrete energy model
+// in test_paths_through_folds; here the tool's report: the events in path order with their fields, the
+// snap's jump equal to the distance between the poses of the fold and the landing (computed here from
+// the two events' poses: 1e-12 m, 1e-9 rad of round-off), the point past a fold failing with `stop`.
+BOOST_AUTO_TEST_CASE(path_through_a_fold_reports_fold_snap_and_bifurcation) {
+  const fs::path inputs = work_directory() / "fed_middle.csv";
+  std::ofstream(inputs) << "middle\n0.291204395571\n0.34\n";
+  const std::string path = "path " + model("planar_three_rod.urdf") + " --inputs '" + inputs.string() + "'";
+  const Run snap = run_pcr(path + " --folds snap --json");
+  BOOST_TEST_MESSAGE(snap.err);
+  BOOST_REQUIRE_EQUAL(snap.exit_code, 0);
+  const test_json::Value j = test_json::parse(snap.out);
+  BOOST_CHECK_EQUAL(j["results"][1]["status"].text, "converged");
+  const test_json::Value& events = j["events"];
+  BOOST_REQUIRE_EQUAL(events.items.size(), 3u);
+  const char* kinds[] = {"fold", "snap", "bifurcation"};
+  for (size_t k = 0; k < 3; ++k) {
+    BOOST_CHECK_EQUAL(events[k]["kind"].text, kinds[k]);
+    BOOST_CHECK(events[k]["path_parameter"].number > 0.0 && events[k]["path_parameter"].number < 1.0);
+    for (const char* key : {"position", "quaternion_wxyz", "rpy"})
+      BOOST_CHECK_MESSAGE(events[k]["platforms"]["platform"].has(key), kinds[k] << " platform." << key);
+  }
+  const test_json::Value &fold = events[0], &landing = events[1];
+  BOOST_CHECK_EQUAL(fold["path_parameter"].number, landing["path_parameter"].number);
+  BOOST_CHECK_EQUAL(fold["unstable_modes_before"].number + 1, fold["unstable_modes_after"].number);
+  const test_json::Value &a = fold["platforms"]["platform"], &b = landing["platforms"]["platform"];
+  double distance = 0.0, dot = 0.0;
+  for (size_t i = 0; i < 3; ++i) distance += std::pow(a["position"][i].number - b["position"][i].number, 2);
+  for (size_t i = 0; i < 4; ++i) dot += a["quaternion_wxyz"][i].number * b["quaternion_wxyz"][i].number;
+  BOOST_CHECK_CLOSE_FRACTION(landing["jump_position"].number, std::sqrt(distance), 1e-12);
+  BOOST_CHECK_SMALL(landing["jump_rotation"].number - 2.0 * std::acos(std::min(1.0, std::abs(dot))), 1e-9);
+  BOOST_CHECK(landing["jump_position"].number > 1e-3);  // a visible jump (15 mm, docs/cli.md)
+
+  const Run stop = run_pcr(path + " --folds stop --json");
+  BOOST_CHECK_EQUAL(stop.exit_code, 1);  // the row past the fold fails
+  const test_json::Value s = test_json::parse(stop.out);
+  BOOST_CHECK_EQUAL(s["results"][1]["status"].text, "failed");
+  const std::string& message = s["results"][1]["summary"]["message"].text;
+  BOOST_CHECK_MESSAGE(contains(message, "fold at path parameter"), message);
+}
