@@ -29,6 +29,12 @@ int find_entry(const std::vector<int>& outer, const std::vector<int>& inner, int
   return it != end && *it == col ? static_cast<int>(it - inner.begin()) : -1;
 }
 
+/// Room for `more` elements at the end of v, at least doubling its capacity when it must grow.
+template <typename T>
+void grow_capacity(std::vector<T>& v, size_t more) {
+  if (v.capacity() < v.size() + more) v.reserve(std::max(v.size() + more, 2 * v.capacity()));
+}
+
 }  // namespace
 
 void Problem::Impl::note_scratch(const std::vector<VariableId>& ids, size_t dense) {
@@ -57,17 +63,31 @@ void Problem::Impl::append_jacobian_rows(ResidualId b) {
             [&](int a, int c) { return variables[ids[a]].offset < variables[ids[c]].offset; });
   std::vector<char> mask(dense_start[nk - 1] + num_block_rows * variables[ids[nk - 1]].size);
   for (int k = 0; k < nk; ++k) block.structural_mask(k, variables[ids[k]].size, mask.data() + dense_start[k]);
+  // The arrays grow geometrically (reserving one block's worth at a time would reallocate on every
+  // block); the columns are then written in place.
+  const size_t count =
+      static_cast<size_t>(std::count_if(mask.begin(), mask.end(), [](char m) { return m != 0; }));
+  const size_t start = jacobian.inner.size();
+  grow_capacity(jacobian.inner, count);
+  grow_capacity(jacobian.scatter, count);
+  grow_capacity(jacobian.outer, static_cast<size_t>(num_block_rows));
+  const size_t scatter_start = jacobian.scatter.size();
+  jacobian.inner.resize(start + count);
+  jacobian.scatter.resize(scatter_start + count);
+  int* inner = jacobian.inner.data();
+  std::pair<int, int>* scatter = jacobian.scatter.data() + scatter_start - start;  // indexed by `next`
+  int next = static_cast<int>(start);
   for (int r = 0; r < num_block_rows; ++r) {
     for (int k : order) {
       const VariableBlock& v = variables[ids[k]];
+      const char* row_mask = mask.data() + dense_start[k] + r * v.size;
       for (int j = 0; j < v.size; ++j) {
-        const int dense = dense_start[k] + r * v.size + j;
-        if (!mask[dense]) continue;
-        jacobian.scatter.emplace_back(dense, static_cast<int>(jacobian.inner.size()));
-        jacobian.inner.push_back(v.offset + j);
+        if (!row_mask[j]) continue;
+        scatter[next] = {dense_start[k] + r * v.size + j, next};
+        inner[next++] = v.offset + j;
       }
     }
-    jacobian.outer.push_back(static_cast<int>(jacobian.inner.size()));
+    jacobian.outer.push_back(next);
   }
 }
 
