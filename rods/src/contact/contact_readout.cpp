@@ -2,6 +2,7 @@
 // midpoints, the runs of cells in contact with their resultants, and the smallest sampled gap.
 #include <algorithm>
 #include <limits>
+#include <sstream>
 
 #include "pcr/rods/rod_contact.hpp"
 #include "pcr/splines/basis.hpp"
@@ -79,9 +80,35 @@ std::vector<ObstacleContact> read_rod_contact(const CollocationRod& rod, const R
     c.intervals = contact_intervals(c, forces, tau, L, density_tolerance, gap_tolerance);
     for (const ContactInterval& interval : c.intervals) c.force += interval.force;
     sampled_min_gap(rod, vars, x, o.obstacles[k], o.radius, c);
+    c.penetration_tolerance = kPenetrationTolerance * o.radius;
     result.push_back(std::move(c));
   }
   return result;
+}
+
+std::vector<RodContactGap> rod_contact_gaps(const std::vector<ObstacleContact>& contacts) {
+  std::vector<RodContactGap> gaps;
+  for (const ObstacleContact& c : contacts) {
+    if (gaps.empty() || gaps.back().rod != c.rod) {
+      gaps.push_back({c.rod, c.obstacle, c.min_gap, c.min_gap_arc_length, c.penetration_tolerance});
+    } else if (c.min_gap < gaps.back().min_gap) {
+      gaps.back() = {c.rod, c.obstacle, c.min_gap, c.min_gap_arc_length, c.penetration_tolerance};
+    }
+  }
+  return gaps;
+}
+
+std::string contact_penetration_warning(const std::vector<RodContactGap>& gaps) {
+  std::ostringstream out;
+  for (const RodContactGap& g : gaps) {
+    if (!g.penetrates()) continue;
+    out << (out.tellp() > 0 ? "; " : "") << "rod '" << g.rod << "' penetrates obstacle '" << g.obstacle
+        << "' by " << -g.min_gap << " m at s = " << g.arc_length
+        << " m between its collocation points (tolerated: " << g.tolerance
+        << " m, 0.1 x contact radius); the contact is not resolved: give the rod more elements "
+           "(<discretization elements=...>)";
+  }
+  return out.str();
 }
 
 }  // namespace pcr

@@ -66,9 +66,34 @@ struct ObstacleContact {
   /// Smallest gap along the centerline (sampled at 8 points per cell) and where; negative values are
   /// penetration between the collocation points.
   double min_gap = 0.0, min_gap_arc_length = 0.0;
+  /// Penetration that the results accept without a warning: kPenetrationTolerance times the contact radius.
+  double penetration_tolerance = 0.0;
   /// Per midpoint: arc length s_j, density lambda_j [N/m] and gap g_j [m].
   std::vector<double> arc_lengths, densities, gaps;
 };
+
+/// The penetration the results tolerate, as a fraction of the rod's contact radius r. The gap rows hold at
+/// the collocation midpoints only; between them the centerline may dip into an obstacle. A dip below
+/// 0.1 r is smaller than the tube model's own error for a rod that shears (O(r eps), with eps up to a few
+/// percent near concentrated contact forces) would make it, and invisible at the rod's scale; a dip of
+/// the order of r means the rod's surface, or for a sharp edge its centerline, passes through the
+/// obstacle between two midpoints, i.e. the contact is not resolved by the mesh (docs/contact.md).
+inline constexpr double kPenetrationTolerance = 0.1;
+
+/// The smallest sampled gap of one rod over all its obstacles.
+struct RodContactGap {
+  std::string rod, obstacle;               ///< the rod and the obstacle of its smallest gap
+  double min_gap = 0.0, arc_length = 0.0;  ///< [m]
+  double tolerance = 0.0;                  ///< kPenetrationTolerance r [m]
+  bool penetrates() const { return min_gap < -tolerance; }
+};
+
+/// Per rod (in the order of `contacts`, whose entries of one rod follow each other) its smallest gap.
+std::vector<RodContactGap> rod_contact_gaps(const std::vector<ObstacleContact>& contacts);
+
+/// A warning for the solve summary naming every rod that penetrates by more than its tolerance, with the
+/// depth, the arc length and the obstacle, and asking for more elements; "" when none does.
+std::string contact_penetration_warning(const std::vector<RodContactGap>& gaps);
 
 /// The contact set of a rod: one entry per obstacle it may touch. A cell carries force when its density
 /// exceeds 1e-8 F0 / L0 (the solver's residual tolerance scale); it touches when its gap is below 1e-6 L0.
