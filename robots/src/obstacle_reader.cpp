@@ -19,6 +19,19 @@ Vec3 unit_vector(XmlElementReader& reader, const char* attribute) {
   return a;
 }
 
+// A sharp edge: the line through xyz along a unit `axis`, or the segment from xyz to `end` (one of them).
+void read_edge(XmlElementReader& element, Obstacle& o) {
+  if (element.has("axis") == element.has("end"))
+    element.fail("an edge needs either axis (an infinite line) or end (a segment), not both");
+  if (element.has("axis")) {
+    o.direction = unit_vector(element, "axis");
+    return;
+  }
+  o.finite = true;
+  o.end = element.vec3("end");
+  if (o.end == o.position) element.fail("end", element.text("end"), "is the same point as xyz (use a point)");
+}
+
 // <pcr_obstacle name type link xyz normal | radius | end radius | axis radius>.
 ObstacleElement read_obstacle(const TiXmlElement& e, const std::string& source, const UrdfTree& tree) {
   XmlElementReader reader(e, source, "pcr_obstacle");
@@ -32,10 +45,13 @@ ObstacleElement read_obstacle(const TiXmlElement& e, const std::string& source, 
   static const std::map<std::string, ObstacleShape> shapes{{"half_space", ObstacleShape::HalfSpace},
                                                            {"sphere", ObstacleShape::Sphere},
                                                            {"capsule", ObstacleShape::Capsule},
-                                                           {"cylinder", ObstacleShape::Cylinder}};
+                                                           {"cylinder", ObstacleShape::Cylinder},
+                                                           {"edge", ObstacleShape::Edge},
+                                                           {"point", ObstacleShape::Point}};
   const auto shape = shapes.find(type);
   if (shape == shapes.end())
-    element.fail("type", type, "is not an obstacle type (half_space, sphere, capsule, cylinder)");
+    element.fail("type", type,
+                 "is not an obstacle type (half_space, sphere, capsule, cylinder, edge, point)");
   o.shape = shape->second;
   if (element.has("link")) {
     const std::string link = element.text("link");
@@ -57,6 +73,8 @@ ObstacleElement read_obstacle(const TiXmlElement& e, const std::string& source, 
       o.direction = unit_vector(element, "axis");
       o.radius = element.positive("radius");
       break;
+    case ObstacleShape::Edge: read_edge(element, o); break;
+    case ObstacleShape::Point: break;
   }
   element.finish();
   return out;

@@ -45,6 +45,8 @@ void write_contacts_member(JsonWriter& json, const std::vector<ObstacleContact>&
     json.value(c.min_gap);
     json.key("min_gap_arc_length");
     json.value(c.min_gap_arc_length);
+    json.key("concentrated");
+    json.value(c.concentrated);
     json.key("intervals");
     json.begin_array();
     for (const ContactInterval& interval : c.intervals) {
@@ -55,6 +57,8 @@ void write_contacts_member(JsonWriter& json, const std::vector<ObstacleContact>&
       json.value(interval.s_end);
       json.key("force");
       json.array(interval.force);
+      json.key("centroid");
+      json.value(interval.centroid);
       json.end_object();
     }
     json.end_array();
@@ -69,8 +73,14 @@ void write_contact_lines(std::ostream& out, const std::vector<ObstacleContact>& 
   for (const ObstacleContact& c : contacts) {
     out << "contact " << c.rod << " / " << c.obstacle << ":";
     if (c.intervals.empty()) out << " none";
-    for (const ContactInterval& i : c.intervals)
-      out << " [" << i.s_begin << ", " << i.s_end << "] m force (" << i.force.transpose() << ") N;";
+    for (const ContactInterval& i : c.intervals) {
+      if (c.concentrated) {
+        out << " point at s = " << i.centroid << " m force (" << i.force.transpose() << ") N;";
+      } else {
+        out << " [" << i.s_begin << ", " << i.s_end << "] m force (" << i.force.transpose()
+            << ") N centroid s = " << i.centroid << " m;";
+      }
+    }
     out << " min gap " << c.min_gap << " m at s = " << c.min_gap_arc_length << " m\n";
   }
   for (const RodContactGap& g : gaps) {
