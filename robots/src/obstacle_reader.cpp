@@ -47,11 +47,12 @@ ObstacleElement read_obstacle(const TiXmlElement& e, const std::string& source, 
                                                            {"capsule", ObstacleShape::Capsule},
                                                            {"cylinder", ObstacleShape::Cylinder},
                                                            {"edge", ObstacleShape::Edge},
-                                                           {"point", ObstacleShape::Point}};
+                                                           {"point", ObstacleShape::Point},
+                                                           {"roller", ObstacleShape::Roller}};
   const auto shape = shapes.find(type);
   if (shape == shapes.end())
     element.fail("type", type,
-                 "is not an obstacle type (half_space, sphere, capsule, cylinder, edge, point)");
+                 "is not an obstacle type (half_space, sphere, capsule, cylinder, edge, point, roller)");
   o.shape = shape->second;
   if (element.has("link")) {
     const std::string link = element.text("link");
@@ -75,6 +76,11 @@ ObstacleElement read_obstacle(const TiXmlElement& e, const std::string& source, 
       break;
     case ObstacleShape::Edge: read_edge(element, o); break;
     case ObstacleShape::Point: break;
+    case ObstacleShape::Roller:
+      o.direction = unit_vector(element, "axis");
+      o.radius = element.positive("radius");
+      o.length = element.positive("length");
+      break;
   }
   element.finish();
   return out;

@@ -15,6 +15,7 @@ const char* to_string(ObstacleShape shape) {
     case ObstacleShape::Cylinder: return "cylinder";
     case ObstacleShape::Edge: return "edge";
     case ObstacleShape::Point: return "point";
+    case ObstacleShape::Roller: return "roller";
   }
   return "unknown";
 }
@@ -23,7 +24,8 @@ void Obstacle::validate() const {
   const std::string who = std::string("obstacle '") + name + "' (" + to_string(shape) + ")";
   require(position.allFinite(), who, ": position (", position.transpose(), ") is not finite");
   const bool infinite_edge = shape == ObstacleShape::Edge && !finite;
-  if (shape == ObstacleShape::HalfSpace || shape == ObstacleShape::Cylinder || infinite_edge) {
+  if (shape == ObstacleShape::HalfSpace || shape == ObstacleShape::Cylinder || infinite_edge ||
+      shape == ObstacleShape::Roller) {
     require(direction.allFinite() && std::abs(direction.norm() - 1.0) <= 1e-9, who, ": ",
             shape == ObstacleShape::HalfSpace ? "normal" : "axis", " (", direction.transpose(),
             ") is not a unit vector");
@@ -32,6 +34,9 @@ void Obstacle::validate() const {
     require(radius == 0.0, who, ": radius = ", radius, " (a sharp obstacle has none)");
   } else if (shape != ObstacleShape::HalfSpace) {
     require(std::isfinite(radius) && radius > 0.0, who, ": radius = ", radius, " (must be > 0)");
+  }
+  if (shape == ObstacleShape::Roller) {
+    require(std::isfinite(length) && length > 0.0, who, ": length = ", length, " (must be > 0)");
   }
   if (shape == ObstacleShape::Capsule || (shape == ObstacleShape::Edge && finite)) {
     require(end.allFinite(), who, ": end (", end.transpose(), ") is not finite");
@@ -90,7 +95,31 @@ ObstacleOffset obstacle_offset(const Obstacle& o, const Vec3& p) {
   return out;
 }
 
+// The roller's gap (obstacle.hpp): side, end face, rim or inside.
+ObstacleGap roller_gap(const Obstacle& o, const Vec3& p, double rod_radius) {
+  const Vec3& a = o.direction;
+  const Mat3 P = Mat3::Identity() - a * a.transpose();  // projection normal to the axis
+  const Vec3 w = p - o.position, radial = P * w;
+  const double along = a.dot(w), rho = radial.norm();
+  const double d_r = rho - o.radius, d_a = std::abs(along) - 0.5 * o.length;
+  const Vec3 face_normal = along >= 0.0 ? a : Vec3(-a);
+  if (d_r > 0.0 && d_a > 0.0) {  // nearest to the rim circle c = x0 + (W / 2) n_f + R e_r, e_r = radial / rho
+    const Vec3 e_r = radial / rho;
+    const Mat3 de_r = (Mat3::Identity() - e_r * e_r.transpose()) * P / rho;
+    return round_gap(p - o.position - 0.5 * o.length * face_normal - o.radius * e_r,
+                     Mat3::Identity() - o.radius * de_r, rod_radius);
+  }
+  if (d_a > d_r) {  // beside an end face (or inside, nearer to it)
+    ObstacleGap out;
+    out.gap = d_a - rod_radius;
+    out.normal = face_normal;
+    return out;
+  }
+  return round_gap(radial, P, o.radius + rod_radius);  // beside the side (or inside, nearer to it)
+}
+
 ObstacleGap obstacle_gap(const Obstacle& o, const Vec3& p, double rod_radius) {
+  if (o.shape == ObstacleShape::Roller) return roller_gap(o, p, rod_radius);
   if (o.shape == ObstacleShape::HalfSpace) {
     ObstacleGap out;
     out.normal = o.direction;
