@@ -4,11 +4,13 @@
 
 #include <cmath>
 #include <memory>
+#include <random>
 #include <string>
 
 #include "contact_fixtures.hpp"
 #include "pcr/robots/kinematics.hpp"
 #include "pcr/robots/urdf_loader.hpp"
+#include "pcr/solve/jacobian_check.hpp"
 
 using namespace pcr;
 
@@ -54,6 +56,29 @@ BOOST_AUTO_TEST_CASE(roller_gap_in_its_four_regions) {
                  p.transpose() << " d nu / d p_" << c);
     }
   }
+}
+
+BOOST_AUTO_TEST_CASE(roller_contact_rows_jacobian_matches_finite_differences) {
+  // The midpoint contact rows with three rollers that the cantilever along +x (0.3 m) passes beside their
+  // side, end face and rim, at a perturbed state with positive multipliers (as test_contact_rods.cpp).
+  const CollocationRod rod(test::steel_cantilever(0.3, Vec3(0, 0, -9.81), Vec3(0, 0, -0.01)),
+                           test::contact_discretization(4, 6));
+  Obstacle side = roller(), face = roller(), rim = roller();
+  side.position = Vec3(0.05, 0, -0.03);
+  face.position = Vec3(0.15, 0.04, 0.0);
+  rim.position = Vec3(0.25, 0.035, -0.03);
+  RodContactOptions options{{side, face, rim}, test::kRadius};
+  Problem problem;
+  const RodVariables vars = rod.add_to_problem(problem);
+  const RodContactVariables contact = add_rod_contact(problem, rod, vars, options);
+  VecX x = problem.initial_values();
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int i = 0; i < x.size(); ++i) x[i] += 1e-3 * unit(rng);
+  for (int offset : contact.multiplier_offsets)
+    for (int k = 0; k < 3; ++k) x[offset + k] = 0.5 + 0.4 * unit(rng);
+  const JacobianCheckResult r = check_problem_jacobian(problem, x);
+  BOOST_TEST(r.passed, r.to_string());
 }
 
 BOOST_AUTO_TEST_CASE(a_roller_is_its_cylinder_where_the_rod_lies_on_its_side) {
