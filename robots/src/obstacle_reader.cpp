@@ -32,6 +32,21 @@ void read_edge(XmlElementReader& element, Obstacle& o) {
   if (o.end == o.position) element.fail("end", element.text("end"), "is the same point as xyz (use a point)");
 }
 
+// contact="distributed" (default) | "point" on a sphere, capsule or cylinder.
+void read_contact_kind(XmlElementReader& element, Obstacle& o) {
+  if (!element.has("contact")) return;
+  const std::string kind = element.text("contact");
+  const bool round = o.shape == ObstacleShape::Sphere || o.shape == ObstacleShape::Capsule ||
+                     o.shape == ObstacleShape::Cylinder;
+  if (kind == "point" && round) {
+    o.point_contact = true;
+  } else if (kind != "distributed" || !round) {
+    element.fail("contact", kind,
+                 round ? "is not a contact kind (distributed, point)"
+                       : "is given on an obstacle that is not a sphere, capsule or cylinder");
+  }
+}
+
 // <pcr_obstacle name type link xyz normal | radius | end radius | axis radius>.
 ObstacleElement read_obstacle(const TiXmlElement& e, const std::string& source, const UrdfTree& tree) {
   XmlElementReader reader(e, source, "pcr_obstacle");
@@ -82,6 +97,7 @@ ObstacleElement read_obstacle(const TiXmlElement& e, const std::string& source, 
       o.length = element.positive("length");
       break;
   }
+  read_contact_kind(element, o);
   element.finish();
   return out;
 }

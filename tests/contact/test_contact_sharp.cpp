@@ -83,10 +83,10 @@ BOOST_AUTO_TEST_CASE(propped_cantilever_with_overhang_on_an_edge) {
 
 BOOST_AUTO_TEST_CASE(sharp_contact_jacobians_match_finite_differences) {
   // The midpoint rows (with the shares of the concentrated forces) and the rows of an infinite edge, a
-  // finite edge and a point next to a half-space, at a perturbed state with positive multipliers and the
-  // contact sections inside cells (the shares' kinks lie at the midpoints, 1e-3 or more away from the
-  // sections here, beyond the difference step 1e-6) or beyond the rod's end (the clamped branch of the
-  // section row), with both complementarity functions.
+  // finite edge, a point and a capsule with point contact next to a half-space, at a perturbed state with
+  // positive multipliers and the contact sections inside cells (the shares' kinks lie at the midpoints, 1e-3
+  // or more away from the sections here, beyond the difference step 1e-6) or beyond the rod's end (the
+  // clamped branch of the section row), with both complementarity functions.
   const CollocationRod rod(test::steel_cantilever(0.3, Vec3(0, 0, -9.81), Vec3(0, 0, -0.01)),
                            test::contact_discretization(4, 6));
   Obstacle floor = sharp("floor", ObstacleShape::HalfSpace, Vec3(0, 0, -0.01));
@@ -94,23 +94,27 @@ BOOST_AUTO_TEST_CASE(sharp_contact_jacobians_match_finite_differences) {
   Obstacle finite = sharp("finite", ObstacleShape::Edge, Vec3(0.2, -0.01, -0.004));
   finite.finite = true;
   finite.end = Vec3(0.21, 0.01, -0.005);
-  const std::vector<Obstacle> obstacles = {floor, sharp("edge", ObstacleShape::Edge, Vec3(0.1, 0, -0.003)),
-                                           finite,
-                                           sharp("point", ObstacleShape::Point, Vec3(0.31, 0.002, -0.004))};
-  const double sections[3] = {0.331, 0.6877, 1.05};  // u_c of the three sharp obstacles
+  Obstacle post = sharp("post", ObstacleShape::Capsule, Vec3(0.15, -0.01, -0.025));  // point contact
+  post.end = Vec3(0.15, 0.01, -0.025);
+  post.radius = 0.02;
+  post.point_contact = true;
+  const std::vector<Obstacle> obstacles = {
+      floor, sharp("edge", ObstacleShape::Edge, Vec3(0.1, 0, -0.003)), finite,
+      sharp("point", ObstacleShape::Point, Vec3(0.31, 0.002, -0.004)), post};
+  const double sections[4] = {0.331, 0.6877, 1.05, 0.4789};  // u_c of the four concentrated contacts
   for (ComplementarityFunction f :
        {ComplementarityFunction::FischerBurmeister, ComplementarityFunction::Min}) {
     RodContactOptions options{obstacles, test::kRadius, f};
     Problem problem;
     const RodVariables vars = rod.add_to_problem(problem);
     const RodContactVariables contact = add_rod_contact(problem, rod, vars, options);
-    BOOST_TEST_REQUIRE(contact.sharp_blocks.size() == 3u);
+    BOOST_TEST_REQUIRE(contact.sharp_blocks.size() == 4u);
     VecX x = problem.initial_values();
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> unit(-1.0, 1.0);
     for (int i = 0; i < x.size(); ++i) x[i] += 1e-3 * unit(rng);
     for (int offset : contact.multiplier_offsets) x[offset] = 0.5 + 0.4 * unit(rng);
-    for (int e = 0; e < 3; ++e) {
+    for (int e = 0; e < 4; ++e) {
       const int o = contact.sharp_offsets[e];
       x[o] = sections[e];
       x[o + 1] = 0.5 + 0.4 * unit(rng);
@@ -160,6 +164,10 @@ BOOST_AUTO_TEST_CASE(bad_sharp_obstacle_input_names_file_line_element_and_value)
        "attribute 'end' = \"0.2 0 -0.01\" is the same point as xyz"},
       {R"(<pcr_obstacle name="e" type="edge" xyz="0.2 0 -0.01" axis="0 1 0" radius="0.01"/>)", "'radius'"},
       {R"(<pcr_obstacle name="e" type="point" xyz="0.2 0 inf"/>)", "attribute 'xyz'"},
+      {R"(<pcr_obstacle name="e" type="half_space" xyz="0 0 -0.01" normal="0 0 1" contact="point"/>)",
+       "attribute 'contact' = \"point\" is given on an obstacle that is not a sphere, capsule or cylinder"},
+      {R"(<pcr_obstacle name="e" type="sphere" xyz="0 0 -1" radius="0.5" contact="line"/>)",
+       "attribute 'contact' = \"line\" is not a contact kind"},
   };
   for (const Case& c : cases) {
     std::string message;

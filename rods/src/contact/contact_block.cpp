@@ -268,7 +268,7 @@ RodContactVariables add_rod_contact(Problem& problem, const CollocationRod& rod,
   out.options = options;
   std::vector<Obstacle> distributed;
   for (int k = 0; k < static_cast<int>(options.obstacles.size()); ++k) {
-    const bool sharp = is_sharp(options.obstacles[k].shape);
+    const bool sharp = concentrated_contact(options.obstacles[k]);
     (sharp ? out.sharp : out.distributed).push_back(k);
     if (!sharp) distributed.push_back(options.obstacles[k]);
   }

@@ -20,6 +20,10 @@ const char* to_string(ObstacleShape shape) {
   return "unknown";
 }
 
+bool concentrated_contact(const Obstacle& o) {
+  return is_sharp(o.shape) || o.point_contact;
+}
+
 void Obstacle::validate() const {
   const std::string who = std::string("obstacle '") + name + "' (" + to_string(shape) + ")";
   require(position.allFinite(), who, ": position (", position.transpose(), ") is not finite");
@@ -35,6 +39,9 @@ void Obstacle::validate() const {
   } else if (shape != ObstacleShape::HalfSpace) {
     require(std::isfinite(radius) && radius > 0.0, who, ": radius = ", radius, " (must be > 0)");
   }
+  require(!point_contact || shape == ObstacleShape::Sphere || shape == ObstacleShape::Capsule ||
+              shape == ObstacleShape::Cylinder || is_sharp(shape),
+          who, ": point contact is supported on spheres, capsules and cylinders only");
   if (shape == ObstacleShape::Roller) {
     require(std::isfinite(length) && length > 0.0, who, ": length = ", length, " (must be > 0)");
   }

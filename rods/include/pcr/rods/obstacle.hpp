@@ -31,6 +31,10 @@ inline bool is_sharp(ObstacleShape shape) {
   return shape == ObstacleShape::Edge || shape == ObstacleShape::Point;
 }
 
+struct Obstacle;
+/// Sharp obstacles and those with point_contact: one concentrated force at an unknown section.
+bool concentrated_contact(const Obstacle& obstacle);
+
 /// An obstacle's geometry in one frame (the world frame, or a link frame before the assembly places it).
 struct Obstacle {
   std::string name;
@@ -44,9 +48,13 @@ struct Obstacle {
   bool finite = false;             ///< edge: the segment position-end (else the infinite line)
   double radius = 0.0;             ///< sphere, capsule, cylinder, roller [m] (> 0); edge, point: 0
   double length = 0.0;             ///< roller: its length along the axis [m] (> 0)
+  /// Sphere, capsule, cylinder: the rod touches it at one section at most (a concentrated force at an
+  /// unknown section, as a sharp obstacle; rod_contact.hpp) instead of a density at the midpoints.
+  bool point_contact = false;
 
   /// Throws InputError naming the obstacle and the value: non-finite numbers, a non-unit direction
-  /// (|1 - |a|| > 1e-9), a non-positive radius, a capsule of zero length.
+  /// (|1 - |a|| > 1e-9), a non-positive radius, a capsule of zero length, point_contact on a half-space
+  /// or a roller.
   void validate() const;
   /// The same obstacle in the parent frame of `rotation`, `translation` (x_parent = t + R x).
   Obstacle transformed(const Mat3& rotation, const Vec3& translation) const;
