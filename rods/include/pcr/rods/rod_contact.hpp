@@ -18,7 +18,8 @@
 // forces at the ends of a contact interval (e.g. at a touchdown) are spread over the cells next to them,
 // so an interval end is resolved to about one cell L (tau_{j+1} - tau_j).
 //
-// Sharp obstacles (edges, points: zero radius) touch the rod at one section u_c with a concentrated
+// Sharp obstacles (edges, points: zero radius), and spheres, capsules and cylinders with
+// Obstacle::point_contact, touch the rod at one section u_c with a concentrated
 // force F = lambda L nu, the limit of a density concentrated at u_c. Their unknowns are u_c, lambda and
 // G = F / L; rows (edge_contact_block.cpp): G = lambda nu(p(u_c)); u_c is the section nearest to the
 // obstacle (v . p'(u_c) = 0, or an end of the rod); phi(g(p(u_c)) / L0, lambda L0 / F0) = 0. F enters the
