@@ -39,5 +39,8 @@ class Recorder {
 bool run_rod_scenes(const AllConfig& config, Recorder& out);
 /// R5a FK and IK (cold), R5b teleoperation path (warm IK): collocation and shooting sweeps.
 bool run_robot_scenes(const AllConfig& config, Recorder& out);
+/// contact_post_platform, contact_post_force: planar_post.urdf FK over the middle rod's mesh against a
+/// fine-mesh (self-convergence) reference (all_contact.cpp).
+bool run_contact_scenes(const AllConfig& config, Recorder& out);
 
 }  // namespace pcr::bench

@@ -5,14 +5,15 @@
 // and shooting (RK4 with N steps per rod, adaptive Dormand-Prince 5(4) with tolerance tol).
 // Scenes: R1_phi_2pi, R2_alpha_10, R3_helix, spring_20deg (single rods, cold solves), R5a_fk_cold,
 // R5a_ik_cold (Stewart-Gough, cold: a new solver object per solve), R5b_ik_path (teleoperation path,
-// time per warm-started IK solve), R5b_helix_path (the same on a helix of 400 new targets).
+// time per warm-started IK solve), R5b_helix_path (the same on a helix of 400 new targets),
+// contact_post_platform and contact_post_force (planar_post.urdf FK over meshes; all_contact.cpp).
 // Error of each run against a reference computed in this run by an INDEPENDENT method, never the run's
 // own: the analytic solution where one exists (R1, R3 centerline, R2 elastica tip); otherwise
 // collocation runs against tight shooting (Dormand-Prince 1e-12) and shooting runs against tight
 // collocation (mixed, degree 8). Failed solves have error nan.
 // usage: bench_all [--quick] [--scenes R1,R5b,...] [--out PATH]   (default benchmarks/results/all.csv)
 //   --quick: reduced sweeps for smoke runs; --scenes: name prefixes (R1, R2, R3, spring, R5a, R5a_fk, R5b,
-//   R5b_helix).
+//   R5b_helix, contact).
 // Reports: scripts/bench_report.sh PATH (PNGs with Pareto fronts, Markdown tables).
 #include <cstdio>
 #include <cstring>
@@ -26,9 +27,10 @@ using namespace pcr::bench;
 namespace {
 
 int usage(const char* message) {
-  std::fprintf(stderr,
-               "bench_all: %s\nusage: bench_all [--quick] [--scenes R1,R2,R3,spring,R5a,R5b] [--out PATH]\n",
-               message);
+  std::fprintf(
+      stderr,
+      "bench_all: %s\nusage: bench_all [--quick] [--scenes R1,R2,R3,spring,R5a,R5b,contact] [--out PATH]\n",
+      message);
   return 2;
 }
 
@@ -62,7 +64,8 @@ int main(int argc, char** argv) {
   }
   const bool rods_ok = run_rod_scenes(config, recorder);
   const bool robots_ok = run_robot_scenes(config, recorder);
+  const bool contact_ok = run_contact_scenes(config, recorder);
   if (recorder.rows() == 0) return usage("no scene matches --scenes");
   recorder.note("wrote " + std::to_string(recorder.rows()) + " rows to " + out);
-  return rods_ok && robots_ok ? 0 : 1;
+  return rods_ok && robots_ok && contact_ok ? 0 : 1;
 }

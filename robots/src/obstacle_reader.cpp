@@ -19,6 +19,34 @@ Vec3 unit_vector(XmlElementReader& reader, const char* attribute) {
   return a;
 }
 
+// A sharp edge: the line through xyz along a unit `axis`, or the segment from xyz to `end` (one of them).
+void read_edge(XmlElementReader& element, Obstacle& o) {
+  if (element.has("axis") == element.has("end"))
+    element.fail("an edge needs either axis (an infinite line) or end (a segment), not both");
+  if (element.has("axis")) {
+    o.direction = unit_vector(element, "axis");
+    return;
+  }
+  o.finite = true;
+  o.end = element.vec3("end");
+  if (o.end == o.position) element.fail("end", element.text("end"), "is the same point as xyz (use a point)");
+}
+
+// contact="distributed" (default) | "point" on a sphere, capsule or cylinder.
+void read_contact_kind(XmlElementReader& element, Obstacle& o) {
+  if (!element.has("contact")) return;
+  const std::string kind = element.text("contact");
+  const bool round = o.shape == ObstacleShape::Sphere || o.shape == ObstacleShape::Capsule ||
+                     o.shape == ObstacleShape::Cylinder;
+  if (kind == "point" && round) {
+    o.point_contact = true;
+  } else if (kind != "distributed" || !round) {
+    element.fail("contact", kind,
+                 round ? "is not a contact kind (distributed, point)"
+                       : "is given on an obstacle that is not a sphere, capsule or cylinder");
+  }
+}
+
 // <pcr_obstacle name type link xyz normal | radius | end radius | axis radius>.
 ObstacleElement read_obstacle(const TiXmlElement& e, const std::string& source, const UrdfTree& tree) {
   XmlElementReader reader(e, source, "pcr_obstacle");
@@ -32,10 +60,14 @@ ObstacleElement read_obstacle(const TiXmlElement& e, const std::string& source, 
   static const std::map<std::string, ObstacleShape> shapes{{"half_space", ObstacleShape::HalfSpace},
                                                            {"sphere", ObstacleShape::Sphere},
                                                            {"capsule", ObstacleShape::Capsule},
-                                                           {"cylinder", ObstacleShape::Cylinder}};
+                                                           {"cylinder", ObstacleShape::Cylinder},
+                                                           {"edge", ObstacleShape::Edge},
+                                                           {"point", ObstacleShape::Point},
+                                                           {"roller", ObstacleShape::Roller}};
   const auto shape = shapes.find(type);
   if (shape == shapes.end())
-    element.fail("type", type, "is not an obstacle type (half_space, sphere, capsule, cylinder)");
+    element.fail("type", type,
+                 "is not an obstacle type (half_space, sphere, capsule, cylinder, edge, point, roller)");
   o.shape = shape->second;
   if (element.has("link")) {
     const std::string link = element.text("link");
@@ -57,7 +89,15 @@ ObstacleElement read_obstacle(const TiXmlElement& e, const std::string& source, 
       o.direction = unit_vector(element, "axis");
       o.radius = element.positive("radius");
       break;
+    case ObstacleShape::Edge: read_edge(element, o); break;
+    case ObstacleShape::Point: break;
+    case ObstacleShape::Roller:
+      o.direction = unit_vector(element, "axis");
+      o.radius = element.positive("radius");
+      o.length = element.positive("length");
+      break;
   }
+  read_contact_kind(element, o);
   element.finish();
   return out;
 }

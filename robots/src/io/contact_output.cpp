@@ -2,7 +2,34 @@
 
 namespace pcr {
 
-void write_contacts_member(JsonWriter& json, const std::vector<ObstacleContact>& contacts) {
+namespace {
+
+void write_gaps_member(JsonWriter& json, const std::vector<RodContactGap>& gaps) {
+  json.key("contact_gaps");
+  json.begin_array();
+  for (const RodContactGap& g : gaps) {
+    json.begin_object();
+    json.key("rod");
+    json.value(g.rod);
+    json.key("obstacle");
+    json.value(g.obstacle);
+    json.key("min_gap");
+    json.value(g.min_gap);
+    json.key("arc_length");
+    json.value(g.arc_length);
+    json.key("tolerance");
+    json.value(g.tolerance);
+    json.key("penetrates");
+    json.value(g.penetrates());
+    json.end_object();
+  }
+  json.end_array();
+}
+
+}  // namespace
+
+void write_contacts_member(JsonWriter& json, const std::vector<ObstacleContact>& contacts,
+                           const std::vector<RodContactGap>& gaps) {
   if (contacts.empty()) return;
   json.key("contacts");
   json.begin_array();
@@ -18,6 +45,8 @@ void write_contacts_member(JsonWriter& json, const std::vector<ObstacleContact>&
     json.value(c.min_gap);
     json.key("min_gap_arc_length");
     json.value(c.min_gap_arc_length);
+    json.key("concentrated");
+    json.value(c.concentrated);
     json.key("intervals");
     json.begin_array();
     for (const ContactInterval& interval : c.intervals) {
@@ -28,21 +57,36 @@ void write_contacts_member(JsonWriter& json, const std::vector<ObstacleContact>&
       json.value(interval.s_end);
       json.key("force");
       json.array(interval.force);
+      json.key("centroid");
+      json.value(interval.centroid);
       json.end_object();
     }
     json.end_array();
     json.end_object();
   }
   json.end_array();
+  write_gaps_member(json, gaps);
 }
 
-void write_contact_lines(std::ostream& out, const std::vector<ObstacleContact>& contacts) {
+void write_contact_lines(std::ostream& out, const std::vector<ObstacleContact>& contacts,
+                         const std::vector<RodContactGap>& gaps) {
   for (const ObstacleContact& c : contacts) {
     out << "contact " << c.rod << " / " << c.obstacle << ":";
     if (c.intervals.empty()) out << " none";
-    for (const ContactInterval& i : c.intervals)
-      out << " [" << i.s_begin << ", " << i.s_end << "] m force (" << i.force.transpose() << ") N;";
+    for (const ContactInterval& i : c.intervals) {
+      if (c.concentrated) {
+        out << " point at s = " << i.centroid << " m force (" << i.force.transpose() << ") N;";
+      } else {
+        out << " [" << i.s_begin << ", " << i.s_end << "] m force (" << i.force.transpose()
+            << ") N centroid s = " << i.centroid << " m;";
+      }
+    }
     out << " min gap " << c.min_gap << " m at s = " << c.min_gap_arc_length << " m\n";
+  }
+  for (const RodContactGap& g : gaps) {
+    out << "contact gap " << g.rod << ": min " << g.min_gap << " m at s = " << g.arc_length << " m ("
+        << g.obstacle << "), tolerated penetration " << g.tolerance << " m\n";
+    if (g.penetrates()) out << "warning: " << contact_penetration_warning({g}) << "\n";
   }
 }
 

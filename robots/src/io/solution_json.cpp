@@ -233,7 +233,7 @@ void write_solution_object(JsonWriter& json, const RobotModel& model, const Robo
   write_targets(json, model, solution, targets);
   write_derivatives(json, model, extras);
   write_rods(json, solution.rods);
-  write_contacts_member(json, solution.contacts);
+  write_contacts_member(json, solution.contacts, solution.contact_gaps);
   write_stability_member(json, solution.stability_verdict);
   json.key("summary");
   write_summary(json, solution.summary);

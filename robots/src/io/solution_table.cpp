@@ -71,7 +71,7 @@ void write_solution_table(std::ostream& out, const RobotModel& model, const Robo
       << format("%.3g", s.wall_time_seconds * 1e3) << " ms)\n";
   if (!s.converged() && !s.message.empty()) out << "  message: " << s.message << "\n";
   write_stability_line(out, solution.stability_verdict);
-  write_contact_lines(out, solution.contacts);
+  write_contact_lines(out, solution.contacts, solution.contact_gaps);
   if (!model.inputs().empty()) {
     out << "inputs:\n";
     for (size_t i = 0; i < model.inputs().size(); ++i) {

@@ -7,6 +7,7 @@
 #include "fold_continuation.hpp"
 #include "pcr/core/error.hpp"
 #include "pcr/robots/robot_stability.hpp"
+#include "solve_support.hpp"
 
 namespace pcr {
 
@@ -67,6 +68,7 @@ RobotSolution point_at(const RobotAssembly& a, const KinematicsOptions& ko,
     s.summary.status = SolveStatus::Failed;
     s.summary.message = seg.stopped;
   }
+  kinematics::append_contact_warning(s);
   return s;
 }
 

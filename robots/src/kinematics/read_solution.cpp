@@ -52,6 +52,7 @@ RobotSolution read_solution(const RobotAssembly& a, const VecX& x,
       for (ObstacleContact& c : read_rod_contact(rod, v, *contact, x)) s.contacts.push_back(std::move(c));
     }
   }
+  s.contact_gaps = rod_contact_gaps(s.contacts);
   return s;
 }
 

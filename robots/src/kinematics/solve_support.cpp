@@ -39,6 +39,12 @@ bool reject_inadmissible(RobotSolution& s) {
 
 }  // namespace
 
+void append_contact_warning(RobotSolution& s) {
+  const std::string warning = contact_penetration_warning(s.contact_gaps);
+  if (warning.empty()) return;
+  s.summary.message += (s.summary.message.empty() ? "warning: " : "; warning: ") + warning;
+}
+
 double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
@@ -68,6 +74,7 @@ RobotSolution finish_solution(const RobotAssembly& assembly, const VecX& x, cons
   mark_non_finite(x, summary);
   RobotSolution out = read_solution(assembly, x.allFinite() ? x : x_fallback, sample_bases);
   out.summary = summary;
+  append_contact_warning(out);
   accepted = reject_inadmissible(out);
   return out;
 }

@@ -24,6 +24,9 @@ RobotSolution finish_solution(const RobotAssembly& assembly, const VecX& x, cons
                               SolveSummary summary, Clock::time_point start,
                               const std::vector<std::vector<BasisDerivatives>>& sample_bases, bool& accepted);
 
+/// Appends contact_penetration_warning (rod_contact.hpp) of s.contact_gaps, if any, to s.summary.message.
+void append_contact_warning(RobotSolution& s);
+
 /// Stability monitoring (KinematicsOptions::check_stability): the sign of det J of the FK system `fk` at
 /// the converged solution x, and whether it changed since the last checked solve (last_sign, updated).
 void monitor_stability(const Problem& fk, const VecX& x, int& last_sign, RobotSolution& out);

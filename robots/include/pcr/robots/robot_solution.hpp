@@ -41,6 +41,11 @@ struct RobotSolution {
   /// Collocation only: per rod with obstacles (rod order) one entry per obstacle it may touch, with its
   /// contact intervals and forces (docs/contact.md).
   std::vector<ObstacleContact> contacts;
+  /// Collocation only: per rod with obstacles its smallest gap sampled densely along the rod (8 points per
+  /// collocation cell) over all its obstacles. A rod that penetrates by more than the tolerance
+  /// (kPenetrationTolerance times its contact radius) puts a warning into summary.message (the solve's
+  /// status is kept: the discrete equations are solved, the mesh does not resolve the contact).
+  std::vector<RodContactGap> contact_gaps;
   /// Collocation only: with KinematicsOptions::check_stability: sign of det J, J = dR/dx of
   /// the FK system (inputs fixed at the solution's) over its free unknowns at the solution: +1 or -1; 0 when
   /// not checked, not converged or singular.

@@ -17,6 +17,17 @@
 // The collocated densities converge to the contact measure only in the sense of resultants: the point
 // forces at the ends of a contact interval (e.g. at a touchdown) are spread over the cells next to them,
 // so an interval end is resolved to about one cell L (tau_{j+1} - tau_j).
+//
+// Sharp obstacles (edges, points: zero radius), and spheres, capsules and cylinders with
+// Obstacle::point_contact, touch the rod at one section u_c with a concentrated
+// force F = lambda L nu, the limit of a density concentrated at u_c. Their unknowns are u_c, lambda and
+// G = F / L; rows (edge_contact_block.cpp): G = lambda nu(p(u_c)); u_c is the section nearest to the
+// obstacle (v . p'(u_c) = 0, or an end of the rod); phi(g(p(u_c)) / L0, lambda L0 / F0) = 0. F enters the
+// force balance of the two midpoints u_m <= u_c < u_{m+1} around it as the densities w F / (L (tau_{j+1}
+// - tau_j)) with the linear-interpolation weights w_m = 1 - t, w_{m+1} = t, t = (u_c - u_m) / (u_{m+1} -
+// u_m) (extrapolated beyond the first and last midpoint): the resultant and the first moment of the
+// force are those of F at u_c, and every share is continuous in u_c. Distributed gap rows at the
+// midpoints would miss a sharp obstacle whenever the midpoints are more than 2 r apart.
 #include <string>
 #include <vector>
 
@@ -35,13 +46,19 @@ struct RodContactOptions {
   ComplementarityFunction function = ComplementarityFunction::FischerBurmeister;
 };
 
-/// What add_rod_contact added: per midpoint j the multipliers lambda_jk (one block of K values).
+/// What add_rod_contact added: per midpoint j the multipliers lambda_jk of the K distributed obstacles
+/// (one block of K values; none when K = 0), per sharp obstacle its block [u_c, lambda, G].
 struct RodContactVariables {
   RodContactOptions options;
-  std::vector<double> midpoints;        ///< u_j
-  std::vector<VariableId> multipliers;  ///< per midpoint, size K = options.obstacles.size()
-  std::vector<int> multiplier_offsets;  ///< their indices in x
-  std::vector<ResidualId> blocks;       ///< per midpoint: "rod.contact" (3 + K rows)
+  std::vector<int> distributed;             ///< indices in options.obstacles of the distributed obstacles
+  std::vector<int> sharp;                   ///< ... and of the sharp ones (edges, points)
+  std::vector<double> midpoints;            ///< u_j
+  std::vector<VariableId> multipliers;      ///< per midpoint (K > 0 only), size K = distributed.size()
+  std::vector<int> multiplier_offsets;      ///< their indices in x
+  std::vector<ResidualId> blocks;           ///< per midpoint: "rod.contact" (3 + K rows)
+  std::vector<VariableId> sharp_variables;  ///< per sharp obstacle: [u_c, lambda, G (3)]
+  std::vector<int> sharp_offsets;           ///< their indices in x
+  std::vector<ResidualId> sharp_blocks;     ///< per sharp obstacle: "rod.sharp_contact" (5 rows)
 };
 
 /// Adds the multipliers and the contact rows of a rod added with RodDiscretization::contact_forces.
@@ -53,9 +70,12 @@ RodContactVariables add_rod_contact(Problem& problem, const CollocationRod& rod,
 
 /// One run of collocation cells [tau_j, tau_{j+1}] (arc lengths) in contact with an obstacle: from the first
 /// to the last cell carrying force, across cells between them that touch without carrying force.
+/// A sharp obstacle's contact is one point: s_begin = s_end = centroid = the contact section.
 struct ContactInterval {
   double s_begin = 0.0, s_end = 0.0;  ///< [m]
   Vec3 force = Vec3::Zero();          ///< resultant on the rod: sum_j lambda_j nu_j L (tau_{j+1} - tau_j) [N]
+  /// Arc length of the force's centroid: sum_j s_j |F_j| / sum_j |F_j| over the cells' resultants [m].
+  double centroid = 0.0;
 };
 
 /// The contact of one rod with one obstacle in a solution.
@@ -66,9 +86,36 @@ struct ObstacleContact {
   /// Smallest gap along the centerline (sampled at 8 points per cell) and where; negative values are
   /// penetration between the collocation points.
   double min_gap = 0.0, min_gap_arc_length = 0.0;
-  /// Per midpoint: arc length s_j, density lambda_j [N/m] and gap g_j [m].
+  /// Penetration that the results accept without a warning: kPenetrationTolerance times the contact radius.
+  double penetration_tolerance = 0.0;
+  /// Per midpoint: arc length s_j, density lambda_j [N/m] and gap g_j [m]. Sharp obstacles: the contact
+  /// section s_c, the force magnitude |F| [N] and the gap there (one value each).
   std::vector<double> arc_lengths, densities, gaps;
+  bool concentrated = false;  ///< a sharp obstacle: a point force (one interval of zero length)
 };
+
+/// The penetration the results tolerate, as a fraction of the rod's contact radius r. The gap rows hold at
+/// the collocation midpoints only; between them the centerline may dip into an obstacle. A dip below
+/// 0.1 r is smaller than the tube model's own error for a rod that shears (O(r eps), with eps up to a few
+/// percent near concentrated contact forces) would make it, and invisible at the rod's scale; a dip of
+/// the order of r means the rod's surface, or for a sharp edge its centerline, passes through the
+/// obstacle between two midpoints, i.e. the contact is not resolved by the mesh (docs/contact.md).
+inline constexpr double kPenetrationTolerance = 0.1;
+
+/// The smallest sampled gap of one rod over all its obstacles.
+struct RodContactGap {
+  std::string rod, obstacle;               ///< the rod and the obstacle of its smallest gap
+  double min_gap = 0.0, arc_length = 0.0;  ///< [m]
+  double tolerance = 0.0;                  ///< kPenetrationTolerance r [m]
+  bool penetrates() const { return min_gap < -tolerance; }
+};
+
+/// Per rod (in the order of `contacts`, whose entries of one rod follow each other) its smallest gap.
+std::vector<RodContactGap> rod_contact_gaps(const std::vector<ObstacleContact>& contacts);
+
+/// A warning for the solve summary naming every rod that penetrates by more than its tolerance, with the
+/// depth, the arc length and the obstacle, and asking for more elements; "" when none does.
+std::string contact_penetration_warning(const std::vector<RodContactGap>& gaps);
 
 /// The contact set of a rod: one entry per obstacle it may touch. A cell carries force when its density
 /// exceeds 1e-8 F0 / L0 (the solver's residual tolerance scale); it touches when its gap is below 1e-6 L0.

@@ -1,0 +1,35 @@
+#pragma once
+// Internal pieces of the contact rows shared by the midpoint blocks (contact_block.cpp) and the blocks of
+// sharp obstacles (edge_contact_block.cpp); rod_contact.hpp describes the discretisation.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "pcr/rods/rod_contact.hpp"
+#include "pcr/splines/knot_vector.hpp"
+
+namespace pcr::contact {
+
+/// phi(a, b) of the complementarity function and its (generalised) partial derivatives.
+void complementarity(ComplementarityFunction f, double a, double b, double& phi, double& phi_a,
+                     double& phi_b);
+
+/// The share w_j(u) of a concentrated force at u carried by midpoint j, and dw_j / du: the piecewise
+/// linear interpolation between the two midpoints u_m <= u < u_{m+1} that bracket u (the first or last
+/// pair beyond them, extrapolated), w_m = 1 - t, w_{m+1} = t, t = (u - u_m) / (u_{m+1} - u_m). Sum and
+/// first moment are exact: sum_j w_j = 1, sum_j w_j u_j = u.
+struct HatWeight {
+  double weight = 0.0, derivative = 0.0;
+};
+HatWeight midpoint_share(const std::vector<double>& midpoints, int j, double u);
+
+/// The rows of one sharp obstacle (edge, point) touching a rod (rod_contact.hpp). Variables: all the rod's
+/// control points (the contact section moves along the rod), then the obstacle's block
+/// [u_c, lambda, G (3)].
+std::shared_ptr<ResidualBlock> make_sharp_contact_block(std::string name, std::vector<VariableId> variables,
+                                                        const KnotVector& knots, int point_size, int p_offset,
+                                                        const Obstacle& obstacle, double radius,
+                                                        ComplementarityFunction function, double length_scale,
+                                                        double force_scale);
+
+}  // namespace pcr::contact
