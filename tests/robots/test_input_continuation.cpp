@@ -38,7 +38,7 @@ struct ModelProblem {
     return s;
   }
   SolveAtInputs solver() {
-    return [this](const VecX& u, VecX& x, int j) { return solve(u, x, j); };
+    return [this](const VecX& u, VecX& x, int j, bool) { return solve(u, x, j); };
   }
   bool passed_through(const Vec2& u) const {
     for (const VecX& v : solved_at)

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <random>
@@ -171,6 +172,9 @@ bool solve_and_check(const std::string& name, ForwardKinematics& fk, const VecX&
   stats.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   stats.times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   const SolveSummary& sum = out.summary;
+  if (argument("trace", 0) != 0)
+    std::printf("TRACE %s %.6f %d %d %s | %s\n", name.c_str(), stats.times.back(), sum.iterations,
+                sum.jacobian_evaluations, to_string(sum.status), sum.message.c_str());
   ++stats.statuses[to_string(sum.status)];
   ++stats.histogram[iteration_bin(sum.iterations)];
   if (!sum.converged()) {

@@ -24,7 +24,17 @@ namespace {
 
 /// Fresh-Jacobian budgets of a direct attempt and of one continuation step.
 constexpr int kDirectJacobianEvaluations = 10;
-constexpr int kContinuationStepJacobianEvaluations = 8;
+/// The budget of a direct attempt from a start off a path (a jump in the inputs; the default equilibrium
+/// for a cold solve): Newton converges there in a few Jacobians or not at all.
+constexpr int kJumpJacobianEvaluations = 4;
+constexpr int kContinuationStepJacobianEvaluations = 3;
+/// Steps along a line of inputs: a first step of 0.1 of the line, cut to 0.3 when it fails. Random
+/// Stewart-Gough inputs: Newton converges from the default equilibrium only within about 0.02-0.05 m of
+/// rod length (the residual after the tangent predictor grows like 2500 t^2 there: the stiff axial and
+/// shear rows), while a random line is 0.3-0.6 m long; a first step of 0.5 halved on failure, with 8
+/// fresh Jacobians per step, spent about 30 Jacobians on failed steps before the first converged one
+/// (docs/benchmarks.md "Random FK sweeps").
+constexpr LineSteps kLineSteps{0.1, 0.3};
 /// Orders tried by the one-input-at-a-time continuation (the last fallback; bounds its cost on inputs
 /// without a reachable equilibrium: at most this many orders of one leg per input).
 constexpr int kOneInputOrders = 3;
@@ -41,33 +51,45 @@ struct FkAttempt {
   int iterations = 0, jacobians = 0;  // of all attempts
   enum class Default { NotTried, Converged, Failed } default_state = Default::NotTried;
   VecX x_default;  // the equilibrium at the default inputs (strategies 4 and 5)
+  bool on_path = false;
+  bool continued_from_last = false;  // the continuation from the last solution was tried  // the predicted
+                                     // start was extrapolated along a path (not the last solution)
 
   void count(int more_iterations, int more_jacobians) {
     iterations += more_iterations;
     jacobians += more_jacobians;
   }
   SolveAtInputs solve_at() {
-    return [this](const VecX& u, VecX& xs, int max_jacobians) { return data.solve_at(u, xs, max_jacobians); };
+    return [this](const VecX& u, VecX& xs, int max_jacobians, bool intermediate) {
+      return data.solve_at(u, xs, max_jacobians, intermediate);
+    };
   }
 };
 
-/// A direct Newton attempt from `start` with the short budget.
-bool direct_attempt(FkAttempt& a, const VecX& start) {
+/// A direct Newton attempt from `start` with at most `jacobians` fresh Jacobians.
+bool direct_attempt(FkAttempt& a, const VecX& start, int jacobians) {
   a.x = start;
-  a.summary = a.data.solve_at(a.inputs, a.x, kDirectJacobianEvaluations);
+  a.summary = a.data.solve_at(a.inputs, a.x, jacobians);
   a.count(a.summary.iterations, a.summary.jacobian_evaluations);
   return a.summary.converged();
 }
 
+/// Newton from the path predictor's start (the last solution off a path), or from the default
+/// equilibrium when there is no solution yet. A start off a path (a jump in the inputs) gets the short
+/// budget: Newton converges there only from close by, and a continuation is cheaper than a long attempt.
 bool from_prediction(FkAttempt& a, const char*) {
-  bool on_path = false;
-  const VecX start = a.data.predictor.predict(a.data.x, a.inputs, &on_path);
-  if (on_path && a.data.newton) a.data.newton->continue_path();
-  return direct_attempt(a, start);
+  if (!a.data.has_solution) {
+    const VecX* x0 = a.data.model->default_equilibrium();
+    return direct_attempt(a, x0 ? *x0 : a.data.x, kJumpJacobianEvaluations);
+  }
+  const VecX start = a.data.predictor.predict(a.data.x, a.inputs, &a.on_path);
+  if (a.on_path && a.data.newton) a.data.newton->continue_path();
+  return direct_attempt(a, start, a.on_path ? kDirectJacobianEvaluations : kJumpJacobianEvaluations);
 }
 
+/// Newton from the last solution when the predicted start was another point (extrapolated along a path).
 bool from_last_solution(FkAttempt& a, const char*) {
-  return a.data.has_solution && direct_attempt(a, a.data.x);
+  return a.data.has_solution && a.on_path && direct_attempt(a, a.data.x, kDirectJacobianEvaluations);
 }
 
 /// Takes a continuation's result: on success its state and summary, else a note on where it stopped.
@@ -84,24 +106,23 @@ bool finish_continuation(FkAttempt& a, const ContinuationResult& r, const VecX& 
 }
 
 bool continuation_from_last_solution(FkAttempt& a, const char* how) {
-  if (!a.data.has_solution) return false;
+  if (!a.data.has_solution || a.continued_from_last) return false;
+  a.continued_from_last = true;
   VecX xs = a.data.x;
   const VecX u_last = a.data.model->assembly->inputs(a.data.x);
-  return finish_continuation(
-      a, continue_along_line(a.solve_at(), u_last, a.inputs, kContinuationStepJacobianEvaluations, xs), xs,
-      how);
+  return finish_continuation(a,
+                             continue_along_line(a.solve_at(), u_last, a.inputs,
+                                                 kContinuationStepJacobianEvaluations, xs, kLineSteps),
+                             xs, how);
 }
 
 /// The equilibrium at the default inputs from the straight initial guess, solved once per attempt.
 bool solve_default_inputs(FkAttempt& a) {
   if (a.default_state == FkAttempt::Default::NotTried) {
-    const RobotAssembly& assembly = *a.data.model->assembly;
-    a.x_default = assembly.initial_guess();
-    const SolveSummary s0 = a.data.solve_at(assembly.model().default_input_values(), a.x_default);
-    a.count(s0.iterations, s0.jacobian_evaluations);
-    a.default_state = s0.converged() ? FkAttempt::Default::Converged : FkAttempt::Default::Failed;
-    if (!s0.converged())
-      a.summary.message += "; the default inputs did not converge from the straight initial guess";
+    const VecX* x0 = a.data.model->default_equilibrium();
+    if (x0) a.x_default = *x0;
+    a.default_state = x0 ? FkAttempt::Default::Converged : FkAttempt::Default::Failed;
+    if (!x0) a.summary.message += "; the default inputs did not converge from the straight initial guess";
   }
   return a.default_state == FkAttempt::Default::Converged;
 }
@@ -110,9 +131,24 @@ bool continuation_from_default_inputs(FkAttempt& a, const char* how) {
   if (!solve_default_inputs(a)) return false;
   VecX xs = a.x_default;
   const VecX u_default = a.data.model->assembly->model().default_input_values();
-  return finish_continuation(
-      a, continue_along_line(a.solve_at(), u_default, a.inputs, kContinuationStepJacobianEvaluations, xs), xs,
-      how);
+  return finish_continuation(a,
+                             continue_along_line(a.solve_at(), u_default, a.inputs,
+                                                 kContinuationStepJacobianEvaluations, xs, kLineSteps),
+                             xs, how);
+}
+
+/// Whether the inputs are nearer (Euclidean distance in input space) to the default inputs than to the
+/// last solution's: then the continuation from the default equilibrium goes first (a shorter path from a
+/// state without bent rods; random sweeps, docs/benchmarks.md "Random FK sweeps").
+bool default_inputs_nearer(FkAttempt& a) {
+  if (!a.data.has_solution || !solve_default_inputs(a)) return false;
+  const RobotAssembly& assembly = *a.data.model->assembly;
+  return (a.inputs - assembly.model().default_input_values()).norm() <
+         (a.inputs - assembly.inputs(a.data.x)).norm();
+}
+
+bool continuation_from_last_solution_if_nearer(FkAttempt& a, const char* how) {
+  return !default_inputs_nearer(a) && continuation_from_last_solution(a, how);
 }
 
 /// Pseudo-arclength continuation from the default inputs along the straight line, through folds: at a
@@ -154,7 +190,7 @@ bool one_input_at_a_time(FkAttempt& a, const char* how) {
   const VecX u_default = a.data.model->assembly->model().default_input_values();
   const ContinuationResult r =
       continue_one_input_at_a_time(a.solve_at(), u_default, a.inputs, kDirectJacobianEvaluations,
-                                   kContinuationStepJacobianEvaluations, kOneInputOrders, xs);
+                                   kContinuationStepJacobianEvaluations, kOneInputOrders, xs, kLineSteps);
   return finish_continuation(a, r, xs, how);
 }
 
@@ -167,8 +203,9 @@ struct FkStrategy {
 constexpr FkStrategy kStrategies[] = {
     {"the predicted start", from_prediction},
     {"the last solution", from_last_solution},
-    {"continuation in the inputs from the last solution", continuation_from_last_solution},
+    {"continuation in the inputs from the last solution", continuation_from_last_solution_if_nearer},
     {"continuation in the inputs from the default inputs", continuation_from_default_inputs},
+    {"continuation in the inputs from the last solution", continuation_from_last_solution},
     {"continuation from the default inputs one input at a time", one_input_at_a_time},
     {"fold-aware arclength continuation from the default inputs", arclength_from_default_inputs},
 };
