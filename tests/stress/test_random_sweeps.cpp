@@ -30,15 +30,21 @@ using test::load_model;
 
 namespace {
 
-/// Value of a `--name=value` argument after `--` on the command line, or the fallback.
-long argument(const std::string& name, long fallback) {
+/// Text of a `--name=value` argument after `--` on the command line, or the fallback.
+std::string text_argument(const std::string& name, const std::string& fallback) {
   const auto& suite = boost::unit_test::framework::master_test_suite();
   const std::string prefix = "--" + name + "=";
   for (int i = 1; i < suite.argc; ++i) {
     const std::string a = suite.argv[i];
-    if (a.compare(0, prefix.size(), prefix) == 0) return std::strtol(a.c_str() + prefix.size(), nullptr, 10);
+    if (a.compare(0, prefix.size(), prefix) == 0) return a.substr(prefix.size());
   }
   return fallback;
+}
+
+/// Value of a numeric `--name=value` argument, or the fallback.
+long argument(const std::string& name, long fallback) {
+  const std::string text = text_argument(name, "");
+  return text.empty() ? fallback : std::strtol(text.c_str(), nullptr, 10);
 }
 
 /// Worst violations of the global checks of one converged solution (0 = exact).
@@ -279,7 +285,9 @@ void sweep(const std::string& name, unsigned seed, long ci_solves) {
     RobotSolution sw, sc;
     const bool w_ok = solve_and_check(name, warm, u, o, ws, sw);
     if (k % 5 == 0) {
-      ForwardKinematics cold(model, o);
+      // A fresh state over the same model and assembly (as `pcr workspace` solves its samples): no
+      // solution yet, the default equilibrium solved once per model (fk_data.hpp).
+      ForwardKinematics cold = warm.with_fresh_state();
       const bool c_ok = solve_and_check(name, cold, u, o, cs, sc);
       if (w_ok && c_ok) {
         ++cs.cold_warm_pairs;
@@ -298,6 +306,12 @@ void sweep(const std::string& name, unsigned seed, long ci_solves) {
   BOOST_TEST(ws.converged > 0, name << ": no warm solve converged");
 }
 
+/// The shipped models with actuation inputs (models/*.urdf; cantilever has none).
+const char* const kShippedModels[] = {
+    "passive_hinge", "planar_pinned",   "planar_post",      "planar_three_rod",
+    "six_rus",       "slider_actuated", "stewart_gough",    "stewart_gough_teleop",
+    "two_stage",     "universal_pair",  "universal_passive"};
+
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(stewart_gough_random_inputs) {
@@ -308,4 +322,15 @@ BOOST_AUTO_TEST_CASE(stewart_gough_teleop_random_inputs) {
 }
 BOOST_AUTO_TEST_CASE(planar_three_rod_random_inputs) {
   sweep("planar_three_rod", 3, 200);
+}
+
+// Every shipped model with inputs: a few solves each in CI; long mode with --model=NAME for one model
+// (the sweep table of docs/benchmarks.md, "Random FK sweeps").
+BOOST_AUTO_TEST_CASE(every_shipped_model_random_inputs) {
+  const std::string only = text_argument("model", "");
+  unsigned seed = 10;
+  for (const char* name : kShippedModels) {
+    ++seed;
+    if (only.empty() || only == name) sweep(name, seed, 3);
+  }
 }
