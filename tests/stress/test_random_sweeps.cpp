@@ -324,9 +324,10 @@ BOOST_AUTO_TEST_CASE(planar_three_rod_random_inputs) {
   sweep("planar_three_rod", 3, 200);
 }
 
-// Every shipped model with inputs: a few solves each in CI; long mode with --model=NAME for one model
-// (the sweep table of docs/benchmarks.md, "Random FK sweeps").
-BOOST_AUTO_TEST_CASE(every_shipped_model_random_inputs) {
+// Every shipped model with inputs, for the sweep table of docs/benchmarks.md ("Random FK sweeps"): not in
+// CI (several models take seconds per random solve); run it by name, for one model with --model=NAME:
+//   test_random_sweeps --run_test=every_shipped_model_random_inputs -- --solves=N [--model=NAME]
+BOOST_AUTO_TEST_CASE(every_shipped_model_random_inputs, *boost::unit_test::disabled()) {
   const std::string only = text_argument("model", "");
   unsigned seed = 10;
   for (const char* name : kShippedModels) {
