@@ -11,11 +11,16 @@
 //     continuations from the default equilibrium do not);
 //  5. thorough continuation (first step half the line, 8 fresh Jacobians per step, every step to the
 //     full tolerance) from the last solution, then from the default inputs;
-//  6. continuation from the default inputs one input at a time;
-//  7. pseudo-arclength continuation from the default inputs along the line, through folds, following the
-//     equilibrium the robot snaps to at a fold (fold_continuation.hpp). Last, so that it costs nothing
-//     where an earlier strategy converges (where it fails it can take longer than all of them together).
+//  6. fast continuations from the default inputs via a waypoint, a few waypoints spread over the input
+//     box: where the line from the default inputs meets a fold with no stable equilibrium to snap to,
+//     a bent path may pass around it;
+//  7. continuation from the default inputs one input at a time;
+//  8. pseudo-arclength continuation from the default inputs along the line, through folds, following the
+//     equilibrium the robot snaps to at a fold (fold_continuation.hpp).
+// The later ones cost nothing where an earlier strategy converges (where they fail they take longer
+// than all the others together).
 #include <string>
+#include <vector>
 
 #include "fk_data.hpp"
 #include "fold_continuation.hpp"
@@ -46,6 +51,10 @@ constexpr LineSteps kThoroughSteps{0.5, 0.5};
 constexpr int kOneInputOrders = 3;
 /// Step budget of the fold-aware continuation from the default inputs (snaps included).
 constexpr int kArclengthSteps = 200;
+/// Waypoints tried by strategy 6. The 7 inputs of a 1,000-input Stewart-Gough sweep that every other
+/// strategy failed on all converged through waypoint 1 or 2, to stable equilibria (docs/benchmarks.md
+/// "Random FK sweeps").
+constexpr int kWaypoints = 8;
 
 /// A continuation's budget and step control; loose: its intermediate steps to kIntermediateTolerance.
 struct ContinuationKind {
@@ -203,6 +212,54 @@ bool arclength_from_default_inputs(FkAttempt& a, const char* how) {
   return true;
 }
 
+/// Element k >= 1 of the van der Corput sequence in `base` (the radical inverse of k), in (0, 1).
+double radical_inverse(int k, int base) {
+  double value = 0.0, scale = 1.0 / base;
+  for (; k > 0; k /= base, scale /= base) value += (k % base) * scale;
+  return value;
+}
+
+/// Waypoint k of strategy 6: point k + 1 of the Halton sequence (bases 2, 3, 5, ...: spread over the box
+/// with no random generator, the same for every solve) scaled to the input bounds.
+VecX waypoint(const RobotModel& model, int k) {
+  static constexpr int kPrimes[] = {2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37};
+  constexpr int kCount = sizeof kPrimes / sizeof kPrimes[0];
+  const std::vector<ActuationInput>& inputs = model.inputs();
+  VecX w(static_cast<int>(inputs.size()));
+  for (int i = 0; i < w.size(); ++i) {
+    const double h = radical_inverse(k + 1 + i / kCount, kPrimes[i % kCount]);
+    w[i] = inputs[i].lower + h * (inputs[i].upper - inputs[i].lower);
+  }
+  return w;
+}
+
+bool via_waypoints(FkAttempt& a, const char* how) {
+  if (!a.x_default) return false;
+  const RobotModel& model = a.data.model->assembly->model();
+  std::string stopped;
+  for (int k = 0; k < kWaypoints; ++k) {
+    const VecX w = waypoint(model, k);
+    VecX xw = *a.x_default;
+    const ContinuationResult to_w =
+        continue_along_line(a.solve_at(true), a.default_inputs(), w, kFast.step_jacobians, xw, kFast.steps);
+    a.count(to_w.iterations, to_w.jacobian_evaluations);
+    if (!to_w.converged) continue;
+    VecX xs = xw;
+    const ContinuationResult r =
+        continue_along_line(a.solve_at(true), w, a.inputs, kFast.step_jacobians, xs, kFast.steps);
+    a.count(r.iterations, r.jacobian_evaluations);
+    if (!r.converged) continue;
+    a.x = xs;
+    a.summary = r.last;
+    a.summary.message = "converged by " + std::string(how) + " (waypoint " + std::to_string(k + 1) + ", " +
+                        std::to_string(to_w.steps + r.steps) + " steps)";
+    return true;
+  }
+  a.summary.message +=
+      "; " + std::string(how) + ": none of " + std::to_string(kWaypoints) + " waypoints led there";
+  return false;
+}
+
 bool one_input_at_a_time(FkAttempt& a, const char* how) {
   if (!a.x_default) return false;
   VecX xs = *a.x_default;
@@ -227,6 +284,7 @@ constexpr FkStrategy kStrategies[] = {
     {"the straight initial guess", from_straight_guess},
     {"thorough continuation in the inputs from the last solution", thorough_from_last_solution},
     {"thorough continuation in the inputs from the default inputs", thorough_from_default_inputs},
+    {"continuation from the default inputs via a waypoint", via_waypoints},
     {"continuation from the default inputs one input at a time", one_input_at_a_time},
     {"fold-aware arclength continuation from the default inputs", arclength_from_default_inputs},
 };
