@@ -8,7 +8,8 @@
 //     step, intermediate steps to a looser tolerance) from whichever of the last solution and the
 //     default equilibrium has the nearer inputs, then from the other;
 //  4. Newton from the straight initial guess (it reaches equilibria of the planar robots that the
-//     continuations from the default equilibrium do not);
+//     continuations from the default equilibrium do not; cold solves try it before 3, with the short
+//     budget);
 //  5. thorough continuation (first step half the line, 8 fresh Jacobians per step, every step to the
 //     full tolerance) from the last solution, then from the default inputs;
 //  6. fast continuations from the default inputs via a waypoint, a few waypoints spread over the input
@@ -76,6 +77,7 @@ struct FkAttempt {
   const VecX* x_default = nullptr;    // the equilibrium at the default inputs (nullptr: did not converge)
   bool on_path = false;               // the predicted start was extrapolated along a path
   bool fast_from_last = false;        // the fast continuation from the last solution was tried
+  bool tried_straight = false;        // Newton from the straight initial guess was tried
 
   void count(int more_iterations, int more_jacobians) {
     iterations += more_iterations;
@@ -122,12 +124,20 @@ bool from_last_solution(FkAttempt& a, const char* how) {
 
 /// Newton from the straight initial guess (not the same start as strategy 1 when a default equilibrium
 /// exists).
-bool from_straight_guess(FkAttempt& a, const char* how) {
-  if (!a.x_default ||
-      !direct_attempt(a, a.data.model->assembly->initial_guess(), kDirectJacobianEvaluations, how))
-    return false;
+bool from_straight_guess(FkAttempt& a, const char* how, int jacobians) {
+  if (!a.x_default || a.tried_straight) return false;
+  a.tried_straight = true;
+  if (!direct_attempt(a, a.data.model->assembly->initial_guess(), jacobians, how)) return false;
   a.summary.message = "converged by Newton from " + std::string(how);
   return true;
+}
+/// Cold solves (no solution yet) try it early, with the short budget: the planar robots' cold solves
+/// converge there more often than by the continuations from their default equilibrium (random sweeps).
+bool cold_from_straight_guess(FkAttempt& a, const char* how) {
+  return !a.data.has_solution && from_straight_guess(a, how, kJumpJacobianEvaluations);
+}
+bool warm_from_straight_guess(FkAttempt& a, const char* how) {
+  return from_straight_guess(a, how, kDirectJacobianEvaluations);
 }
 
 /// Takes a continuation's result: on success its state and summary, else a note on where it stopped.
@@ -278,10 +288,11 @@ struct FkStrategy {
 constexpr FkStrategy kStrategies[] = {
     {"the predicted start", from_prediction},
     {"the last solution", from_last_solution},
+    {"the straight initial guess", cold_from_straight_guess},
     {"continuation in the inputs from the last solution", fast_from_last_solution_if_nearer},
     {"continuation in the inputs from the default inputs", fast_from_default_inputs},
     {"continuation in the inputs from the last solution", fast_from_last_solution},
-    {"the straight initial guess", from_straight_guess},
+    {"the straight initial guess", warm_from_straight_guess},
     {"thorough continuation in the inputs from the last solution", thorough_from_last_solution},
     {"thorough continuation in the inputs from the default inputs", thorough_from_default_inputs},
     {"continuation from the default inputs via a waypoint", via_waypoints},
