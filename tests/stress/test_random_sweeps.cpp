@@ -1,12 +1,15 @@
 // Random sweeps of forward kinematics (issue "stress tests of numerical stability"): inputs drawn
 // uniformly within the model's input bounds (seeded std::mt19937, reproducible), solved warm-started
-// along the sequence and, for a subset, cold (a fresh ForwardKinematics). Every solve must either
-// converge with a globally consistent, finite result or return an explicit non-converged status with a
-// message; never an exception for a valid input. Many random length sets of a PCR are unreachable or
-// buckle: a non-converged status is acceptable there, a converged status with garbage is not.
+// along the sequence and, for a subset, cold (a fresh state over the same model, with_fresh_state).
+// Every solve must either converge with a globally consistent, finite result or return an explicit
+// non-converged status with a message; never an exception for a valid input. Many random length sets of a PCR
+// are unreachable or buckle: a non-converged status is acceptable there, a converged status with garbage is
+// not.
 //
-// Short sweep by default (CI); long mode: test_random_sweeps -- --solves=N [--seed=S]
-// (N warm solves per model; one cold solve per 5 warm ones).
+// Short sweep by default (CI); long mode: test_random_sweeps -- --solves=N [--seed=S] [--stability=1]
+// [--trace=1] (N warm solves per model; one cold solve per 5 warm ones; --stability=1: each result with
+// its stability verdict, the stable fraction reported; --trace=1: one line per solve with its time,
+// iterations, fresh Jacobians, status and message).
 #define BOOST_TEST_MODULE random_sweeps
 #include <boost/test/unit_test.hpp>
 
@@ -144,9 +147,10 @@ struct Stats {
   std::map<int, int> histogram;  // iteration bin upper edge -> count
   double worst_residual = 0.0, worst_force = 0.0, worst_moment = 0.0, worst_coupling = 0.0, seconds = 0.0;
   int cold_warm_pairs = 0, cold_warm_different = 0;
-  std::vector<double> times;              // per solve [s]
-  int stable = 0, verdicts = 0;           // with --stability=1: stable results among the verdicts
-  std::map<std::string, int> strategies;  // converged solves by the strategy that gave them
+  std::vector<double> times;                 // per solve [s]
+  int stable = 0, verdicts = 0;              // with --stability=1: stable results among the verdicts
+  std::map<std::string, int> verdict_kinds;  // with --stability=1: converged results by verdict
+  std::map<std::string, int> strategies;     // converged solves by the strategy that gave them
 };
 
 /// q-quantile (0..1) of the values (nearest rank), 0 for none.
@@ -201,6 +205,7 @@ bool solve_and_check(const std::string& name, ForwardKinematics& fk, const VecX&
   if (out.stability_verdict.verdict != StabilityVerdict::NotChecked) {
     ++stats.verdicts;
     stats.stable += out.stability_verdict.verdict == StabilityVerdict::Stable ? 1 : 0;
+    ++stats.verdict_kinds[to_string(out.stability_verdict.verdict)];
   }
   const Consistency c = check_solution(model, out);
   BOOST_TEST(c.finite, name << ": converged with non-finite values at " << u.transpose());
@@ -250,9 +255,12 @@ void report(const std::string& name, const std::string& mode, const Stats& s) {
   for (const auto& [status, count] : s.statuses) st << " " << status << ":" << count;
   std::ostringstream by;
   for (const auto& [strategy, count] : s.strategies) by << " [" << strategy << "]:" << count;
+  std::ostringstream verdicts;
+  for (const auto& [verdict, count] : s.verdict_kinds) verdicts << " " << verdict << ":" << count;
   BOOST_TEST_MESSAGE(name << " " << mode << ": time per solve median " << quantile(s.times, 0.5)
                           << " s, 99th percentile " << quantile(s.times, 0.99) << " s; stable " << s.stable
-                          << "/" << s.verdicts << "; converged by" << by.str());
+                          << "/" << s.verdicts << " (verdicts" << verdicts.str() << "); converged by"
+                          << by.str());
   BOOST_TEST_MESSAGE(name << " " << mode << ": " << s.converged << "/" << s.solves << " converged ("
                           << (s.solves ? 100.0 * s.converged / s.solves : 0.0) << " %), statuses" << st.str()
                           << "; iterations" << h.str() << "; worst residual " << s.worst_residual
