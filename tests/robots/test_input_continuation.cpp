@@ -21,7 +21,9 @@ namespace {
 struct ModelProblem {
   explicit ModelProblem(std::function<bool(const VecX&)> is_blocked) : blocked(std::move(is_blocked)) {}
   std::function<bool(const VecX&)> blocked;
-  std::vector<VecX> solved_at;  // inputs of every converged solve, to check the path taken
+  std::vector<VecX> solved_at;     // inputs of every converged solve, to check the path taken
+  std::vector<VecX> tried_at;      // inputs of every solve
+  std::vector<bool> intermediate;  // of every solve: whether it was flagged short of the line's end
 
   SolveSummary solve(const VecX& u, VecX& x, int max_jacobians) {
     SolveSummary s;
@@ -38,7 +40,11 @@ struct ModelProblem {
     return s;
   }
   SolveAtInputs solver() {
-    return [this](const VecX& u, VecX& x, int j) { return solve(u, x, j); };
+    return [this](const VecX& u, VecX& x, int j, bool short_of_end) {
+      tried_at.push_back(u);
+      intermediate.push_back(short_of_end);
+      return solve(u, x, j);
+    };
   }
   bool passed_through(const Vec2& u) const {
     for (const VecX& v : solved_at)
@@ -128,4 +134,33 @@ BOOST_AUTO_TEST_CASE(a_long_leg_is_solved_directly_when_it_can_be) {
   BOOST_TEST(same.converged);
   BOOST_TEST(same.steps >= 1);
   BOOST_TEST((x - kStart).norm() == 0.0);
+}
+
+BOOST_AUTO_TEST_CASE(line_steps_set_the_first_step_and_the_cut_and_only_the_end_is_solved_tightly) {
+  ModelProblem free_plane(nothing_blocked);
+  VecX x = kStart;
+  const Vec2 end(2.0, 0.0);  // 2 long: a first step of 0.5 (1.0) fails (contraction region 0.3)
+  const ContinuationResult r =
+      continue_along_line(free_plane.solver(), kStart, end, 8, x, LineSteps{0.1, 0.3});
+  BOOST_TEST(r.converged);
+  BOOST_TEST((x - end).norm() == 0.0);
+  // First step: 0.1 of the line = 0.2 from the start, within the region: converged there.
+  BOOST_TEST((free_plane.tried_at.front() - Vec2(0.2, 0.0)).norm() == 0.0);
+  // Every solve short of u1 is flagged intermediate, the one at u1 is not (and is the last).
+  BOOST_TEST(free_plane.tried_at.size() == free_plane.intermediate.size());
+  for (size_t k = 0; k < free_plane.tried_at.size(); ++k)
+    BOOST_TEST(free_plane.intermediate[k] == ((free_plane.tried_at[k] - end).norm() > 0.0), "solve " << k);
+  BOOST_TEST(!free_plane.intermediate.back());
+
+  // A failed first step is cut to 0.3 of its length: 0.5 of the line (1.0 from the start) fails, the
+  // next try is 0.15 of the line (0.3 from the start, on the region's boundary: fails), then 0.045
+  // (tolerance 1e-15: round-off of u0 + t (u1 - u0) with t a product of two or three factors, a few ulp).
+  ModelProblem again(nothing_blocked);
+  x = kStart;
+  const ContinuationResult s2 = continue_along_line(again.solver(), kStart, end, 8, x, LineSteps{0.5, 0.3});
+  BOOST_TEST(s2.converged);
+  BOOST_TEST(again.tried_at.size() >= 3u);
+  BOOST_TEST(std::abs(again.tried_at[0][0] - 1.0) < 1e-15);   // 0.5 of 2
+  BOOST_TEST(std::abs(again.tried_at[1][0] - 0.3) < 1e-15);   // 0.5 * 0.3 of 2
+  BOOST_TEST(std::abs(again.tried_at[2][0] - 0.09) < 1e-15);  // 0.5 * 0.3^2 of 2
 }

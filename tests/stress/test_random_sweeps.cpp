@@ -1,18 +1,22 @@
 // Random sweeps of forward kinematics (issue "stress tests of numerical stability"): inputs drawn
 // uniformly within the model's input bounds (seeded std::mt19937, reproducible), solved warm-started
-// along the sequence and, for a subset, cold (a fresh ForwardKinematics). Every solve must either
-// converge with a globally consistent, finite result or return an explicit non-converged status with a
-// message; never an exception for a valid input. Many random length sets of a PCR are unreachable or
-// buckle: a non-converged status is acceptable there, a converged status with garbage is not.
+// along the sequence and, for a subset, cold (a fresh state over the same model, with_fresh_state).
+// Every solve must either converge with a globally consistent, finite result or return an explicit
+// non-converged status with a message; never an exception for a valid input. Many random length sets of a PCR
+// are unreachable or buckle: a non-converged status is acceptable there, a converged status with garbage is
+// not.
 //
-// Short sweep by default (CI); long mode: test_random_sweeps -- --solves=N [--seed=S]
-// (N warm solves per model; one cold solve per 5 warm ones).
+// Short sweep by default (CI); long mode: test_random_sweeps -- --solves=N [--seed=S] [--stability=1]
+// [--trace=1] (N warm solves per model; one cold solve per 5 warm ones; --stability=1: each result with
+// its stability verdict, the stable fraction reported; --trace=1: one line per solve with its time,
+// iterations, fresh Jacobians, status and message).
 #define BOOST_TEST_MODULE random_sweeps
 #include <boost/test/unit_test.hpp>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <random>
@@ -29,15 +33,21 @@ using test::load_model;
 
 namespace {
 
-/// Value of a `--name=value` argument after `--` on the command line, or the fallback.
-long argument(const std::string& name, long fallback) {
+/// Text of a `--name=value` argument after `--` on the command line, or the fallback.
+std::string text_argument(const std::string& name, const std::string& fallback) {
   const auto& suite = boost::unit_test::framework::master_test_suite();
   const std::string prefix = "--" + name + "=";
   for (int i = 1; i < suite.argc; ++i) {
     const std::string a = suite.argv[i];
-    if (a.compare(0, prefix.size(), prefix) == 0) return std::strtol(a.c_str() + prefix.size(), nullptr, 10);
+    if (a.compare(0, prefix.size(), prefix) == 0) return a.substr(prefix.size());
   }
   return fallback;
+}
+
+/// Value of a numeric `--name=value` argument, or the fallback.
+long argument(const std::string& name, long fallback) {
+  const std::string text = text_argument(name, "");
+  return text.empty() ? fallback : std::strtol(text.c_str(), nullptr, 10);
 }
 
 /// Worst violations of the global checks of one converged solution (0 = exact).
@@ -137,9 +147,10 @@ struct Stats {
   std::map<int, int> histogram;  // iteration bin upper edge -> count
   double worst_residual = 0.0, worst_force = 0.0, worst_moment = 0.0, worst_coupling = 0.0, seconds = 0.0;
   int cold_warm_pairs = 0, cold_warm_different = 0;
-  std::vector<double> times;              // per solve [s]
-  int stable = 0, verdicts = 0;           // with --stability=1: stable results among the verdicts
-  std::map<std::string, int> strategies;  // converged solves by the strategy that gave them
+  std::vector<double> times;                 // per solve [s]
+  int stable = 0, verdicts = 0;              // with --stability=1: stable results among the verdicts
+  std::map<std::string, int> verdict_kinds;  // with --stability=1: converged results by verdict
+  std::map<std::string, int> strategies;     // converged solves by the strategy that gave them
 };
 
 /// q-quantile (0..1) of the values (nearest rank), 0 for none.
@@ -171,6 +182,9 @@ bool solve_and_check(const std::string& name, ForwardKinematics& fk, const VecX&
   stats.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   stats.times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   const SolveSummary& sum = out.summary;
+  if (argument("trace", 0) != 0)
+    std::printf("TRACE %s %.6f %d %d %s | %s\n", name.c_str(), stats.times.back(), sum.iterations,
+                sum.jacobian_evaluations, to_string(sum.status), sum.message.c_str());
   ++stats.statuses[to_string(sum.status)];
   ++stats.histogram[iteration_bin(sum.iterations)];
   if (!sum.converged()) {
@@ -191,6 +205,7 @@ bool solve_and_check(const std::string& name, ForwardKinematics& fk, const VecX&
   if (out.stability_verdict.verdict != StabilityVerdict::NotChecked) {
     ++stats.verdicts;
     stats.stable += out.stability_verdict.verdict == StabilityVerdict::Stable ? 1 : 0;
+    ++stats.verdict_kinds[to_string(out.stability_verdict.verdict)];
   }
   const Consistency c = check_solution(model, out);
   BOOST_TEST(c.finite, name << ": converged with non-finite values at " << u.transpose());
@@ -240,9 +255,12 @@ void report(const std::string& name, const std::string& mode, const Stats& s) {
   for (const auto& [status, count] : s.statuses) st << " " << status << ":" << count;
   std::ostringstream by;
   for (const auto& [strategy, count] : s.strategies) by << " [" << strategy << "]:" << count;
+  std::ostringstream verdicts;
+  for (const auto& [verdict, count] : s.verdict_kinds) verdicts << " " << verdict << ":" << count;
   BOOST_TEST_MESSAGE(name << " " << mode << ": time per solve median " << quantile(s.times, 0.5)
                           << " s, 99th percentile " << quantile(s.times, 0.99) << " s; stable " << s.stable
-                          << "/" << s.verdicts << "; converged by" << by.str());
+                          << "/" << s.verdicts << " (verdicts" << verdicts.str() << "); converged by"
+                          << by.str());
   BOOST_TEST_MESSAGE(name << " " << mode << ": " << s.converged << "/" << s.solves << " converged ("
                           << (s.solves ? 100.0 * s.converged / s.solves : 0.0) << " %), statuses" << st.str()
                           << "; iterations" << h.str() << "; worst residual " << s.worst_residual
@@ -275,7 +293,9 @@ void sweep(const std::string& name, unsigned seed, long ci_solves) {
     RobotSolution sw, sc;
     const bool w_ok = solve_and_check(name, warm, u, o, ws, sw);
     if (k % 5 == 0) {
-      ForwardKinematics cold(model, o);
+      // A fresh state over the same model and assembly (as `pcr workspace` solves its samples): no
+      // solution yet, the default equilibrium solved once per model (fk_data.hpp).
+      ForwardKinematics cold = warm.with_fresh_state();
       const bool c_ok = solve_and_check(name, cold, u, o, cs, sc);
       if (w_ok && c_ok) {
         ++cs.cold_warm_pairs;
@@ -294,6 +314,12 @@ void sweep(const std::string& name, unsigned seed, long ci_solves) {
   BOOST_TEST(ws.converged > 0, name << ": no warm solve converged");
 }
 
+/// The shipped models with actuation inputs (models/*.urdf; cantilever has none).
+const char* const kShippedModels[] = {
+    "passive_hinge", "planar_pinned",   "planar_post",      "planar_three_rod",
+    "six_rus",       "slider_actuated", "stewart_gough",    "stewart_gough_teleop",
+    "two_stage",     "universal_pair",  "universal_passive"};
+
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(stewart_gough_random_inputs) {
@@ -304,4 +330,16 @@ BOOST_AUTO_TEST_CASE(stewart_gough_teleop_random_inputs) {
 }
 BOOST_AUTO_TEST_CASE(planar_three_rod_random_inputs) {
   sweep("planar_three_rod", 3, 200);
+}
+
+// Every shipped model with inputs, for the sweep table of docs/benchmarks.md ("Random FK sweeps"): not in
+// CI (several models take seconds per random solve); run it by name, for one model with --model=NAME:
+//   test_random_sweeps --run_test=every_shipped_model_random_inputs -- --solves=N [--model=NAME]
+BOOST_AUTO_TEST_CASE(every_shipped_model_random_inputs, *boost::unit_test::disabled()) {
+  const std::string only = text_argument("model", "");
+  unsigned seed = 10;
+  for (const char* name : kShippedModels) {
+    ++seed;
+    if (only.empty() || only == name) sweep(name, seed, 3);
+  }
 }

@@ -3,6 +3,7 @@
 // FkModel is what an FK object solves on, immutable and shared; FkData is one object's per-solve state.
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "path_predictor.hpp"
@@ -12,11 +13,27 @@
 
 namespace pcr::kinematics {
 
+/// Tolerance (max-abs of the dimensionless residuals) of the intermediate steps of a continuation in the
+/// inputs: they only carry the state along; Newton to 1e-10 there took about half of the quasi-Newton
+/// iterations of a random Stewart-Gough solve (docs/benchmarks.md "Random FK sweeps").
+constexpr double kIntermediateTolerance = 1e-6;
+
 struct FkModel {
   FkModel(std::shared_ptr<const RobotAssembly> assembly, const KinematicsOptions& options);
   std::shared_ptr<const RobotAssembly> assembly;  ///< its problem is the FK system (inputs fixed)
   KinematicsOptions options;
   std::vector<std::vector<BasisDerivatives>> sample_bases;  ///< read_solution
+
+  /// The equilibrium at the model's default inputs, solved from the straight initial guess on first use
+  /// (once per model, shared by every FK over it and thread-safe; its own solver, so the state is the
+  /// same bits whichever FK asks first). nullptr when that solve did not converge.
+  const VecX* default_equilibrium() const;
+
+ private:
+  mutable std::once_flag default_once_;
+  mutable VecX default_x_;
+  mutable bool default_converged_ = false;
+  mutable SolveSummary default_summary_;
 };
 
 struct FkData {
@@ -25,17 +42,20 @@ struct FkData {
   FkData& operator=(const FkData&) = delete;
 
   /// One Newton (or Ipopt) solve at inputs u from x (u written into x first); Newton stops after
-  /// max_jacobian_evaluations fresh Jacobians.
+  /// max_jacobian_evaluations fresh Jacobians. intermediate: a continuation step that is not the end of
+  /// the path, solved by Newton to kIntermediateTolerance only (the next step corrects the rest).
   SolveSummary solve_at(const VecX& u, VecX& x,
-                        int max_jacobian_evaluations = std::numeric_limits<int>::max());
+                        int max_jacobian_evaluations = std::numeric_limits<int>::max(),
+                        bool intermediate = false);
 
   const std::shared_ptr<const FkModel> model;  // first: outlives the solvers that refer into it
   VecX x;                                      // the last converged solution (initial guess before)
   bool has_solution = false;
-  int last_jacobian_sign = 0;            // of the last checked converged solve (check_stability)
-  PathPredictor predictor;               // start point along a path of inputs
-  std::unique_ptr<NewtonSolver> newton;  // on model->assembly->problem(), made on first use
-  std::unique_ptr<IpoptSolver> ipopt;    // SolverKind::Ipopt, made on first use
+  int last_jacobian_sign = 0;                         // of the last checked converged solve (check_stability)
+  PathPredictor predictor;                            // start point along a path of inputs
+  std::unique_ptr<NewtonSolver> newton;               // on model->assembly->problem(), made on first use
+  std::unique_ptr<NewtonSolver> newton_intermediate;  // the same, to kIntermediateTolerance
+  std::unique_ptr<IpoptSolver> ipopt;                 // SolverKind::Ipopt, made on first use
 };
 
 /// The attempts of ForwardKinematics::solve at `inputs` (fk_strategies.cpp): x out, the summary of the

@@ -1,18 +1,27 @@
-// ForwardKinematics::solve's attempts, tried in order until one converges (kStrategies):
-//  1. Newton from the path predictor's start (the last solution when there is no path);
-//  2. Newton from the last solution (when the extrapolated start failed);
-//  3. continuation in the inputs from the last solution (input_continuation.hpp);
-//  4. continuation from the model's default inputs, solved from the straight initial guess, along the line;
-//  5. continuation from the default inputs one input at a time;
-//  6. pseudo-arclength continuation from the default inputs along the line, through folds, following the
-//     equilibrium the robot snaps to at a fold (fold_continuation.hpp). Last, so that it costs nothing
-//     where an earlier strategy converges (where it fails it can take longer than all of them together).
-// The warm path starts in a deformed state that may be far from the new inputs and fails more often than
-// the cold one (random input sweeps), hence the attempts from the default inputs after it. The direct
-// attempts, which have a continuation to fall back on, and each continuation step get a limited number
-// of fresh Jacobians (random sweeps, docs/benchmarks.md "Random FK sweeps": limited fresh Jacobians per step
-// took 5x less time per Stewart-Gough solve than full-budget steps, and more converged).
+// ForwardKinematics::solve's attempts, tried in order until one converges (kStrategies). Two tiers: fast
+// attempts with short budgets that solve most random inputs, then the thorough ones that converge on more
+// of the rest (random sweeps, docs/benchmarks.md "Random FK sweeps"):
+//  1. Newton from the path predictor's start (the last solution off a path), or from the default
+//     equilibrium (solved once per model, fk_data.hpp) when there is no solution yet;
+//  2. Newton from the last solution (when the start extrapolated along a path failed);
+//  3. fast continuation in the inputs (input_continuation.hpp: short first step, 4 fresh Jacobians per
+//     step, intermediate steps to a looser tolerance) from whichever of the last solution and the
+//     default equilibrium has the nearer inputs, then from the other;
+//  4. Newton from the straight initial guess (it reaches equilibria of the planar robots that the
+//     continuations from the default equilibrium do not; cold solves try it before 3, with the short
+//     budget);
+//  5. thorough continuation (first step half the line, 8 fresh Jacobians per step, every step to the
+//     full tolerance) from the last solution, then from the default inputs;
+//  6. fast continuations from the default inputs via a waypoint, a few waypoints spread over the input
+//     box: where the line from the default inputs meets a fold with no stable equilibrium to snap to,
+//     a bent path may pass around it;
+//  7. continuation from the default inputs one input at a time;
+//  8. pseudo-arclength continuation from the default inputs along the line, through folds, following the
+//     equilibrium the robot snaps to at a fold (fold_continuation.hpp).
+// The later ones cost nothing where an earlier strategy converges (where they fail they take longer
+// than all the others together).
 #include <string>
+#include <vector>
 
 #include "fk_data.hpp"
 #include "fold_continuation.hpp"
@@ -22,14 +31,40 @@ namespace pcr::kinematics {
 
 namespace {
 
-/// Fresh-Jacobian budgets of a direct attempt and of one continuation step.
+/// Fresh-Jacobian budget of a direct attempt along a path and from the straight initial guess.
 constexpr int kDirectJacobianEvaluations = 10;
-constexpr int kContinuationStepJacobianEvaluations = 8;
+/// The budget of a direct attempt from a start off a path (a jump in the inputs; the default equilibrium
+/// for a cold solve): Newton converges there in a few Jacobians or not at all.
+constexpr int kJumpJacobianEvaluations = 6;
+/// The fast continuation: 4 fresh Jacobians per step, a first step of 0.1 of the line, cut to 0.3 when it
+/// fails. Random Stewart-Gough inputs: Newton converges from the default equilibrium only within about
+/// 0.02-0.05 m of rod length (the residual after the tangent predictor grows like 2500 t^2 there: the
+/// stiff axial and shear rows), while a random line is 0.3-0.6 m long; the thorough continuation spent
+/// about 30 fresh Jacobians on failed steps before its first converged one.
+constexpr int kFastStepJacobianEvaluations = 4;
+constexpr LineSteps kFastSteps{0.1, 0.3};
+/// The thorough continuation: steps that may take 8 fresh Jacobians (a planar robot near a fold needs
+/// them), from half the line, halved on failure.
+constexpr int kThoroughStepJacobianEvaluations = 8;
+constexpr LineSteps kThoroughSteps{0.5, 0.5};
 /// Orders tried by the one-input-at-a-time continuation (the last fallback; bounds its cost on inputs
 /// without a reachable equilibrium: at most this many orders of one leg per input).
 constexpr int kOneInputOrders = 3;
 /// Step budget of the fold-aware continuation from the default inputs (snaps included).
 constexpr int kArclengthSteps = 200;
+/// Waypoints tried by strategy 6. The 7 inputs of a 1,000-input Stewart-Gough sweep that every other
+/// strategy failed on all converged through waypoint 1 or 2, to stable equilibria (docs/benchmarks.md
+/// "Random FK sweeps").
+constexpr int kWaypoints = 8;
+
+/// A continuation's budget and step control; loose: its intermediate steps to kIntermediateTolerance.
+struct ContinuationKind {
+  int step_jacobians;
+  LineSteps steps;
+  bool loose;
+};
+constexpr ContinuationKind kFast{kFastStepJacobianEvaluations, kFastSteps, true};
+constexpr ContinuationKind kThorough{kThoroughStepJacobianEvaluations, kThoroughSteps, false};
 
 /// One FK solve in progress.
 struct FkAttempt {
@@ -37,37 +72,72 @@ struct FkAttempt {
   FkData& data;
   const VecX& inputs;
   VecX& x;               // the result (the last iterate of a failed attempt)
-  SolveSummary summary;  // of the converged attempt, else of the last direct one with notes appended
+  SolveSummary summary;  // of the converged attempt, else of the first direct one with notes appended
   int iterations = 0, jacobians = 0;  // of all attempts
-  enum class Default { NotTried, Converged, Failed } default_state = Default::NotTried;
-  VecX x_default;  // the equilibrium at the default inputs (strategies 4 and 5)
+  const VecX* x_default = nullptr;    // the equilibrium at the default inputs (nullptr: did not converge)
+  bool on_path = false;               // the predicted start was extrapolated along a path
+  bool fast_from_last = false;        // the fast continuation from the last solution was tried
+  bool tried_straight = false;        // Newton from the straight initial guess was tried
 
   void count(int more_iterations, int more_jacobians) {
     iterations += more_iterations;
     jacobians += more_jacobians;
   }
-  SolveAtInputs solve_at() {
-    return [this](const VecX& u, VecX& xs, int max_jacobians) { return data.solve_at(u, xs, max_jacobians); };
+  SolveAtInputs solve_at(bool loose) {
+    return [this, loose](const VecX& u, VecX& xs, int max_jacobians, bool intermediate) {
+      return data.solve_at(u, xs, max_jacobians, loose && intermediate);
+    };
   }
+  VecX default_inputs() const { return data.model->assembly->model().default_input_values(); }
 };
 
-/// A direct Newton attempt from `start` with the short budget.
-bool direct_attempt(FkAttempt& a, const VecX& start) {
-  a.x = start;
-  a.summary = a.data.solve_at(a.inputs, a.x, kDirectJacobianEvaluations);
-  a.count(a.summary.iterations, a.summary.jacobian_evaluations);
-  return a.summary.converged();
+/// A direct Newton attempt from `start` with at most `jacobians` fresh Jacobians. The summary of the
+/// first one is the one reported if nothing converges (the later strategies append to its message).
+bool direct_attempt(FkAttempt& a, const VecX& start, int jacobians, const char* how) {
+  VecX xs = start;
+  const SolveSummary s = a.data.solve_at(a.inputs, xs, jacobians);
+  a.count(s.iterations, s.jacobian_evaluations);
+  if (s.converged() || a.summary.message.empty()) {
+    a.x = xs;
+    a.summary = s;
+  } else {
+    a.summary.message += "; Newton from " + std::string(how) + ": " + s.message;
+  }
+  return s.converged();
 }
 
-bool from_prediction(FkAttempt& a, const char*) {
-  bool on_path = false;
-  const VecX start = a.data.predictor.predict(a.data.x, a.inputs, &on_path);
-  if (on_path && a.data.newton) a.data.newton->continue_path();
-  return direct_attempt(a, start);
+/// Newton from the path predictor's start (the last solution off a path), or from the default
+/// equilibrium when there is no solution yet. A start off a path (a jump in the inputs) gets the short
+/// budget: Newton converges there only from close by, and a continuation is cheaper than a long attempt.
+bool from_prediction(FkAttempt& a, const char* how) {
+  if (!a.data.has_solution)
+    return direct_attempt(a, a.x_default ? *a.x_default : a.data.x, kJumpJacobianEvaluations, how);
+  const VecX start = a.data.predictor.predict(a.data.x, a.inputs, &a.on_path);
+  if (a.on_path && a.data.newton) a.data.newton->continue_path();
+  return direct_attempt(a, start, a.on_path ? kDirectJacobianEvaluations : kJumpJacobianEvaluations, how);
 }
 
-bool from_last_solution(FkAttempt& a, const char*) {
-  return a.data.has_solution && direct_attempt(a, a.data.x);
+/// Newton from the last solution when the predicted start was another point (extrapolated along a path).
+bool from_last_solution(FkAttempt& a, const char* how) {
+  return a.data.has_solution && a.on_path && direct_attempt(a, a.data.x, kDirectJacobianEvaluations, how);
+}
+
+/// Newton from the straight initial guess (not the same start as strategy 1 when a default equilibrium
+/// exists).
+bool from_straight_guess(FkAttempt& a, const char* how, int jacobians) {
+  if (!a.x_default || a.tried_straight) return false;
+  a.tried_straight = true;
+  if (!direct_attempt(a, a.data.model->assembly->initial_guess(), jacobians, how)) return false;
+  a.summary.message = "converged by Newton from " + std::string(how);
+  return true;
+}
+/// Cold solves (no solution yet) try it early, with the short budget: the planar robots' cold solves
+/// converge there more often than by the continuations from their default equilibrium (random sweeps).
+bool cold_from_straight_guess(FkAttempt& a, const char* how) {
+  return !a.data.has_solution && from_straight_guess(a, how, kJumpJacobianEvaluations);
+}
+bool warm_from_straight_guess(FkAttempt& a, const char* how) {
+  return from_straight_guess(a, how, kDirectJacobianEvaluations);
 }
 
 /// Takes a continuation's result: on success its state and summary, else a note on where it stopped.
@@ -83,43 +153,47 @@ bool finish_continuation(FkAttempt& a, const ContinuationResult& r, const VecX& 
   return true;
 }
 
-bool continuation_from_last_solution(FkAttempt& a, const char* how) {
-  if (!a.data.has_solution) return false;
-  VecX xs = a.data.x;
-  const VecX u_last = a.data.model->assembly->inputs(a.data.x);
-  return finish_continuation(
-      a, continue_along_line(a.solve_at(), u_last, a.inputs, kContinuationStepJacobianEvaluations, xs), xs,
-      how);
+/// Continuation along the line from (u0, x0) to the inputs.
+bool continuation(FkAttempt& a, const VecX& u0, const VecX& x0, const ContinuationKind& kind,
+                  const char* how) {
+  VecX xs = x0;
+  const ContinuationResult r =
+      continue_along_line(a.solve_at(kind.loose), u0, a.inputs, kind.step_jacobians, xs, kind.steps);
+  return finish_continuation(a, r, xs, how);
 }
 
-/// The equilibrium at the default inputs from the straight initial guess, solved once per attempt.
-bool solve_default_inputs(FkAttempt& a) {
-  if (a.default_state == FkAttempt::Default::NotTried) {
-    const RobotAssembly& assembly = *a.data.model->assembly;
-    a.x_default = assembly.initial_guess();
-    const SolveSummary s0 = a.data.solve_at(assembly.model().default_input_values(), a.x_default);
-    a.count(s0.iterations, s0.jacobian_evaluations);
-    a.default_state = s0.converged() ? FkAttempt::Default::Converged : FkAttempt::Default::Failed;
-    if (!s0.converged())
-      a.summary.message += "; the default inputs did not converge from the straight initial guess";
-  }
-  return a.default_state == FkAttempt::Default::Converged;
+/// Whether the inputs are nearer (Euclidean distance in input space) to the default inputs than to the
+/// last solution's: then the fast continuation from the default equilibrium goes first (a shorter path,
+/// from a state without bent rods).
+bool default_inputs_nearer(const FkAttempt& a) {
+  return a.x_default && (a.inputs - a.default_inputs()).norm() <
+                            (a.inputs - a.data.model->assembly->inputs(a.data.x)).norm();
 }
 
-bool continuation_from_default_inputs(FkAttempt& a, const char* how) {
-  if (!solve_default_inputs(a)) return false;
-  VecX xs = a.x_default;
-  const VecX u_default = a.data.model->assembly->model().default_input_values();
-  return finish_continuation(
-      a, continue_along_line(a.solve_at(), u_default, a.inputs, kContinuationStepJacobianEvaluations, xs), xs,
-      how);
+bool fast_from_last_solution(FkAttempt& a, const char* how) {
+  if (!a.data.has_solution || a.fast_from_last) return false;
+  a.fast_from_last = true;
+  return continuation(a, a.data.model->assembly->inputs(a.data.x), a.data.x, kFast, how);
+}
+bool fast_from_last_solution_if_nearer(FkAttempt& a, const char* how) {
+  return !default_inputs_nearer(a) && fast_from_last_solution(a, how);
+}
+bool fast_from_default_inputs(FkAttempt& a, const char* how) {
+  return a.x_default && continuation(a, a.default_inputs(), *a.x_default, kFast, how);
+}
+bool thorough_from_last_solution(FkAttempt& a, const char* how) {
+  return a.data.has_solution &&
+         continuation(a, a.data.model->assembly->inputs(a.data.x), a.data.x, kThorough, how);
+}
+bool thorough_from_default_inputs(FkAttempt& a, const char* how) {
+  return a.x_default && continuation(a, a.default_inputs(), *a.x_default, kThorough, how);
 }
 
 /// Pseudo-arclength continuation from the default inputs along the straight line, through folds: at a
 /// fold it follows the stable equilibrium the robot snaps to (fold_continuation.hpp). Unstable modes are
 /// counted only at folds and snap landings (a verdict costs about a cold solve).
 bool arclength_from_default_inputs(FkAttempt& a, const char* how) {
-  if (!solve_default_inputs(a)) return false;
+  if (!a.x_default) return false;
   const FkModel& m = *a.data.model;
   if (m.options.solver != SolverKind::Newton) return false;
   PathThroughFoldsOptions o;
@@ -127,7 +201,7 @@ bool arclength_from_default_inputs(FkAttempt& a, const char* how) {
   o.count_unstable_modes = false;
   o.max_steps = kArclengthSteps;
   const SegmentOutcome seg =
-      continue_segment(*m.assembly, a.x_default, -1, m.assembly->model().default_input_values(), a.inputs, 0,
+      continue_segment(*m.assembly, *a.x_default, -1, m.assembly->model().default_input_values(), a.inputs, 0,
                        m.options.tolerance, o);
   a.count(seg.iterations, seg.jacobian_evaluations);
   if (!seg.reached) {
@@ -148,13 +222,60 @@ bool arclength_from_default_inputs(FkAttempt& a, const char* how) {
   return true;
 }
 
+/// Element k >= 1 of the van der Corput sequence in `base` (the radical inverse of k), in (0, 1).
+double radical_inverse(int k, int base) {
+  double value = 0.0, scale = 1.0 / base;
+  for (; k > 0; k /= base, scale /= base) value += (k % base) * scale;
+  return value;
+}
+
+/// Waypoint k of strategy 6: point k + 1 of the Halton sequence (bases 2, 3, 5, ...: spread over the box
+/// with no random generator, the same for every solve) scaled to the input bounds.
+VecX waypoint(const RobotModel& model, int k) {
+  static constexpr int kPrimes[] = {2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37};
+  constexpr int kCount = sizeof kPrimes / sizeof kPrimes[0];
+  const std::vector<ActuationInput>& inputs = model.inputs();
+  VecX w(static_cast<int>(inputs.size()));
+  for (int i = 0; i < w.size(); ++i) {
+    const double h = radical_inverse(k + 1 + i / kCount, kPrimes[i % kCount]);
+    w[i] = inputs[i].lower + h * (inputs[i].upper - inputs[i].lower);
+  }
+  return w;
+}
+
+bool via_waypoints(FkAttempt& a, const char* how) {
+  if (!a.x_default) return false;
+  const RobotModel& model = a.data.model->assembly->model();
+  std::string stopped;
+  for (int k = 0; k < kWaypoints; ++k) {
+    const VecX w = waypoint(model, k);
+    VecX xw = *a.x_default;
+    const ContinuationResult to_w =
+        continue_along_line(a.solve_at(true), a.default_inputs(), w, kFast.step_jacobians, xw, kFast.steps);
+    a.count(to_w.iterations, to_w.jacobian_evaluations);
+    if (!to_w.converged) continue;
+    VecX xs = xw;
+    const ContinuationResult r =
+        continue_along_line(a.solve_at(true), w, a.inputs, kFast.step_jacobians, xs, kFast.steps);
+    a.count(r.iterations, r.jacobian_evaluations);
+    if (!r.converged) continue;
+    a.x = xs;
+    a.summary = r.last;
+    a.summary.message = "converged by " + std::string(how) + " (waypoint " + std::to_string(k + 1) + ", " +
+                        std::to_string(to_w.steps + r.steps) + " steps)";
+    return true;
+  }
+  a.summary.message +=
+      "; " + std::string(how) + ": none of " + std::to_string(kWaypoints) + " waypoints led there";
+  return false;
+}
+
 bool one_input_at_a_time(FkAttempt& a, const char* how) {
-  if (!solve_default_inputs(a)) return false;
-  VecX xs = a.x_default;
-  const VecX u_default = a.data.model->assembly->model().default_input_values();
-  const ContinuationResult r =
-      continue_one_input_at_a_time(a.solve_at(), u_default, a.inputs, kDirectJacobianEvaluations,
-                                   kContinuationStepJacobianEvaluations, kOneInputOrders, xs);
+  if (!a.x_default) return false;
+  VecX xs = *a.x_default;
+  const ContinuationResult r = continue_one_input_at_a_time(
+      a.solve_at(false), a.default_inputs(), a.inputs, kDirectJacobianEvaluations,
+      kThoroughStepJacobianEvaluations, kOneInputOrders, xs, kThoroughSteps);
   return finish_continuation(a, r, xs, how);
 }
 
@@ -167,8 +288,14 @@ struct FkStrategy {
 constexpr FkStrategy kStrategies[] = {
     {"the predicted start", from_prediction},
     {"the last solution", from_last_solution},
-    {"continuation in the inputs from the last solution", continuation_from_last_solution},
-    {"continuation in the inputs from the default inputs", continuation_from_default_inputs},
+    {"the straight initial guess", cold_from_straight_guess},
+    {"continuation in the inputs from the last solution", fast_from_last_solution_if_nearer},
+    {"continuation in the inputs from the default inputs", fast_from_default_inputs},
+    {"continuation in the inputs from the last solution", fast_from_last_solution},
+    {"the straight initial guess", warm_from_straight_guess},
+    {"thorough continuation in the inputs from the last solution", thorough_from_last_solution},
+    {"thorough continuation in the inputs from the default inputs", thorough_from_default_inputs},
+    {"continuation from the default inputs via a waypoint", via_waypoints},
     {"continuation from the default inputs one input at a time", one_input_at_a_time},
     {"fold-aware arclength continuation from the default inputs", arclength_from_default_inputs},
 };
@@ -177,8 +304,11 @@ constexpr FkStrategy kStrategies[] = {
 
 SolveSummary solve_with_fallbacks(FkData& data, const VecX& inputs, VecX& x) {
   FkAttempt a(data, inputs, x);
+  a.x_default = data.model->default_equilibrium();
   for (const FkStrategy& s : kStrategies)
     if (s.attempt(a, s.name)) break;
+  if (!a.x_default)
+    a.summary.message += "; the default inputs did not converge from the straight initial guess";
   a.summary.iterations = a.iterations;
   a.summary.jacobian_evaluations = a.jacobians;
   return a.summary;

@@ -19,12 +19,36 @@ FkModel::FkModel(std::shared_ptr<const RobotAssembly> a, const KinematicsOptions
   sample_bases = pcr::sample_bases(*assembly, options.centerline_points);
 }
 
+const VecX* FkModel::default_equilibrium() const {
+  std::call_once(default_once_, [this] {
+    default_x_ = assembly->initial_guess();
+    assembly->set_inputs(default_x_, assembly->model().default_input_values());
+    if (options.solver == SolverKind::Newton) {
+      NewtonSolver newton(assembly->problem(), newton_options(options));
+      default_summary_ = newton.solve(default_x_);
+    } else {
+      IpoptSolver ipopt(assembly->problem(), ipopt_options(options));
+      default_summary_ = ipopt.solve(default_x_);
+    }
+    default_converged_ = default_summary_.converged() && default_x_.allFinite();
+  });
+  return default_converged_ ? &default_x_ : nullptr;
+}
+
 FkData::FkData(std::shared_ptr<const FkModel> m) : model(std::move(m)), x(model->assembly->initial_guess()) {}
 
-SolveSummary FkData::solve_at(const VecX& u, VecX& x_io, int max_jacobian_evaluations) {
+SolveSummary FkData::solve_at(const VecX& u, VecX& x_io, int max_jacobian_evaluations, bool intermediate) {
   const RobotAssembly& a = *model->assembly;
   const KinematicsOptions& o = model->options;
   a.set_inputs(x_io, u);  // the inputs are fixed variables: constants at the values x holds
+  if (o.solver == SolverKind::Newton && intermediate && kIntermediateTolerance > o.tolerance) {
+    if (!newton_intermediate) {
+      NewtonOptions no = newton_options(o);
+      no.tolerance = kIntermediateTolerance;
+      newton_intermediate = std::make_unique<NewtonSolver>(a.problem(), no);
+    }
+    return newton_intermediate->solve(x_io, o.max_iterations, max_jacobian_evaluations);
+  }
   if (o.solver == SolverKind::Newton) {
     if (!newton) newton = std::make_unique<NewtonSolver>(a.problem(), newton_options(o));
     return newton->solve(x_io, o.max_iterations, max_jacobian_evaluations);

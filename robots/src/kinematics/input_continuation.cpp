@@ -6,15 +6,15 @@
 namespace pcr::kinematics {
 
 ContinuationResult continue_along_line(const SolveAtInputs& solve_at, const VecX& u0, const VecX& u1,
-                                       int step_jacobians, VecX& x) {
+                                       int step_jacobians, VecX& x, const LineSteps& steps) {
   ContinuationResult r;
-  double t = 0.0, step = 0.5, t_prev = -1.0;
+  double t = 0.0, step = steps.first, t_prev = -1.0;
   VecX xc = x, x_prev;
   while (t < 1.0 && step > 1e-4 && r.steps < 200) {
     const double target = std::min(1.0, t + step);
     VecX trial = xc;
     if (t_prev >= 0.0) trial += ((target - t) / (t - t_prev)) * (xc - x_prev);  // secant in t
-    r.last = solve_at(u0 + target * (u1 - u0), trial, step_jacobians);
+    r.last = solve_at(u0 + target * (u1 - u0), trial, step_jacobians, target < 1.0);
     r.iterations += r.last.iterations;
     r.jacobian_evaluations += r.last.jacobian_evaluations;
     ++r.steps;
@@ -25,7 +25,7 @@ ContinuationResult continue_along_line(const SolveAtInputs& solve_at, const VecX
       t = target;
       step *= r.last.iterations <= 4 ? 2.0 : 1.25;
     } else {
-      step *= 0.5;
+      step *= steps.cut;
     }
   }
   r.converged = t >= 1.0 && r.last.converged();
@@ -38,8 +38,8 @@ ContinuationResult continue_along_line(const SolveAtInputs& solve_at, const VecX
 
 ContinuationResult continue_one_input_at_a_time(const SolveAtInputs& solve_at, const VecX& u0, const VecX& u1,
                                                 int direct_jacobians, int step_jacobians, int max_orders,
-                                                VecX& x) {
-  if (u0 == u1) return continue_along_line(solve_at, u0, u1, step_jacobians, x);  // no leg to take
+                                                VecX& x, const LineSteps& steps) {
+  if (u0 == u1) return continue_along_line(solve_at, u0, u1, step_jacobians, x, steps);  // no leg to take
   ContinuationResult total;
   const int n = static_cast<int>(u0.size());
   for (int first = 0; first < std::min(n, max_orders); ++first) {
@@ -53,7 +53,7 @@ ContinuationResult continue_one_input_at_a_time(const SolveAtInputs& solve_at, c
       // A direct solve first: it is cheap when the leg is short, and from the end of the last leg it may
       // land past a fold where small steps cannot go.
       VecX direct = xc;
-      total.last = solve_at(next, direct, direct_jacobians);
+      total.last = solve_at(next, direct, direct_jacobians, false);
       total.iterations += total.last.iterations;
       total.jacobian_evaluations += total.last.jacobian_evaluations;
       ++total.steps;
@@ -62,7 +62,7 @@ ContinuationResult continue_one_input_at_a_time(const SolveAtInputs& solve_at, c
         u = next;
         continue;
       }
-      const ContinuationResult leg = continue_along_line(solve_at, u, next, step_jacobians, xc);
+      const ContinuationResult leg = continue_along_line(solve_at, u, next, step_jacobians, xc, steps);
       total.steps += leg.steps;
       total.iterations += leg.iterations;
       total.jacobian_evaluations += leg.jacobian_evaluations;

@@ -1,10 +1,11 @@
 #pragma once
 // Continuation in the actuation inputs, the fallback of ForwardKinematics::solve when the direct
 // Newton solve fails (the start is outside Newton's contraction region):
-//  - along a straight line u(t) = u0 + t (u1 - u0), adaptive steps in t: each step starts from the
-//    secant extrapolation of the last two converged steps and may take a limited number of fresh
-//    Jacobians (a step that needs more is too long and is halved); steps grow by 2 after a fast step
-//    (<= 4 iterations), else by 1.25;
+//  - along a straight line u(t) = u0 + t (u1 - u0), adaptive steps in t (LineSteps): each step starts
+//    from the secant extrapolation of the last two converged steps and may take a limited number of
+//    fresh Jacobians (a step that needs more is too long and is cut); steps grow
+//    by 2 after a fast step (<= 4 iterations), else by 1.25; the steps short of u1 are solved to a
+//    looser tolerance (SolveAtInputs's `intermediate`), the last one to the full tolerance;
 //  - one input at a time: legs that each change a single input, in a few orders. A straight
 //    line through input space can run into a fold of the equilibrium manifold (its end state then lies
 //    on another branch, out of reach of small steps) where a path around it does not: with this fallback the
@@ -19,27 +20,34 @@
 namespace pcr::kinematics {
 
 /// Solves the FK system at inputs u from the start x (in: start, out: last iterate) with at most
-/// max_jacobians fresh Jacobians.
-using SolveAtInputs = std::function<SolveSummary(const VecX& u, VecX& x, int max_jacobians)>;
+/// max_jacobians fresh Jacobians; intermediate: a step short of the end of a line (a looser tolerance).
+using SolveAtInputs =
+    std::function<SolveSummary(const VecX& u, VecX& x, int max_jacobians, bool intermediate)>;
 
 struct ContinuationResult {
   bool converged = false;
-  SolveSummary last;       ///< summary of the last step's solve
-  int steps = 0;           ///< solves attempted (all legs)
-  int iterations = 0;      ///< Newton iterations of all steps
+  SolveSummary last;             ///< summary of the last step's solve
+  int steps = 0;                 ///< solves attempted (all legs)
+  int iterations = 0;            ///< Newton iterations of all steps
   int jacobian_evaluations = 0;  ///< fresh Jacobians of all steps
-  std::string stopped_at;  ///< where it stopped, for the failure message (empty when converged)
+  std::string stopped_at;        ///< where it stopped, for the failure message (empty when converged)
+};
+
+/// Step control along a line: the first step (fraction of the line) and the factor a failed step is cut by.
+struct LineSteps {
+  double first = 0.5;
+  double cut = 0.5;
 };
 
 /// x: converged state at u0 in; on success the converged state at u1 (unchanged otherwise).
 ContinuationResult continue_along_line(const SolveAtInputs& solve_at, const VecX& u0, const VecX& u1,
-                                       int step_jacobians, VecX& x);
+                                       int step_jacobians, VecX& x, const LineSteps& steps = {});
 
 /// Legs from u0 to u1 changing one input each, in the orders (k, k+1, ..., k-1) for k < max_orders;
 /// every order starts again from the converged state at u0. Each leg is first tried as one direct solve
 /// (at most direct_jacobians fresh Jacobians), then along its line. x as above.
 ContinuationResult continue_one_input_at_a_time(const SolveAtInputs& solve_at, const VecX& u0, const VecX& u1,
                                                 int direct_jacobians, int step_jacobians, int max_orders,
-                                                VecX& x);
+                                                VecX& x, const LineSteps& steps = {});
 
 }  // namespace pcr::kinematics
