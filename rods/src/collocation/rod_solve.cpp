@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "pcr/core/error.hpp"
@@ -11,6 +12,7 @@
 #include "pcr/solve/ipopt_solver.hpp"
 #include "pcr/solve/newton_solver.hpp"
 #include "pcr/solve/sparse_lu.hpp"
+#include "shooting_start.hpp"
 
 #include "pcr/splines/basis.hpp"
 #include "pcr/splines/spline_curve.hpp"
@@ -156,20 +158,24 @@ StabilityIndicator stability_of(const CollocationRod& rod, const VecX& x_solutio
 
 // The starting points: sol.variables and the returned x0 (load stepping's start) from `initial` or the
 // straight rod, exact at load factor 0; sol.x (the direct solve's start) from `initial` or the
-// stress-free shape (the straight rod without intrinsic strains).
-VecX set_starting_point(const CollocationRod& rod, const VecX* initial, RodSolution& sol) {
+// stress-free shape (the straight rod without intrinsic strains), or a coarse shooting solution
+// (RodSolveOptions::shooting_start).
+VecX set_starting_point(const CollocationRod& rod, const RodSolveOptions& options, const VecX* initial,
+                        RodSolution& sol) {
   VecX x0;
   {
     Problem probe;
-    sol.variables = rod.add_to_problem(probe, {}, 0.0, false, -1, initial);
+    sol.variables = rod.add_variables(probe, false, -1, initial);
     x0 = probe.initial_values();
   }
   if (initial) {
     sol.x = x0;
   } else {
-    const VecX stress_free = rod.stress_free_configuration();
+    std::optional<VecX> start;
+    if (options.shooting_start) start = collocation::shooting_start(rod);
+    if (!start) start = rod.stress_free_configuration();
     Problem probe;
-    rod.add_to_problem(probe, {}, 1.0, false, -1, &stress_free);
+    rod.add_variables(probe, false, -1, &*start);
     sol.x = probe.initial_values();
   }
   return x0;
@@ -261,7 +267,7 @@ RodSolution solve_rod(const RodModel& model, const RodSolveOptions& options, con
   RodSolution sol;
   sol.rod = std::make_shared<const CollocationRod>(model, options.discretization);
   const CollocationRod& rod = *sol.rod;
-  const VecX x0 = set_starting_point(rod, initial, sol);
+  const VecX x0 = set_starting_point(rod, options, initial, sol);
   sol.summary = solve_at(rod, options, 1.0, sol.x, sol.variables);
   int iterations = sol.summary.iterations;
   const std::string direct_collapse = sol.summary.converged() ? collapse_of(rod, sol.x, sol.variables) : "";
