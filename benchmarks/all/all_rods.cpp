@@ -80,6 +80,9 @@ void collocation_sweep(const RodScene& scene, const ErrorOf& error_of, const All
           o.solver = solver;
           o.tolerance = 1e-10;
           o.max_load_steps = 40;  // successful mixed-form solves took <= 20 steps (bench_rods)
+          // The solve alone, as the shooting rows time it: no stability verdict (rod_stability.hpp; on R2
+          // it costs several times the solve).
+          o.stability_verdict = false;
           RodSolution sol;
           const Timing t = time_repeated([&] { sol = solve_rod(scene.model, o); }, config.repeats());
           const double error =
