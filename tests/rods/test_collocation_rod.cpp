@@ -311,6 +311,9 @@ BOOST_AUTO_TEST_CASE(refinement_carries_the_solution_as_initial_guess) {
   const VecX x = problem.initial_values();
   for (double s = 0.0; s <= 1.0; s += 0.1)
     BOOST_TEST((fine_rod.state_at(x, vars, s).position - coarse.at(s).position).norm() < 1e-13);
+  // Cold: from the stress-free shape (the coarse shooting start is a guess of its own, tested in
+  // shooting_start_reaches_the_same_solution).
+  fine.shooting_start = false;
   const RodSolution warm = solve_rod(m, fine, &guess);
   const RodSolution cold = solve_rod(m, fine);
   BOOST_REQUIRE(warm.summary.converged() && cold.summary.converged());
@@ -318,7 +321,10 @@ BOOST_AUTO_TEST_CASE(refinement_carries_the_solution_as_initial_guess) {
   // p-refinement (degree 3 -> 5): interpolation at the new Greville points; the guess is close.
   const VecX elevated = refine_solution(coarse, {RodFormulation::Mixed, 5, 8});
   const RodSolution warm5 = solve_rod(m, {{RodFormulation::Mixed, 5, 8}}, &elevated);
-  const RodSolution cold5 = solve_rod(m, {{RodFormulation::Mixed, 5, 8}});
+  RodSolveOptions stress_free_start;
+  stress_free_start.shooting_start = false;
+  stress_free_start.discretization = {RodFormulation::Mixed, 5, 8};
+  const RodSolution cold5 = solve_rod(m, stress_free_start);
   BOOST_REQUIRE(warm5.summary.converged() && cold5.summary.converged());
   BOOST_TEST(warm5.summary.iterations < cold5.summary.iterations);
   // Condensed form: the constant force and moment carry over with the control points.
@@ -328,7 +334,8 @@ BOOST_AUTO_TEST_CASE(refinement_carries_the_solution_as_initial_guess) {
   const VecX guess_c = refine_solution(coarse_c, {RodFormulation::Condensed, 3, 12});
   BOOST_TEST((guess_c.tail(6) - coarse_c.x.segment(coarse_c.variables.wrench_offset, 6)).norm() == 0.0);
   const RodSolution warm_c = solve_rod(m, {{RodFormulation::Condensed, 3, 12}}, &guess_c);
-  const RodSolution cold_c = solve_rod(m, {{RodFormulation::Condensed, 3, 12}});
+  stress_free_start.discretization = {RodFormulation::Condensed, 3, 12};
+  const RodSolution cold_c = solve_rod(m, stress_free_start);
   BOOST_REQUIRE(warm_c.summary.converged() && cold_c.summary.converged());
   BOOST_TEST(warm_c.summary.iterations < cold_c.summary.iterations);
 }

@@ -167,6 +167,13 @@ VecX CollocationRod::stress_free_configuration() const {
 
 RodVariables CollocationRod::add_to_problem(Problem& problem, const RodEndOptions& ends, double load_factor,
                                             bool free_length, int group, const VecX* initial) const {
+  const RodVariables vars = add_variables(problem, free_length, group, initial);
+  form_->add_blocks(FormBuilder(*this, problem, vars, ends, load_factor));
+  return vars;
+}
+
+RodVariables CollocationRod::add_variables(Problem& problem, bool free_length, int group,
+                                           const VecX* initial) const {
   const int n = num_control_points(), cp = control_point_size();
   const std::string& name = model_.name;
   VecX init = initial ? *initial : straight_configuration();
@@ -198,8 +205,6 @@ RodVariables CollocationRod::add_to_problem(Problem& problem, const RodEndOption
   }
   vars.control_point_offset = problem.variable(vars.control_points[0]).offset;
   vars.length_offset = problem.variable(vars.length).offset;
-
-  form_->add_blocks(FormBuilder(*this, problem, vars, ends, load_factor));
   return vars;
 }
 

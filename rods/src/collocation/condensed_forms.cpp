@@ -16,6 +16,7 @@
 // rod's Jacobian block below the diagonal; here it stays banded (bandwidth about (p + 1) 10). Rods with at
 // most CollocationRod::kMaxBandedCondensedPoints control points, where the square cost of the sum is still
 // small, keep the sum over all control points (CondensedSummedForm: 7 unknowns per point, no T rows).
+#include "condensed_jacobian.hpp"
 #include "form_builder.hpp"
 #include "pcr/splines/basis.hpp"
 
@@ -143,9 +144,9 @@ class CondensedForm final : public RodForm {
     for (int j = 0; j + 1 < b.num_control_points(); ++j) {
       const double u = b.midpoint(j);
       const PointConstants c = b.constants_at(u);
-      b.add_detected<CondensedZ, 6>(
-          "rod.condensed_field", u, b.basis_at(u, 1), {b.vars().wrench, b.vars().length},
-          [c, c_point](const auto& z, auto* r) { condensed_field(z, c, c_point, r); }, pattern);
+      b.add_detected<CondensedZ, 6>("rod.condensed_field", u, b.basis_at(u, 1),
+                                    {b.vars().wrench, b.vars().length}, CondensedFieldKernel{c, c_point},
+                                    pattern);
     }
     b.add_unit_quaternion_rows(kCondensedPoint);
     add_condensed_end(b, false);

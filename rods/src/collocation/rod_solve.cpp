@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "pcr/core/error.hpp"
@@ -11,6 +12,7 @@
 #include "pcr/solve/ipopt_solver.hpp"
 #include "pcr/solve/newton_solver.hpp"
 #include "pcr/solve/sparse_lu.hpp"
+#include "shooting_start.hpp"
 
 #include "pcr/splines/basis.hpp"
 #include "pcr/splines/spline_curve.hpp"
@@ -154,25 +156,22 @@ StabilityIndicator stability_of(const CollocationRod& rod, const VecX& x_solutio
   return sign0 == sign1 ? StabilityIndicator::SignKept : StabilityIndicator::Unstable;
 }
 
-// The starting points: sol.variables and the returned x0 (load stepping's start) from `initial` or the
-// straight rod, exact at load factor 0; sol.x (the direct solve's start) from `initial` or the
-// stress-free shape (the straight rod without intrinsic strains).
-VecX set_starting_point(const CollocationRod& rod, const VecX* initial, RodSolution& sol) {
-  VecX x0;
-  {
-    Problem probe;
-    sol.variables = rod.add_to_problem(probe, {}, 0.0, false, -1, initial);
-    x0 = probe.initial_values();
-  }
-  if (initial) {
-    sol.x = x0;
-  } else {
-    const VecX stress_free = rod.stress_free_configuration();
-    Problem probe;
-    rod.add_to_problem(probe, {}, 1.0, false, -1, &stress_free);
-    sol.x = probe.initial_values();
-  }
-  return x0;
+// The values of a Problem holding the rod's variables alone, from `configuration` (the straight rod when
+// null, exact at load factor 0).
+VecX problem_values(const CollocationRod& rod, const VecX* configuration) {
+  Problem probe;
+  rod.add_variables(probe, false, -1, configuration);
+  return probe.initial_values();
+}
+
+// The direct solve's start: `initial`, else a coarse shooting solution (RodSolveOptions::shooting_start)
+// or the stress-free shape (the straight rod without intrinsic strains).
+VecX direct_start(const CollocationRod& rod, const RodSolveOptions& options, const VecX* initial) {
+  if (initial) return problem_values(rod, initial);
+  std::optional<VecX> start;
+  if (options.shooting_start) start = collocation::shooting_start(rod);
+  if (!start) start = rod.stress_free_configuration();
+  return problem_values(rod, &*start);
 }
 
 // Where load stepping ended: the last converged state x at load factor lambda, the last solve's summary.
@@ -261,7 +260,7 @@ RodSolution solve_rod(const RodModel& model, const RodSolveOptions& options, con
   RodSolution sol;
   sol.rod = std::make_shared<const CollocationRod>(model, options.discretization);
   const CollocationRod& rod = *sol.rod;
-  const VecX x0 = set_starting_point(rod, initial, sol);
+  sol.x = direct_start(rod, options, initial);
   sol.summary = solve_at(rod, options, 1.0, sol.x, sol.variables);
   int iterations = sol.summary.iterations;
   const std::string direct_collapse = sol.summary.converged() ? collapse_of(rod, sol.x, sol.variables) : "";
@@ -274,7 +273,8 @@ RodSolution solve_rod(const RodModel& model, const RodSolveOptions& options, con
   // result is reported as it is.
   const bool stalled_near_solution = direct_collapse.empty() && sol.summary.residual_max_abs < 1e-6;
   if (!sol.summary.converged() && options.load_stepping && !stalled_near_solution) {
-    const LoadStepping stepping = step_the_loads(rod, options, x0, sol.variables);
+    // From `initial` or the straight rod, exact at load factor 0.
+    const LoadStepping stepping = step_the_loads(rod, options, problem_values(rod, initial), sol.variables);
     iterations += stepping.iterations;
     take_load_stepping_result(rod, stepping, sol);
   }

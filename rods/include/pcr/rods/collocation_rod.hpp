@@ -170,6 +170,10 @@ class CollocationRod {
   /// BorderedBlockLu).
   RodVariables add_to_problem(Problem& problem, const RodEndOptions& ends = {}, double load_factor = 1.0,
                               bool free_length = false, int group = -1, const VecX* initial = nullptr) const;
+  /// The variable blocks of add_to_problem alone (no residual blocks): e.g. to lay out an initial guess
+  /// as a Problem's values (Problem::initial_values) without building the equations.
+  RodVariables add_variables(Problem& problem, bool free_length = false, int group = -1,
+                             const VecX* initial = nullptr) const;
 
   /// Control point values of the straight rod along the frame of `end` (or the base frame if free);
   /// configuration_size() values (a zero wrench in the condensed form).

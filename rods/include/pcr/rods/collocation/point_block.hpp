@@ -6,7 +6,9 @@
 // control points with the basis values cached at construction: z_g = sum_i B_d(u)[i] c_i[component]
 // (d: a u-derivative, the integral from 0, or the selector of one point). The kernel is evaluated with
 // Dual<NL> numbers, which gives dr/dz exactly; the chain rule dz/dc_i = B_d(u)[i] scatters it into one
-// dense Jacobian per control point (and dr/dz directly into the direct blocks, e.g. the length).
+// dense Jacobian per control point (and dr/dz directly into the direct blocks, e.g. the length). A kernel
+// with a member jacobian(z, r, dr) gives dr/dz itself (written out where the Dual numbers cost most,
+// e.g. condensed_jacobian.cpp); Dual numbers then serve only the pattern detection below.
 //
 // Structural sparsity: control point components that no local group reads, and basis functions whose
 // value is zero at the point, give zero columns. The kernel's own zero derivatives dr_row/dz_k come from
@@ -23,6 +25,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -124,17 +127,36 @@ class PointBlock final : public ResidualBlock {
       kernel_(z, residual);
       return;
     }
-    using D = Dual<NL>;
     Eigen::Matrix<double, NL, 1> zv;
     gather(values, zv);
-    Eigen::Matrix<D, NL, 1> z;  // default-constructed duals are zero: set the value and the unit seed
-    for (int k = 0; k < NL; ++k) {
-      z[k].a = zv[k];
-      z[k].v[k] = 1.0;
+    if constexpr (HasWrittenJacobian<Kernel>::value) {
+      Eigen::Matrix<double, NR, NL, Eigen::RowMajor> dr;
+      kernel_.jacobian(zv, residual, dr.data());
+      scatter([&dr](int row, int k) { return dr(row, k); }, jacobians);
+    } else {
+      using D = Dual<NL>;
+      Eigen::Matrix<D, NL, 1> z;  // default-constructed duals are zero: set the value and the unit seed
+      for (int k = 0; k < NL; ++k) {
+        z[k].a = zv[k];
+        z[k].v[k] = 1.0;
+      }
+      std::array<D, NR> r;
+      kernel_(z, r.data());
+      for (int row = 0; row < NR; ++row) residual[row] = r[row].a;
+      scatter([&r](int row, int k) { return r[row].v[k]; }, jacobians);
     }
-    std::array<D, NR> r;
-    kernel_(z, r.data());
-    for (int row = 0; row < NR; ++row) residual[row] = r[row].a;
+  }
+
+ private:
+  // Kernels with a member jacobian(z, r, dr) (dr: NR x NL row-major) give dr/dz themselves.
+  template <typename K, typename = void>
+  struct HasWrittenJacobian : std::false_type {};
+  template <typename K>
+  struct HasWrittenJacobian<K, std::void_t<decltype(&K::jacobian)>> : std::true_type {};
+
+  // The chain rule: dr/dz (dr(row, k)) into the control point and direct blocks' Jacobians.
+  template <typename Derivative>
+  void scatter(const Derivative& dr, double* const* jacobians) const {
     for (int i = 0; i < basis_.count; ++i) {
       double* J = jacobians[i];
       if (J == nullptr) continue;
@@ -143,7 +165,7 @@ class PointBlock final : public ResidualBlock {
         const double b = basis_.B[i][g.derivative];
         if (b == 0.0) continue;
         for (int row = 0; row < NR; ++row)
-          for (int c = 0; c < g.dim; ++c) J[row * cp_size_ + g.component + c] += r[row].v[g.local + c] * b;
+          for (int c = 0; c < g.dim; ++c) J[row * cp_size_ + g.component + c] += dr(row, g.local + c) * b;
       }
     }
     for (size_t j = 0; j < direct_.size(); ++j) {
@@ -151,11 +173,10 @@ class PointBlock final : public ResidualBlock {
       if (J == nullptr) continue;
       const DirectBlock& d = direct_[j];
       for (int row = 0; row < NR; ++row)
-        for (int c = 0; c < d.size; ++c) J[row * d.size + c] = r[row].v[d.local + c];
+        for (int c = 0; c < d.size; ++c) J[row * d.size + c] = dr(row, d.local + c);
     }
   }
 
- private:
   // z from the control points: first the values and derivatives of the components the groups read,
   // sums[d][c] = sum_i B[i][d] c_i[c] for c in read_[d] (fixed-size loops for the usual widths), then
   // the groups' slices.

@@ -1,0 +1,73 @@
+// A cold collocation solve from the stress-free shape needs many Newton iterations where the loaded rod
+// is far from it (10 for R1's full circle, 16 for R3's helix: the quaternions must turn through large
+// angles with full Newton steps). A coarse shooting solve costs a few integrations of 6 unknowns and
+// lands within about its integration error of the equilibrium; the collocation Newton then converges
+// quadratically from there. The collocation result is still the solution of the
+// collocation equations at the solve's tolerance: the start changes the iteration count only.
+#include "shooting_start.hpp"
+
+#include "pcr/core/error.hpp"
+#include "pcr/rods/shooting/rod_shooting.hpp"
+#include "pcr/solve/sparse_lu.hpp"
+
+namespace pcr::collocation {
+namespace {
+
+// Fixed-step RK4 with 16 steps: a few integrations cost a small part of the collocation solve, and the
+// shape (within about 1e-4 L of the equilibrium on R1, R2, R3) starts the collocation Newton in its
+// quadratic range (1-2 iterations there). At most 8 shooting iterations (R1, R2, R3 take 4-7): a model
+// whose shooting needs more (the pre-curved spring: 17) falls back to the stress-free start, which
+// serves it well (5 iterations), having spent only those 8 iterations.
+ShootingOptions coarse_shooting() {
+  ShootingOptions o;
+  o.integrator = IntegratorMethod::RK4;
+  o.rk4_steps = 16;
+  o.tolerance = 1e-6;
+  o.max_iterations = 8;
+  o.load_stepping = false;  // a hard problem: the collocation's own load stepping decides
+  o.store_trajectory = true;
+  return o;
+}
+
+}  // namespace
+
+std::optional<VecX> shooting_start(const CollocationRod& rod) {
+  const RodModel& model = rod.model();
+  if (model.drawing_speed != 0.0) return std::nullopt;  // the unknowns are the effective N, M there
+  const ShootingSolution sol = solve_rod_shooting(model, coarse_shooting());
+  if (!sol.summary.converged()) return std::nullopt;
+  const std::vector<double> tau = rod.knots().greville();
+  std::vector<double> s(tau.size());
+  for (size_t i = 0; i < tau.size(); ++i) s[i] = tau[i] * model.length;
+  const std::vector<ShootingState> states = sol.sample(s);
+  const PointLayout& layout = rod.point_layout();
+  const int n = rod.num_control_points(), cp = rod.control_point_size();
+  MatX values = MatX::Zero(n, cp);
+  Quat q_previous = states[0].q;
+  for (int i = 0; i < n; ++i) {
+    Quat q = states[i].q.normalized();
+    if (q.dot(q_previous) < 0.0) q = -q;  // continuous sign along the rod
+    q_previous = q;
+    values.block<1, 3>(i, layout.p) = states[i].p.transpose();
+    values.block<1, 4>(i, layout.q) = q.transpose();
+    if (layout.n >= 0) values.block<1, 3>(i, layout.n) = states[i].n.transpose();
+    if (layout.m >= 0) values.block<1, 3>(i, layout.m) = states[i].m.transpose();
+  }
+  // Control points interpolating these values at the Greville abscissae (the running integrals T of
+  // the condensed form with loads are set from P by add_to_problem).
+  SparseLu lu;
+  if (!lu.compute(collocation_matrix(rod.knots(), tau, 0))) return std::nullopt;
+  const MatX points = lu.solve(values);
+  VecX x = VecX::Zero(rod.configuration_size());
+  for (int i = 0; i < n; ++i) x.segment(i * cp, cp) = points.row(i).transpose();
+  if (rod.discretization().formulation == RodFormulation::Condensed) {
+    // n(s) = n - f s and m(s) = h - (p(s) - c) x n(s) - ... (collocation_rod.hpp) at s = 0.
+    const ShootingState& base = states[0];
+    x.segment<3>(n * cp) = base.n;
+    x.segment<3>(n * cp + 3) = base.m + (base.p - rod.moment_point()).cross(base.n);
+  }
+  if (!x.allFinite()) return std::nullopt;
+  return x;
+}
+
+}  // namespace pcr::collocation
