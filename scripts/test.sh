@@ -29,6 +29,7 @@ sanitizer_skip+=";test_stability_verdict;test_shooting;test_six_rus;test_splines
 sanitizer_skip+=";test_problem;test_newton;test_ik_objectives;test_shooting_robots;test_rod_validation"
 sanitizer_skip+=";test_ipopt;test_math;test_path_predictor;test_stability_monitor;test_sparse_lu"
 sanitizer_skip+=";test_reference_curve;test_rod_stability;test_input_continuation;test_joint_ends"
+sanitizer_skip+=";test_paths_through_folds"  # the fold code runs sanitized through test_cli (pcr path --folds)
 bash "$root/scripts/build.sh" "$root/build/sanitize" -DPCR_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-Og -g1" -DPCR_BUILD_BENCHMARKS=OFF -DPCR_BUILD_PYTHON=OFF \
   -DPCR_SKIP_TESTS="$sanitizer_skip"

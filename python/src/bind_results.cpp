@@ -78,7 +78,8 @@ void bind_contacts(py::module_& m) {
                               "An arc-length interval of a rod in contact (world frame).")
       .def_readonly("s_begin", &ContactInterval::s_begin, "[m]")
       .def_readonly("s_end", &ContactInterval::s_end, "[m]")
-      .def_readonly("force", &ContactInterval::force, "resultant contact force on the rod [N]");
+      .def_readonly("force", &ContactInterval::force, "resultant contact force on the rod [N]")
+      .def_readonly("centroid", &ContactInterval::centroid, "arc length of the force's centroid [m]");
   py::class_<ObstacleContact>(m, "ObstacleContact",
                               "The contact of one rod with one obstacle (docs/contact.md), world frame.")
       .def_readonly("rod", &ObstacleContact::rod)
@@ -88,6 +89,10 @@ void bind_contacts(py::module_& m) {
       .def_readonly("min_gap", &ObstacleContact::min_gap,
                     "smallest gap along the centerline [m]; negative: penetration between collocation points")
       .def_readonly("min_gap_arc_length", &ObstacleContact::min_gap_arc_length, "[m]")
+      .def_readonly("penetration_tolerance", &ObstacleContact::penetration_tolerance,
+                    "penetration accepted without a warning [m]")
+      .def_readonly("concentrated", &ObstacleContact::concentrated,
+                    "a point force (sharp obstacle or point contact)")
       .def_readonly("arc_lengths", &ObstacleContact::arc_lengths, "contact cell midpoints s_j [m]")
       .def_readonly("densities", &ObstacleContact::densities, "contact force density per cell [N/m]")
       .def_readonly("gaps", &ObstacleContact::gaps, "gap at each cell midpoint [m]")
@@ -95,6 +100,17 @@ void bind_contacts(py::module_& m) {
         return "<pcr.ObstacleContact " + c.rod + " on " + c.obstacle + ", " +
                std::to_string(c.intervals.size()) + " intervals>";
       });
+}
+
+void bind_contact_gaps(py::module_& m) {
+  py::class_<RodContactGap>(m, "RodContactGap", "The smallest gap of a contact rod along its centerline.")
+      .def_readonly("rod", &RodContactGap::rod)
+      .def_readonly("obstacle", &RodContactGap::obstacle)
+      .def_readonly("min_gap", &RodContactGap::min_gap, "[m]; negative: penetration")
+      .def_readonly("arc_length", &RodContactGap::arc_length, "[m]")
+      .def_readonly("tolerance", &RodContactGap::tolerance, "[m]")
+      .def_property_readonly("penetrates", &RodContactGap::penetrates,
+                             "deeper than the tolerance (a warning)");
 }
 
 void bind_robot_solution(py::module_& m) {
@@ -106,6 +122,7 @@ void bind_robot_solution(py::module_& m) {
       .def_readonly("rods", &RobotSolution::rods)
       .def_readonly("passive_joints", &RobotSolution::passive_joints, "model passive-joint order")
       .def_readonly("contacts", &RobotSolution::contacts, "per rod and obstacle it may touch (empty without)")
+      .def_readonly("contact_gaps", &RobotSolution::contact_gaps, "per contact rod: its smallest gap")
       .def_readonly("jacobian_sign", &RobotSolution::jacobian_sign)
       .def_readonly("jacobian_sign_changed", &RobotSolution::jacobian_sign_changed)
       .def_readonly("stability", &RobotSolution::stability_verdict,
@@ -123,6 +140,7 @@ void bind_results(py::module_& m) {
   bind_rod_result(m);
   bind_stability(m);
   bind_contacts(m);
+  bind_contact_gaps(m);
   bind_robot_solution(m);
 }
 
