@@ -45,6 +45,7 @@ RodModel loaded_column(double lambda, double EI2, double lateral_y = 0.0, double
 RodSolveOptions options(RodFormulation form = RodFormulation::Mixed) {
   RodSolveOptions o;
   o.discretization = {form, 5, 8};
+  o.stability_verdict = true;
   return o;
 }
 

@@ -33,7 +33,9 @@ struct RodSolveOptions {
   bool check_stability = false;
   /// Stability verdict of a converged result (RodSolution::stability_verdict, rod_stability.hpp): the
   /// number of unstable modes of the equilibrium and its margin, from the second variation of the energy.
-  bool stability_verdict = true;
+  /// Off by default: it costs 15-250 % of a cold solve (docs/benchmarks.md, "Stability verdict of single
+  /// rods"); NotChecked without it.
+  bool stability_verdict = false;
 };
 
 /// Stability indicator (docs/design.md §4): the sign of det J (the Jacobian of the collocation system with
