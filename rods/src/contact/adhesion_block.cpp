@@ -139,13 +139,15 @@ class AdhesiveContactBlock final : public ResidualBlock {
 
 }  // namespace
 
-std::shared_ptr<ResidualBlock> make_adhesive_contact_block(std::string name, std::vector<VariableId> variables,
+std::shared_ptr<ResidualBlock> make_adhesive_contact_block(std::string name,
+                                                           std::vector<VariableId> variables,
                                                            const KnotVector& knots, int point_size,
-                                                           int p_offset, const Obstacle& roller, double radius,
-                                                           ComplementarityFunction function,
+                                                           int p_offset, const Obstacle& roller,
+                                                           double radius, ComplementarityFunction function,
                                                            double length_scale, double force_scale) {
   return std::make_shared<AdhesiveContactBlock>(std::move(name), std::move(variables), knots, point_size,
-                                                p_offset, roller, radius, function, length_scale, force_scale);
+                                                p_offset, roller, radius, function, length_scale,
+                                                force_scale);
 }
 
 }  // namespace pcr::contact
