@@ -129,7 +129,7 @@ ObstacleElement read_obstacle(const TiXmlElement& e, const std::string& source, 
   return out;
 }
 
-// The adhesive rollers among the rod's obstacles: their stuck section (plus radius x angle) lies on the
+// The adhesive rollers among the rod's obstacles: their stuck section (minus radius x angle) lies on the
 // rod, and no other rod names them (the stuck section belongs to one rod).
 void check_adhesive_rollers(XmlElementReader& reader, const std::vector<ObstacleElement>& obstacles,
                             const RodElement& rod) {
@@ -137,13 +137,17 @@ void check_adhesive_rollers(XmlElementReader& reader, const std::vector<Obstacle
     const Obstacle& o = obstacles[k].obstacle;
     if (!adhesive(o)) continue;
     const double sigma = o.adhesive_section(), L = rod.length_default;
+    if (o.stuck_section > L)
+      reader.fail("obstacles", o.name,
+                  "is an adhesive roller whose stuck section (stuck_at = " + std::to_string(o.stuck_section) +
+                      " m) is not on the rod [0, " + std::to_string(L) + "] m");
     if (sigma > L)
       reader.fail("obstacles", o.name,
-                  "is an adhesive roller whose section at the contact (stuck_at + radius x angle = " +
+                  "is an adhesive roller whose section at the contact (stuck_at - radius x angle = " +
                       std::to_string(sigma) + " m) is not on the rod [0, " + std::to_string(L) + "] m");
     if (sigma < 0.0)
       reader.fail("obstacles", o.name,
-                  "is an adhesive roller whose section at the contact (stuck_at + radius x angle = " +
+                  "is an adhesive roller whose section at the contact (stuck_at - radius x angle = " +
                       std::to_string(sigma) + " m) is before the rod's start");
   }
 }

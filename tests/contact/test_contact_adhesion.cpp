@@ -47,13 +47,14 @@ Obstacle adhesive_roller(const Vec3& centre, double radius, double stuck, double
 // resting at x = a = 0.4 m on a roller (axis y) under it. With the overhang L - a = a / sqrt 6 the slopes
 // of the span [0, a] at the prop under its own load (q a^3 / (48 EI), clamped-pinned) and under the
 // overhang's moment q (L - a)^2 / 2 (its a / (4 EI) times it) cancel: the rod is horizontal at the roller.
-// That matters for adhesion: a slope psi at the contact moves the contact point along the rod by
-// (R + r) psi, which a held segment turns into the axial force EA (R + r) psi / a (EA / EI = 4 / r^2 makes
-// this the dominant effect of any slope). The roller and the contact radius are therefore small
-// (R = r_c = 1e-7 m: an adhesive knife edge), so that the residual slope, at most the single slopes
-// psi_q = q a^3 / (48 EI) = 2.1e-6, gives at most EA 2e-7 psi_q / a = 6.6e-7 N.
+// That matters for adhesion: a slope psi at the contact moves the centerline point over the contact by
+// (R + r) sin psi along the rod, and the roller, rolled over, puts the section a + R psi there, so that a
+// held span takes the axial force EA r psi / a (+ O(EA (R + r) psi^3 / a)); EA / EI = 4 / r^2 makes this
+// a strong effect of any slope. The contact radius is therefore small (r_c = 1e-5 m, the roller's 2 mm),
+// so that the residual slope, at most the single slope psi_q = q a^3 / (48 EI) = 2.1e-7, gives at most
+// EA r psi_q / a = 3.3e-6 N.
 struct PropCase {
-  double a = 0.4, L = 0.4 * (1.0 + 1.0 / std::sqrt(6.0)), g = 0.001, P = 1e-3, R = 1e-5, r = 1e-5;
+  double a = 0.4, L, g = 0.001, P = 1e-3, R, r = 1e-5;
   double q = test::kDensity * kArea * 0.001;
   int elements = 32;
   CollocationRod rod;
@@ -61,9 +62,11 @@ struct PropCase {
   std::vector<ObstacleContact> contact;
   // law: the roller with adhesion (stuck at a, turned by theta), or its side as a frictionless cylinder
   // with point contact (the slip law's concentrated form; a slip roller has only the distributed one).
-  PropCase(bool adhesion, double theta, double gravity_sign = 1.0)
-      : rod(test::steel_cantilever(0.4 * (1.0 + 1.0 / std::sqrt(6.0)), Vec3(0, 0, -0.001 * gravity_sign),
-                                   Vec3(1e-3, 0, 0)),
+  PropCase(bool adhesion, double theta, double gravity_sign = 1.0, double roller_radius = 2e-3,
+           double overhang = 0.4 / std::sqrt(6.0))
+      : L(0.4 + overhang),
+        R(roller_radius),
+        rod(test::steel_cantilever(0.4 + overhang, Vec3(0, 0, -0.001 * gravity_sign), Vec3(1e-3, 0, 0)),
             test::contact_discretization(4, 32)) {
     Obstacle o = adhesive_roller(Vec3(a, 0, -r - R), R, a, theta);
     if (!adhesion) {
@@ -134,8 +137,12 @@ namespace {
 double solver_tolerance(const PropCase& p) {
   return 1e-10 * kEI / (p.L * p.L);
 }
+// psi_q = q a^3 / (48 EI): the slope of the span [0, a] at the prop under its own weight.
+double slope_bound(const PropCase& p) {
+  return p.q * std::pow(p.a, 3) / (48 * kEI);
+}
 double held_span_tolerance(const PropCase& p, double jump) {
-  return p.h() / p.a * std::abs(jump) + kEA * (p.R + p.r) * p.q * std::pow(p.a, 3) / (48 * kEI) / p.a;
+  return p.h() / p.a * std::abs(jump) + kEA * p.r * slope_bound(p) / p.a;
 }
 double reaction_tolerance(const PropCase& p) {
   return p.prop_reaction() * (std::pow(p.h() / p.a, 2) + p.P * p.L * p.L / kEI);
@@ -171,28 +178,51 @@ BOOST_AUTO_TEST_CASE(adhesive_roller_at_rest_takes_the_axial_load) {
   // The rod's force balance across the contact: n(a-) - n(a+) = tangential force (exact up to the solver).
   BOOST_TEST(std::abs(c.tangential_force - (N - p.P)) <= solver_tolerance(p));
   BOOST_TEST(std::abs(c.tangential_force + p.P) <= held_span_tolerance(p, p.P) + solver_tolerance(p));
-  // The contact section is the stuck one (prescribed: to round-off) and the normal force the prop's.
-  BOOST_TEST(std::abs(c.intervals[0].centroid - p.a) <= 1e-12);
+  // The contact section is the stuck one, rolled by R psi (|psi| <= psi_q), the normal force the prop's.
+  BOOST_TEST(std::abs(c.intervals[0].centroid - p.a) <= 1e-12 + slope_bound(p) * p.R);
   BOOST_TEST(std::abs(c.force.z() - p.prop_reaction()) <= reaction_tolerance(p));
 }
 
 BOOST_AUTO_TEST_CASE(turning_an_adhesive_roller_stretches_the_held_span) {
-  // Rolled by theta < 0 (toward the rod's start) the section a + R theta comes to the contact, at x = a:
-  // the span of reference length a + R theta spans a, strain a / (a + R theta) - 1, axial force
-  // N = EA (a / (a + R theta) - 1) (linear elastic in the strain), ~ EA R |theta| / a = 0.0157 N here.
-  const double theta = -1e-3;
+  // Turned by theta > 0 about its axis y, the roller's top moves toward +x, the rod's tip: the section
+  // a - R theta comes to the contact, at x = a: the span of reference length a - R theta spans a, strain
+  // a / (a - R theta) - 1, axial force N = EA (a / (a - R theta) - 1) (linear elastic in the strain),
+  // ~ EA R theta / a = 0.0157 N here.
+  const double theta = 5e-6;
   const PropCase p(true, theta);
   BOOST_TEST_REQUIRE(p.solve->summary.converged(), p.solve->summary.message);
   const ObstacleContact& c = p.contact[0];
-  const double expected = kEA * (p.a / (p.a + p.R * theta) - 1.0), N = p.state(p.a / 2).force.x();
+  const double expected = kEA * (p.a / (p.a - p.R * theta) - 1.0), N = p.state(p.a / 2).force.x();
   BOOST_TEST_MESSAGE("turned: N(a/2) = " << N << " N, reference " << expected);
   BOOST_TEST(std::abs(N - expected) <= held_span_tolerance(p, expected - p.P));
   BOOST_TEST(std::abs(c.tangential_force - (N - p.P)) <= solver_tolerance(p));
   BOOST_TEST_REQUIRE(c.intervals.size() == 1u);
-  BOOST_TEST(std::abs(c.intervals[0].centroid - (p.a + p.R * theta)) <= 1e-12);
+  // The section at the contact: a - R theta, rolled by R psi (|psi| <= psi_q: R psi_q = 4e-10 m).
+  BOOST_TEST(std::abs(c.intervals[0].centroid - (p.a - p.R * theta)) <= 1e-12 + slope_bound(p) * p.R);
   // The held span's tension (N a^2 / EI = 1.6e-2) changes its bending: the prop reaction within that.
   BOOST_TEST(std::abs(c.force.z() - p.prop_reaction()) <=
              reaction_tolerance(p) + p.prop_reaction() * N * p.a * p.a / kEI);
+}
+
+BOOST_AUTO_TEST_CASE(a_rod_rolls_over_an_adhesive_roller_at_rest) {
+  // A short overhang (0.05 m): the slopes no longer cancel, the rod rises toward the prop with the
+  // Euler-Bernoulli slope psi = psi_q (1 - 6 l^2 / a^2) (clamped-pinned span under q minus the overhang's
+  // moment q l^2 / 2 times a / (4 EI); shear strain V / kGA < 1e-9 of it), so that the contact direction
+  // turns by -psi about y and the roller at rest lets the rod roll back: the section a - R psi is at the
+  // contact. The span then takes only EA r psi / a (PropCase; without the rolling, EA (R + r) psi / a =
+  // 6e-4 N, 60 % of P).
+  const double l = 0.05;
+  const PropCase p(true, 0.0, 1.0, 2e-3, l);
+  BOOST_TEST_REQUIRE(p.solve->summary.converged(), p.solve->summary.message);
+  const ObstacleContact& c = p.contact[0];
+  BOOST_TEST_REQUIRE(c.intervals.size() == 1u);
+  const double psi = slope_bound(p) * (1.0 - 6.0 * l * l / (p.a * p.a)), N = p.state(p.a / 2).force.x();
+  BOOST_TEST_MESSAGE("rolled: section " << c.intervals[0].centroid - p.a << " m from a (reference "
+                                        << -p.R * psi << "), N(a/2) = " << N << " N");
+  // The slope is resolved to (h / a) of the single slopes (the concentrated force spread over one cell).
+  BOOST_TEST(std::abs(c.intervals[0].centroid - (p.a - p.R * psi)) <= p.R * slope_bound(p) * p.h() / p.a);
+  BOOST_TEST(std::abs(N) <= held_span_tolerance(p, p.P));
+  BOOST_TEST(std::abs(c.tangential_force - (N - p.P)) <= solver_tolerance(p));
 }
 
 BOOST_AUTO_TEST_CASE(an_open_adhesive_contact_carries_no_force) {
@@ -254,7 +284,8 @@ BOOST_AUTO_TEST_CASE(adhesive_roller_in_the_model_format) {
   const ObstacleContact& c = s.contacts[0];
   BOOST_TEST(c.adhesive);
   BOOST_TEST_REQUIRE(c.intervals.size() == 1u);
-  BOOST_TEST(std::abs(c.intervals[0].centroid - 0.2) <= 1e-12);
+  // Rolled by R psi from the stuck section, psi below the tip load's slope scale P L^2 / EI = 6e-4.
+  BOOST_TEST(std::abs(c.intervals[0].centroid - 0.2) <= 0.01 * 6e-4);
   BOOST_TEST(std::abs(c.tangential_force) > 1e-3);
   BOOST_TEST(std::isfinite(c.tangential_force));
   std::ostringstream json, table;
@@ -287,7 +318,7 @@ BOOST_AUTO_TEST_CASE(bad_adhesion_input_names_file_line_element_and_value) {
       {roller + R"(stuck_at="0.2"/>)", "", "attribute 'stuck_at' = \"0.2\" is given without law"},
       {roller + R"(law="slip" angle="1"/>)", "", "attribute 'law' = \"slip\" takes no stuck_at or angle"},
       {roller + R"(law="adhesion" stuck_at="-0.1"/>)", "", "attribute 'stuck_at' = \"-0.1\""},
-      {roller + R"(law="adhesion" stuck_at="0.2" angle="20"/>)", "",
+      {roller + R"(law="adhesion" stuck_at="0.2" angle="-20"/>)", "",
        "attribute 'obstacles' = \"roller\" is an adhesive roller whose section at the contact"},
       {roller + R"(law="adhesion" stuck_at="0.2"/>)", other,
        "attribute 'obstacles' = \"roller\" is an adhesive roller already named by pcr_rod 'beam'"},

@@ -233,11 +233,14 @@ void add_sharp_obstacle(Problem& problem, const CollocationRod& rod, const RodVa
   initial[0] = best_u;
   const std::string where = rod.model().name + "/" + obstacle.name;
   const double L = x0[vars.length_offset], sigma = obstacle.adhesive_section();
+  Vec3 reference_normal = Vec3::UnitZ();  // nu_0: at the stuck section of the initial guess
   if (adhesive(obstacle)) {
-    require(sigma >= 0.0 && sigma <= L, "rod '", rod.model().name, "': the section stuck to roller '",
-            obstacle.name, "' (stuck section + radius x angle = ", sigma, " m) is not on the rod [0, ", L,
-            "] m");
+    require(obstacle.stuck_section <= L && sigma >= 0.0 && sigma <= L, "rod '", rod.model().name,
+            "': the section stuck to roller '", obstacle.name, "' (stuck section ", obstacle.stuck_section,
+            " m, minus radius x angle: ", sigma, " m) is not on the rod [0, ", L, "] m");
     initial[0] = sigma / L;
+    const Vec3 p0 = centerline_at(problem, rod, vars, x0, obstacle.stuck_section / L);
+    reference_normal = obstacle_gap(obstacle, p0, options.radius).normal;
   }
   const VariableId id = problem.add_variable_block(where + ".sharp_contact", initial);
   const int group = problem.variable(vars.control_points[0]).group;
@@ -260,7 +263,7 @@ void add_sharp_obstacle(Problem& problem, const CollocationRod& rod, const RodVa
   v.push_back(vars.length);
   out.sharp_blocks.push_back(problem.add_residual_block(contact::make_adhesive_contact_block(
       where, std::move(v), rod.knots(), rod.control_point_size(), rod.point_layout().p, obstacle,
-      options.radius, options.function, rod.length_scale(), rod.force_scale())));
+      reference_normal, options.radius, options.function, rod.length_scale(), rod.force_scale())));
 }
 
 }  // namespace

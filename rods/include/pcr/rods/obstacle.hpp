@@ -61,15 +61,14 @@ struct Obstacle {
   bool point_contact = false;
   RollerLaw law = RollerLaw::Slip;  ///< rollers only
   /// Adhesion: the arc length from the rod's start [m] of the material section that is at the roller's
-  /// contact point when the roller's angle is 0 (the history of the motion sets it: an input, not found
-  /// by the solver).
+  /// contact in the reference state (the initial guess: the contact direction nu_0 there, the roller's
+  /// angle 0). The history of the motion sets it: an input of the state, not found by the solver.
   double stuck_section = 0.0;
-  /// Adhesion: the angle [rad] the roller has rolled along the rod, toward the rod's tip for > 0 (its
-  /// surface at the contact then moves toward the rod's start), since the stuck section was at contact.
+  /// Adhesion: the roller's rotation [rad] about its axis (right-handed) since the reference state.
   double angle = 0.0;
-  /// Adhesion: the section at the contact, sigma_c = stuck_section + radius * angle [m] (no-slip
-  /// kinematics with the roller's surface arc R theta rolled over an unstretched fibre of the rod).
-  double adhesive_section() const { return stuck_section + radius * angle; }
+  /// Adhesion: the section at the contact while the contact direction is the reference one,
+  /// sigma_0 - R theta t . e with t . e = 1 (no-slip kinematics: rod_contact.hpp) [m].
+  double adhesive_section() const { return stuck_section - radius * angle; }
 
   /// Throws InputError naming the obstacle and the value: non-finite numbers, a non-unit direction
   /// (|1 - |a|| > 1e-9), a non-positive radius, a capsule of zero length, point_contact on a half-space

@@ -30,13 +30,16 @@
 // midpoints would miss a sharp obstacle whenever the midpoints are more than 2 r apart.
 //
 // A roller with the adhesion law (no slip; Obstacle::law) touches the rod at one section too, but the
-// section is prescribed by the no-slip kinematics, u_c L = sigma_c = sigma_0 + R theta (the stuck section
-// and the angle the roller has rolled: Obstacle::adhesive_section), and the force has a tangential part
-// along the rod's unit tangent t: F = (lambda nu + mu t) L with one more unknown mu. The nearest-section
-// row becomes mu's equation while the contact is closed (the stuck section must be where the rod touches
-// the roller), and mu = 0 while it is open (adhesion_block.cpp). Across the rod (along the roller's axis
-// for a rod normal to it) the contact is frictionless. The force acts through the centerline: the couple
-// -r nu x mu t L of the tangential force about it (it acts on the rod's surface) is neglected.
+// section is prescribed by the no-slip kinematics: the material arcs that pass the contact on the rod and
+// on the roller are equal, u_c L = sigma_c = sigma_0 + R (psi - theta) (t . e), with the stuck section
+// sigma_0 and the roller's angle theta (Obstacle), the rotation psi of the contact direction about the
+// axis since the reference state and the rolling direction e = a x nu (t . e = +-1 for a rod normal to
+// the axis); and the force has a tangential part along the rod's unit tangent t: F = (lambda nu + mu t) L
+// with one more unknown mu. The nearest-section row becomes mu's equation while the contact is closed
+// (the section u_c must be where the rod touches the roller), and mu = 0 while it is open
+// (adhesion_block.cpp). Across the rod (along the roller's axis for a rod normal to it) the contact is
+// frictionless. The force acts through the centerline: the couple r nu x mu t L of the tangential force
+// about it (it acts on the rod's surface) is neglected.
 #include <string>
 #include <vector>
 
