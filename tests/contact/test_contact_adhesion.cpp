@@ -335,3 +335,22 @@ BOOST_AUTO_TEST_CASE(bad_adhesion_input_names_file_line_element_and_value) {
                "expected '" << c.expected << "' in: " << message);
   }
 }
+
+BOOST_AUTO_TEST_CASE(adhesion_on_a_drawn_rod_is_rejected) {
+  // The no-slip law of a drawn rod prescribes its axial strain at the contact (docs/contact.md), not a
+  // material section: not implemented, rejected with the rod, the roller and the speed.
+  RodModel m = test::steel_cantilever(0.3, Vec3::Zero(), Vec3(0, 0, -0.01));
+  m.drawing_speed = 1.0;
+  const CollocationRod rod(m, test::contact_discretization(4, 8));
+  Problem problem;
+  const RodVariables vars = rod.add_to_problem(problem);
+  RodContactOptions options{{adhesive_roller(Vec3(0.2, 0, -0.021), 0.02, 0.2, 0.0)}, test::kRadius};
+  std::string message;
+  try {
+    add_rod_contact(problem, rod, vars, options);
+  } catch (const InputError& e) {
+    message = e.what();
+  }
+  BOOST_TEST(message.find("rod 'beam': adhesive roller 'roller' on a drawn rod") != std::string::npos,
+             message);
+}

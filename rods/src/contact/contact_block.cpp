@@ -235,6 +235,11 @@ void add_sharp_obstacle(Problem& problem, const CollocationRod& rod, const RodVa
   const double L = x0[vars.length_offset], sigma = obstacle.adhesive_section();
   Vec3 reference_normal = Vec3::UnitZ();  // nu_0: at the stuck section of the initial guess
   if (adhesive(obstacle)) {
+    require(
+        rod.model().drawing_speed == 0.0, "rod '", rod.model().name, "': adhesive roller '", obstacle.name,
+        "' on a drawn rod (drawing_speed ", rod.model().drawing_speed,
+        " m/s): not supported (the no-slip law of a drawn rod prescribes its axial strain at the contact; "
+        "docs/contact.md, \"Rollers\")");
     require(obstacle.stuck_section <= L && sigma >= 0.0 && sigma <= L, "rod '", rod.model().name,
             "': the section stuck to roller '", obstacle.name, "' (stuck section ", obstacle.stuck_section,
             " m, minus radius x angle: ", sigma, " m) is not on the rod [0, ", L, "] m");
