@@ -354,3 +354,23 @@ BOOST_AUTO_TEST_CASE(adhesion_on_a_drawn_rod_is_rejected) {
   BOOST_TEST(message.find("rod 'beam': adhesive roller 'roller' on a drawn rod") != std::string::npos,
              message);
 }
+
+BOOST_AUTO_TEST_CASE(shipped_adhesive_roller_model) {
+  // models/adhesive_roller.urdf: span a = 0.2 m, overhang l = 0.1 m with the tip force (P, 0, -W) =
+  // (1e-3, 0, -0.02) N, roller R = 10 mm turned by theta = 2e-5 rad, contact radius r = 1 mm. Beam theory:
+  // the overhang's moment W l at the prop tilts the span there by psi = W l a / (4 EI) (propped
+  // cantilever under an end moment), the roller rolls R psi, the centerline over it moves (R + r) psi,
+  // so the span is stretched by R theta + r psi: N = EA (R theta + r psi) / a and the roller's tangential
+  // force is N - P. Tolerance: the held-span bound h |dN| / a of PropCase (h = 12.5 mm).
+  auto model = std::make_shared<const RobotModel>(
+      load_robot_model(std::string(PCR_MODEL_DIR) + "/adhesive_roller.urdf"));
+  ForwardKinematics fk(model);
+  const RobotSolution s = fk.solve(model->default_input_values());
+  BOOST_TEST_REQUIRE(s.summary.converged(), s.summary.message);
+  BOOST_TEST_REQUIRE(s.contacts.size() == 1u);
+  const double a = 0.2, l = 0.1, P = 1e-3, W = 0.02, R = 0.01, theta = 2e-5, r = 1e-3, h = 0.3 / 24;
+  const double psi = W * l * a / (4 * kEI), N = kEA * (R * theta + r * psi) / a;
+  BOOST_TEST_MESSAGE("shipped model: tangential force " << s.contacts[0].tangential_force << " N, reference "
+                                                        << N - P);
+  BOOST_TEST(std::abs(s.contacts[0].tangential_force - (N - P)) <= h / a * std::abs(N - P));
+}
