@@ -115,8 +115,9 @@ BOOST_AUTO_TEST_CASE(adhesive_contact_jacobians_match_finite_differences) {
       const int o = contact.sharp_offsets[0];
       x[o] = 0.6533;  // u_c
       x[o + 1] = closed ? 2.0 : 0.0;
-      if (!closed)
-        x[vars.control_point_offset + 3 * rod.control_point_size() + rod.point_layout().p + 2] += 0.01;
+      if (!closed)  // the whole rod 1 cm above the roller: gap ~ 0.01 m > 0 = lambda, the open branch
+        for (int i = 0; i < rod.num_control_points(); ++i)
+          x[vars.control_point_offset + i * rod.control_point_size() + rod.point_layout().p + 2] += 0.01;
       for (int k = 2; k < 5; ++k) x[o + k] = unit(rng);
       x[contact.tangential_offsets[0]] = 0.3 * unit(rng);
       const JacobianCheckResult r = check_problem_jacobian(problem, x);
