@@ -35,6 +35,7 @@ sanitizer_skip+=";test_ipopt;test_math;test_path_predictor;test_stability_monito
 sanitizer_skip+=";test_reference_curve;test_rod_stability;test_input_continuation;test_joint_ends"
 sanitizer_skip+=";test_paths_through_folds"  # the fold code runs sanitized through test_cli (pcr path --folds)
 sanitizer_skip+=";test_contact_edges"  # edges, points, rollers: Release only (test_contact runs the contact rows)
+sanitizer_skip+=";test_contact_adhesion"  # adhesive rollers: Release only (as test_contact_edges)
 bash "$root/scripts/build.sh" "$root/build/sanitize" -DPCR_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-Og -g1" -DPCR_BUILD_BENCHMARKS=OFF -DPCR_BUILD_PYTHON=OFF \
   -DPCR_SKIP_TESTS="$sanitizer_skip"

@@ -92,7 +92,10 @@ void bind_contacts(py::module_& m) {
       .def_readonly("penetration_tolerance", &ObstacleContact::penetration_tolerance,
                     "penetration accepted without a warning [m]")
       .def_readonly("concentrated", &ObstacleContact::concentrated,
-                    "a point force (sharp obstacle or point contact)")
+                    "a point force (sharp obstacle, point contact or adhesive roller)")
+      .def_readonly("adhesive", &ObstacleContact::adhesive, "a roller with the adhesion (no-slip) law")
+      .def_readonly("tangential_force", &ObstacleContact::tangential_force,
+                    "adhesive rollers: the force's part along the rod's tangent at the contact [N]")
       .def_readonly("arc_lengths", &ObstacleContact::arc_lengths, "contact cell midpoints s_j [m]")
       .def_readonly("densities", &ObstacleContact::densities, "contact force density per cell [N/m]")
       .def_readonly("gaps", &ObstacleContact::gaps, "gap at each cell midpoint [m]")

@@ -47,6 +47,32 @@ void read_contact_kind(XmlElementReader& element, Obstacle& o) {
   }
 }
 
+// law="slip" (default) | "adhesion" on a roller; adhesion needs stuck_at (the arc length of the rod's
+// section at the contact at angle 0, >= 0) and takes angle (rad, default 0) (docs/contact.md, "Rollers").
+void read_roller_law(XmlElementReader& element, Obstacle& o) {
+  if (!element.has("law")) {
+    if (element.has("stuck_at") || element.has("angle"))
+      element.fail(element.has("stuck_at") ? "stuck_at" : "angle",
+                   element.text(element.has("stuck_at") ? "stuck_at" : "angle"),
+                   "is given without law=\"adhesion\"");
+    return;
+  }
+  const std::string law = element.text("law");
+  if (o.shape != ObstacleShape::Roller)
+    element.fail("law", law, "is given on an obstacle that is not a roller");
+  if (law != "slip" && law != "adhesion") element.fail("law", law, "is not a roller law (slip, adhesion)");
+  if (law == "slip") {
+    if (element.has("stuck_at") || element.has("angle"))
+      element.fail("law", law, "takes no stuck_at or angle (they belong to law=\"adhesion\")");
+    return;
+  }
+  o.law = RollerLaw::Adhesion;
+  if (!element.has("stuck_at"))
+    element.fail("law", law, "needs stuck_at (the arc length of the rod's section at the contact)");
+  o.stuck_section = element.non_negative("stuck_at");
+  o.angle = element.number_or("angle", 0.0);
+}
+
 // <pcr_obstacle name type link xyz normal | radius | end radius | axis radius>.
 ObstacleElement read_obstacle(const TiXmlElement& e, const std::string& source, const UrdfTree& tree) {
   XmlElementReader reader(e, source, "pcr_obstacle");
@@ -98,13 +124,38 @@ ObstacleElement read_obstacle(const TiXmlElement& e, const std::string& source, 
       break;
   }
   read_contact_kind(element, o);
+  read_roller_law(element, o);
   element.finish();
   return out;
 }
 
+// The adhesive rollers among the rod's obstacles: their stuck section (minus radius x angle) lies on the
+// rod, and no other rod names them (the stuck section belongs to one rod).
+void check_adhesive_rollers(XmlElementReader& reader, const std::vector<ObstacleElement>& obstacles,
+                            const RodElement& rod) {
+  for (int k : rod.obstacles) {
+    const Obstacle& o = obstacles[k].obstacle;
+    if (!adhesive(o)) continue;
+    const double sigma = o.adhesive_section(), L = rod.length_default;
+    if (o.stuck_section > L)
+      reader.fail("obstacles", o.name,
+                  "is an adhesive roller whose stuck section (stuck_at = " + std::to_string(o.stuck_section) +
+                      " m) is not on the rod [0, " + std::to_string(L) + "] m");
+    if (sigma > L)
+      reader.fail("obstacles", o.name,
+                  "is an adhesive roller whose section at the contact (stuck_at - radius x angle = " +
+                      std::to_string(sigma) + " m) is not on the rod [0, " + std::to_string(L) + "] m");
+    if (sigma < 0.0)
+      reader.fail("obstacles", o.name,
+                  "is an adhesive roller whose section at the contact (stuck_at - radius x angle = " +
+                      std::to_string(sigma) + " m) is before the rod's start");
+  }
+}
+
 // <contact obstacles="a b" radius="r"> of one pcr_rod.
 void read_rod_contact(const TiXmlElement& c, const std::string& source, const std::string& rod_name,
-                      const std::map<std::string, int>& obstacle_index, RodElement& rod) {
+                      const std::map<std::string, int>& obstacle_index,
+                      const std::vector<ObstacleElement>& obstacles, RodElement& rod) {
   XmlElementReader reader(c, source, quoted("pcr_rod", rod_name) + " <contact>");
   std::istringstream names(reader.text("obstacles"));
   for (std::string name; names >> name;) {
@@ -114,6 +165,7 @@ void read_rod_contact(const TiXmlElement& c, const std::string& source, const st
       if (k == it->second) reader.fail("obstacles", name, "is named twice");
     rod.obstacles.push_back(it->second);
   }
+  check_adhesive_rollers(reader, obstacles, rod);
   if (rod.obstacles.empty()) reader.fail("obstacles", "", "names no obstacle");
   if (reader.has("radius")) {
     rod.contact_radius = reader.positive("radius");
@@ -122,6 +174,30 @@ void read_rod_contact(const TiXmlElement& c, const std::string& source, const st
     if (!(rod.contact_radius > 0.0)) reader.fail("the section has no outer radius; give radius");
   }
   reader.finish();
+}
+
+// An adhesive roller holds one material section of one rod: a second rod naming it is an error.
+void check_one_rod_per_adhesive_roller(const TiXmlElement& robot, const std::string& source,
+                                       const std::vector<ObstacleElement>& obstacles,
+                                       const std::vector<RodElement>& rods) {
+  std::map<int, std::string> holder;
+  for (const TiXmlElement* e = robot.FirstChildElement("pcr_rod"); e; e = e->NextSiblingElement("pcr_rod")) {
+    const char* name = e->Attribute("name");
+    const TiXmlElement* c = e->FirstChildElement("contact");
+    if (name == nullptr || c == nullptr) continue;
+    for (const RodElement& rod : rods) {
+      if (rod.name != name) continue;
+      for (int k : rod.obstacles) {
+        if (!adhesive(obstacles[k].obstacle)) continue;
+        const auto [it, first] = holder.emplace(k, rod.name);
+        if (first) continue;
+        XmlElementReader reader(*c, source, quoted("pcr_rod", name) + " <contact>");
+        reader.fail("obstacles", obstacles[k].obstacle.name,
+                    "is an adhesive roller already named by pcr_rod '" + it->second +
+                        "' (its stuck section belongs to one rod)");
+      }
+    }
+  }
 }
 
 }  // namespace
@@ -150,8 +226,9 @@ std::vector<ObstacleElement> read_obstacles(const TiXmlElement& robot, const std
       reader.fail("is given more than once");
     }
     for (RodElement& rod : rods)
-      if (rod.name == name) read_rod_contact(*c, source, name, index, rod);
+      if (rod.name == name) read_rod_contact(*c, source, name, index, obstacles, rod);
   }
+  check_one_rod_per_adhesive_roller(robot, source, obstacles, rods);
   return obstacles;
 }
 

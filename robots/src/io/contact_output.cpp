@@ -47,6 +47,10 @@ void write_contacts_member(JsonWriter& json, const std::vector<ObstacleContact>&
     json.value(c.min_gap_arc_length);
     json.key("concentrated");
     json.value(c.concentrated);
+    if (c.adhesive) {
+      json.key("tangential_force");
+      json.value(c.tangential_force);
+    }
     json.key("intervals");
     json.begin_array();
     for (const ContactInterval& interval : c.intervals) {
@@ -81,6 +85,7 @@ void write_contact_lines(std::ostream& out, const std::vector<ObstacleContact>& 
             << ") N centroid s = " << i.centroid << " m;";
       }
     }
+    if (c.adhesive) out << " tangential force " << c.tangential_force << " N (adhesion);";
     out << " min gap " << c.min_gap << " m at s = " << c.min_gap_arc_length << " m\n";
   }
   for (const RodContactGap& g : gaps) {

@@ -9,8 +9,9 @@
 namespace pcr {
 
 /// The members "contacts": [{rod, obstacle, force, min_gap, min_gap_arc_length, concentrated,
-/// intervals: [{s_begin, s_end, force, centroid}]}] and "contact_gaps": [{rod, obstacle, min_gap, arc_length,
-/// tolerance, penetrates}] of the results object (nothing when no rod has obstacles).
+/// (adhesive rollers) tangential_force, intervals: [{s_begin, s_end, force, centroid}]}] and "contact_gaps":
+/// [{rod, obstacle, min_gap, arc_length, tolerance, penetrates}] of the results object (nothing when no rod
+/// has obstacles).
 void write_contacts_member(JsonWriter& json, const std::vector<ObstacleContact>& contacts,
                            const std::vector<RodContactGap>& gaps);
 /// One table line per rod and obstacle: "contact rod/obstacle: [s0, s1] m force (fx, fy, fz) N ...", one

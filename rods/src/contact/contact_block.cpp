@@ -232,6 +232,21 @@ void add_sharp_obstacle(Problem& problem, const CollocationRod& rod, const RodVa
   VecX initial = VecX::Zero(5);
   initial[0] = best_u;
   const std::string where = rod.model().name + "/" + obstacle.name;
+  const double L = x0[vars.length_offset], sigma = obstacle.adhesive_section();
+  Vec3 reference_normal = Vec3::UnitZ();  // nu_0: at the stuck section of the initial guess
+  if (adhesive(obstacle)) {
+    require(
+        rod.model().drawing_speed == 0.0, "rod '", rod.model().name, "': adhesive roller '", obstacle.name,
+        "' on a drawn rod (drawing_speed ", rod.model().drawing_speed,
+        " m/s): not supported (the no-slip law of a drawn rod prescribes its axial strain at the contact; "
+        "docs/contact.md, \"Rollers\")");
+    require(obstacle.stuck_section <= L && sigma >= 0.0 && sigma <= L, "rod '", rod.model().name,
+            "': the section stuck to roller '", obstacle.name, "' (stuck section ", obstacle.stuck_section,
+            " m, minus radius x angle: ", sigma, " m) is not on the rod [0, ", L, "] m");
+    initial[0] = sigma / L;
+    const Vec3 p0 = centerline_at(problem, rod, vars, x0, obstacle.stuck_section / L);
+    reference_normal = obstacle_gap(obstacle, p0, options.radius).normal;
+  }
   const VariableId id = problem.add_variable_block(where + ".sharp_contact", initial);
   const int group = problem.variable(vars.control_points[0]).group;
   if (group >= 0) problem.set_variable_group(id, group);
@@ -239,9 +254,21 @@ void add_sharp_obstacle(Problem& problem, const CollocationRod& rod, const RodVa
   v.push_back(id);
   out.sharp_variables.push_back(id);
   out.sharp_offsets.push_back(problem.variable(id).offset);
-  out.sharp_blocks.push_back(problem.add_residual_block(contact::make_sharp_contact_block(
+  out.tangential_offsets.push_back(-1);
+  if (!adhesive(obstacle)) {
+    out.sharp_blocks.push_back(problem.add_residual_block(contact::make_sharp_contact_block(
+        where, std::move(v), rod.knots(), rod.control_point_size(), rod.point_layout().p, obstacle,
+        options.radius, options.function, rod.length_scale(), rod.force_scale())));
+    return;
+  }
+  const VariableId mu = problem.add_variable_block(where + ".tangential_force", VecX::Zero(1));
+  if (group >= 0) problem.set_variable_group(mu, group);
+  out.tangential_offsets.back() = problem.variable(mu).offset;
+  v.push_back(mu);
+  v.push_back(vars.length);
+  out.sharp_blocks.push_back(problem.add_residual_block(contact::make_adhesive_contact_block(
       where, std::move(v), rod.knots(), rod.control_point_size(), rod.point_layout().p, obstacle,
-      options.radius, options.function, rod.length_scale(), rod.force_scale())));
+      reference_normal, options.radius, options.function, rod.length_scale(), rod.force_scale())));
 }
 
 }  // namespace

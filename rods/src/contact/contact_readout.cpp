@@ -80,6 +80,8 @@ ObstacleContact sharp_contact(const CollocationRod& rod, const RodVariables& var
   if (lambda > 1e-8 * rod.force_scale() / rod.length_scale())
     c.intervals.push_back({u * L, u * L, force, u * L});
   c.force = c.intervals.empty() ? Vec3::Zero() : force;
+  c.adhesive = i < static_cast<int>(contact.tangential_offsets.size()) && contact.tangential_offsets[i] >= 0;
+  if (c.adhesive && !c.intervals.empty()) c.tangential_force = L * x[contact.tangential_offsets[i]];
   return c;
 }
 

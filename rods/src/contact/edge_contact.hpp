@@ -32,4 +32,13 @@ std::shared_ptr<ResidualBlock> make_sharp_contact_block(std::string name, std::v
                                                         ComplementarityFunction function, double length_scale,
                                                         double force_scale);
 
+/// The rows of a roller with the adhesion law touching a rod (rod_contact.hpp, adhesion_block.cpp).
+/// Variables: all the rod's control points, the obstacle's block [u_c, lambda, G (3)], its tangential
+/// force [mu] and the rod's length [L]. reference_normal: the roller's unit normal nu_0 at the stuck
+/// section in the reference state (the contact direction from which the roller's rolling is counted).
+std::shared_ptr<ResidualBlock> make_adhesive_contact_block(
+    std::string name, std::vector<VariableId> variables, const KnotVector& knots, int point_size,
+    int p_offset, const Obstacle& roller, const Vec3& reference_normal, double radius,
+    ComplementarityFunction function, double length_scale, double force_scale);
+
 }  // namespace pcr::contact

@@ -20,8 +20,16 @@ const char* to_string(ObstacleShape shape) {
   return "unknown";
 }
 
+const char* to_string(RollerLaw law) {
+  return law == RollerLaw::Adhesion ? "adhesion" : "slip";
+}
+
+bool adhesive(const Obstacle& o) {
+  return o.law == RollerLaw::Adhesion;
+}
+
 bool concentrated_contact(const Obstacle& o) {
-  return is_sharp(o.shape) || o.point_contact;
+  return is_sharp(o.shape) || o.point_contact || adhesive(o);
 }
 
 void Obstacle::validate() const {
@@ -44,6 +52,13 @@ void Obstacle::validate() const {
           who, ": point contact is supported on spheres, capsules and cylinders only");
   if (shape == ObstacleShape::Roller) {
     require(std::isfinite(length) && length > 0.0, who, ": length = ", length, " (must be > 0)");
+  }
+  require(law == RollerLaw::Slip || shape == ObstacleShape::Roller, who,
+          ": the adhesion law is defined for rollers only");
+  if (law == RollerLaw::Adhesion) {
+    require(std::isfinite(stuck_section) && stuck_section >= 0.0, who, ": stuck section = ", stuck_section,
+            " m (must be >= 0)");
+    require(std::isfinite(angle), who, ": angle = ", angle, " (not finite)");
   }
   if (shape == ObstacleShape::Capsule || (shape == ObstacleShape::Edge && finite)) {
     require(end.allFinite(), who, ": end (", end.transpose(), ") is not finite");

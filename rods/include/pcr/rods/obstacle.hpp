@@ -31,9 +31,17 @@ inline bool is_sharp(ObstacleShape shape) {
   return shape == ObstacleShape::Edge || shape == ObstacleShape::Point;
 }
 
+/// The contact law of a roller (docs/contact.md, "Rollers"): frictionless slip (a normal force only), or
+/// adhesion (no slip: a prescribed material section of the rod is at the contact, with a normal and a
+/// tangential force; rod_contact.hpp).
+enum class RollerLaw { Slip, Adhesion };
+const char* to_string(RollerLaw law);
+
 struct Obstacle;
-/// Sharp obstacles and those with point_contact: one concentrated force at an unknown section.
+/// Sharp obstacles, those with point_contact and adhesive rollers: one concentrated force at one section.
 bool concentrated_contact(const Obstacle& obstacle);
+/// A roller with the adhesion law.
+bool adhesive(const Obstacle& obstacle);
 
 /// An obstacle's geometry in one frame (the world frame, or a link frame before the assembly places it).
 struct Obstacle {
@@ -51,10 +59,20 @@ struct Obstacle {
   /// Sphere, capsule, cylinder: the rod touches it at one section at most (a concentrated force at an
   /// unknown section, as a sharp obstacle; rod_contact.hpp) instead of a density at the midpoints.
   bool point_contact = false;
+  RollerLaw law = RollerLaw::Slip;  ///< rollers only
+  /// Adhesion: the arc length from the rod's start [m] of the material section that is at the roller's
+  /// contact in the reference state (the initial guess: the contact direction nu_0 there, the roller's
+  /// angle 0). The history of the motion sets it: an input of the state, not found by the solver.
+  double stuck_section = 0.0;
+  /// Adhesion: the roller's rotation [rad] about its axis (right-handed) since the reference state.
+  double angle = 0.0;
+  /// Adhesion: the section at the contact while the contact direction is the reference one,
+  /// sigma_0 - R theta t . e with t . e = 1 (no-slip kinematics: rod_contact.hpp) [m].
+  double adhesive_section() const { return stuck_section - radius * angle; }
 
   /// Throws InputError naming the obstacle and the value: non-finite numbers, a non-unit direction
   /// (|1 - |a|| > 1e-9), a non-positive radius, a capsule of zero length, point_contact on a half-space
-  /// or a roller.
+  /// or a roller, adhesion on anything but a roller, a negative stuck section.
   void validate() const;
   /// The same obstacle in the parent frame of `rotation`, `translation` (x_parent = t + R x).
   Obstacle transformed(const Mat3& rotation, const Vec3& translation) const;

@@ -28,6 +28,18 @@
 // u_m) (extrapolated beyond the first and last midpoint): the resultant and the first moment of the
 // force are those of F at u_c, and every share is continuous in u_c. Distributed gap rows at the
 // midpoints would miss a sharp obstacle whenever the midpoints are more than 2 r apart.
+//
+// A roller with the adhesion law (no slip; Obstacle::law) touches the rod at one section too, but the
+// section is prescribed by the no-slip kinematics: the material arcs that pass the contact on the rod and
+// on the roller are equal, u_c L = sigma_c = sigma_0 + R (psi - theta) (t . e), with the stuck section
+// sigma_0 and the roller's angle theta (Obstacle), the rotation psi of the contact direction about the
+// axis since the reference state and the rolling direction e = a x nu (t . e = +-1 for a rod normal to
+// the axis); and the force has a tangential part along the rod's unit tangent t: F = (lambda nu + mu t) L
+// with one more unknown mu. The nearest-section row becomes mu's equation while the contact is closed
+// (the section u_c must be where the rod touches the roller), and mu = 0 while it is open
+// (adhesion_block.cpp). Across the rod (along the roller's axis for a rod normal to it) the contact is
+// frictionless. The force acts through the centerline: the couple r nu x mu t L of the tangential force
+// about it (it acts on the rod's surface) is neglected.
 #include <string>
 #include <vector>
 
@@ -58,7 +70,10 @@ struct RodContactVariables {
   std::vector<ResidualId> blocks;           ///< per midpoint: "rod.contact" (3 + K rows)
   std::vector<VariableId> sharp_variables;  ///< per sharp obstacle: [u_c, lambda, G (3)]
   std::vector<int> sharp_offsets;           ///< their indices in x
-  std::vector<ResidualId> sharp_blocks;     ///< per sharp obstacle: "rod.sharp_contact" (5 rows)
+  std::vector<ResidualId> sharp_blocks;     ///< per sharp obstacle: "rod.sharp_contact" (5 rows), or for
+                                            ///< an adhesive roller "rod.adhesive_contact" (6 rows)
+  /// Per sharp obstacle: the index in x of its tangential force mu (adhesive rollers), else -1.
+  std::vector<int> tangential_offsets;
 };
 
 /// Adds the multipliers and the contact rows of a rod added with RodDiscretization::contact_forces.
@@ -92,6 +107,10 @@ struct ObstacleContact {
   /// section s_c, the force magnitude |F| [N] and the gap there (one value each).
   std::vector<double> arc_lengths, densities, gaps;
   bool concentrated = false;  ///< a sharp obstacle: a point force (one interval of zero length)
+  /// An adhesive roller (Obstacle::law): the force's tangential part, signed along the rod's unit tangent
+  /// at the contact section [N] (0 while the contact is open; included in `force`).
+  bool adhesive = false;
+  double tangential_force = 0.0;
 };
 
 /// The penetration the results tolerate, as a fraction of the rod's contact radius r. The gap rows hold at
