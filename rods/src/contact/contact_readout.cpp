@@ -80,6 +80,7 @@ ObstacleContact sharp_contact(const CollocationRod& rod, const RodVariables& var
   if (lambda > 1e-8 * rod.force_scale() / rod.length_scale())
     c.intervals.push_back({u * L, u * L, force, u * L});
   c.force = c.intervals.empty() ? Vec3::Zero() : force;
+  c.forces.push_back(c.force);
   return c;
 }
 
@@ -119,6 +120,7 @@ std::vector<ObstacleContact> read_rod_contact(const CollocationRod& rod, const R
         forces.push_back(lambda * g.normal * L * (tau[j + 1] - tau[j]));
       }
       c.intervals = contact_intervals(c, forces, tau, L, density_tolerance, gap_tolerance);
+      c.forces = forces;
       for (const ContactInterval& interval : c.intervals) c.force += interval.force;
     }
     sampled_min_gap(rod, vars, x, o.obstacles[k], o.radius, c);

@@ -91,6 +91,9 @@ struct ObstacleContact {
   /// Per midpoint: arc length s_j, density lambda_j [N/m] and gap g_j [m]. Sharp obstacles: the contact
   /// section s_c, the force magnitude |F| [N] and the gap there (one value each).
   std::vector<double> arc_lengths, densities, gaps;
+  /// Per midpoint: the cell's resultant lambda_j nu_j L (tau_{j+1} - tau_j) on the rod [N, world frame].
+  /// Sharp obstacles: the concentrated force (one value; zero when the contact is not active).
+  std::vector<Vec3> forces;
   bool concentrated = false;  ///< a sharp obstacle: a point force (one interval of zero length)
 };
 
