@@ -200,3 +200,56 @@ BOOST_AUTO_TEST_CASE(gnuplot_script_of_planar_post_draws_the_post_and_the_force_
   BOOST_CHECK_GT(arrows, 0);
   BOOST_CHECK_SMALL(sum.normalized().cross(post.json_contact_force.normalized()).norm(), 1e-6);
 }
+
+BOOST_AUTO_TEST_CASE(csv_of_planar_post_lists_the_post_and_the_contact_forces) {
+  const PostSolution post = solve_planar_post();
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("pcr_test_io_post_csv_" + std::to_string(getpid()));
+  pcr::write_solution_csv(dir.string(), *post.model, post.solution);
+  auto lines_of = [&](const char* name) {
+    std::ifstream file(dir / name);
+    std::vector<std::string> lines;
+    for (std::string line; std::getline(file, line);) lines.push_back(line);
+    return lines;
+  };
+  const std::vector<std::string> obstacles = lines_of("obstacles.csv"), contacts = lines_of("contacts.csv");
+  std::filesystem::remove_all(dir);
+  BOOST_REQUIRE_EQUAL(obstacles.size(), 2u);
+  BOOST_CHECK_EQUAL(obstacles[0], "obstacle,type,link,x,y,z,dx,dy,dz,ex,ey,ez,radius,length");
+  // The post as declared (world frame, no link; 17 digits read back exactly), fields that do not apply
+  // empty.
+  std::vector<std::string> row_of_post;
+  {
+    std::istringstream row(obstacles[1] + ",");
+    for (std::string field; std::getline(row, field, ',');) row_of_post.push_back(field);
+  }
+  BOOST_REQUIRE_EQUAL(row_of_post.size(), 14u);
+  BOOST_CHECK_EQUAL(row_of_post[0], "\"post\"");
+  BOOST_CHECK_EQUAL(row_of_post[1], "capsule");
+  BOOST_CHECK_EQUAL(row_of_post[2], "\"\"");
+  const std::vector<double> numbers{-0.0147, -0.02, 0.1436, -0.0147, 0.02, 0.1436, 0.02};
+  const std::vector<int> columns{3, 4, 5, 9, 10, 11, 12};
+  for (size_t k = 0; k < columns.size(); ++k)
+    BOOST_CHECK_EQUAL(std::stod(row_of_post[columns[k]]), numbers[k]);
+  for (int k : {6, 7, 8, 13}) BOOST_CHECK(row_of_post[k].empty());
+  BOOST_REQUIRE_GT(contacts.size(), 1u);
+  BOOST_CHECK_EQUAL(contacts[0], "rod,obstacle,concentrated,s,magnitude,gap,fx,fy,fz");
+  // One row per collocation cell of the middle rod, in increasing arc length within the rod; the forces
+  // sum to the JSON's total
+  // (1e-12 N of 0.15 N: the cells summed in another order than the intervals, each read back exactly).
+  Vec3 total = Vec3::Zero();
+  double previous = -1.0;
+  for (size_t i = 1; i < contacts.size(); ++i) {
+    std::istringstream row(contacts[i]);
+    std::vector<std::string> fields;
+    for (std::string field; std::getline(row, field, ',');) fields.push_back(field);
+    BOOST_REQUIRE_EQUAL(fields.size(), 9u);
+    BOOST_CHECK_EQUAL(fields[0], "\"middle\"");
+    BOOST_CHECK_EQUAL(fields[2], "false");
+    const double s = std::stod(fields[3]);
+    BOOST_CHECK(s > previous && s < post.solution.rods[1].length);
+    previous = s;
+    for (int k = 0; k < 3; ++k) total[k] += std::stod(fields[6 + k]);
+  }
+  BOOST_CHECK_SMALL((total - post.json_contact_force).norm(), 1e-12);
+}

@@ -218,7 +218,7 @@ Vec3 centerline_at(const Problem& problem, const CollocationRod& rod, const RodV
 // initial guess penetrates it at a sample.
 void add_sharp_obstacle(Problem& problem, const CollocationRod& rod, const RodVariables& vars,
                         const RodContactOptions& options, const Obstacle& obstacle,
-                        RodContactVariables& out) {
+                        const ContactBlockWrapper& wrap_block, RodContactVariables& out) {
   const VecX x0 = problem.initial_values();
   const int samples = 16 * (rod.num_control_points() - 1);
   double best_u = 0.0, best_gap = std::numeric_limits<double>::infinity();
@@ -239,15 +239,16 @@ void add_sharp_obstacle(Problem& problem, const CollocationRod& rod, const RodVa
   v.push_back(id);
   out.sharp_variables.push_back(id);
   out.sharp_offsets.push_back(problem.variable(id).offset);
-  out.sharp_blocks.push_back(problem.add_residual_block(contact::make_sharp_contact_block(
+  std::shared_ptr<ResidualBlock> block = contact::make_sharp_contact_block(
       where, std::move(v), rod.knots(), rod.control_point_size(), rod.point_layout().p, obstacle,
-      options.radius, options.function, rod.length_scale(), rod.force_scale())));
+      options.radius, options.function, rod.length_scale(), rod.force_scale());
+  out.sharp_blocks.push_back(problem.add_residual_block(wrap_block ? wrap_block(block) : block));
 }
 
 }  // namespace
 
 RodContactVariables add_rod_contact(Problem& problem, const CollocationRod& rod, const RodVariables& vars,
-                                    const RodContactOptions& options) {
+                                    const RodContactOptions& options, const ContactBlockWrapper& wrap_block) {
   const std::string& name = rod.model().name;
   const RodDiscretization& d = rod.discretization();
   require(
@@ -276,7 +277,8 @@ RodContactVariables add_rod_contact(Problem& problem, const CollocationRod& rod,
           n - 1, ")");
   auto midpoints = std::make_shared<std::vector<double>>();
   for (int j = 0; j + 1 < n; ++j) midpoints->push_back(0.5 * (tau[j] + tau[j + 1]));
-  for (int k : out.sharp) add_sharp_obstacle(problem, rod, vars, options, options.obstacles[k], out);
+  for (int k : out.sharp)
+    add_sharp_obstacle(problem, rod, vars, options, options.obstacles[k], wrap_block, out);
   const int K = static_cast<int>(distributed.size());
   const auto spreads = derivative_spreads(rod.knots(), tau, *midpoints);
   for (int j = 0; j + 1 < n; ++j) {
@@ -302,9 +304,10 @@ RodContactVariables add_rod_contact(Problem& problem, const CollocationRod& rod,
     }
     for (VariableId e : out.sharp_variables) v.push_back(e);
     const SharpShares shares{midpoints, spreads[j], static_cast<int>(out.sharp.size())};
-    out.blocks.push_back(problem.add_residual_block(
+    std::shared_ptr<ResidualBlock> block =
         std::make_shared<ContactBlock>(where, std::move(v), std::move(basis), cp, po, distributed, options,
-                                       shares, rod.length_scale(), rod.force_scale())));
+                                       shares, rod.length_scale(), rod.force_scale());
+    out.blocks.push_back(problem.add_residual_block(wrap_block ? wrap_block(block) : block));
   }
   return out;
 }

@@ -28,6 +28,8 @@
 // u_m) (extrapolated beyond the first and last midpoint): the resultant and the first moment of the
 // force are those of F at u_c, and every share is continuous in u_c. Distributed gap rows at the
 // midpoints would miss a sharp obstacle whenever the midpoints are more than 2 r apart.
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -65,8 +67,13 @@ struct RodContactVariables {
 /// Throws InputError for an unsupported formulation, no obstacle, a bad radius or obstacle, or an initial
 /// configuration (the problem's initial values) whose centerline penetrates an obstacle at a midpoint
 /// (gap < -1e-9 L0), naming the rod, the obstacle, the arc length and the gap.
+/// wrap_block, when given, is applied to every contact block before it is added to the problem (the
+/// robots' assembly wraps them to move the obstacles with a link whose pose depends on unknowns;
+/// options.obstacles are then their placement in the problem's initial configuration).
+using ContactBlockWrapper = std::function<std::shared_ptr<ResidualBlock>(std::shared_ptr<ResidualBlock>)>;
 RodContactVariables add_rod_contact(Problem& problem, const CollocationRod& rod, const RodVariables& vars,
-                                    const RodContactOptions& options);
+                                    const RodContactOptions& options,
+                                    const ContactBlockWrapper& wrap_block = {});
 
 /// One run of collocation cells [tau_j, tau_{j+1}] (arc lengths) in contact with an obstacle: from the first
 /// to the last cell carrying force, across cells between them that touch without carrying force.
