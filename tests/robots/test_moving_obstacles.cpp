@@ -297,3 +297,25 @@ BOOST_AUTO_TEST_CASE(concentrated_contact_on_a_platform_is_rejected) {
         e.what());
   }
 }
+
+// IK with the post on the platform: the platform pose reached by FK at other inputs gives those inputs
+// back (1e-7 m: the IK's tolerance on the targets, as for the world-fixed post in tests/contact) and the
+// same contact force (relative 1e-6).
+BOOST_AUTO_TEST_CASE(ik_with_the_post_on_the_platform_recovers_the_inputs) {
+  const auto model = model_of(planar_post_xml(kPostOnPlatform));
+  ForwardKinematics fk(model);
+  VecX u = model->default_input_values();
+  u += Vec3(0.001, 0.002, 0.001);
+  const RobotSolution moved = fk.solve(u);
+  BOOST_TEST_REQUIRE((moved.summary.status == SolveStatus::Converged), moved.summary.message);
+  BOOST_TEST_REQUIRE(!moved.contacts[0].intervals.empty());
+  LinkTarget target;
+  target.link = "platform";
+  target.components = {{true, false, true, false, true, false}};
+  InverseKinematics ik(model, {target});
+  const RobotSolution back = ik.solve({moved.platforms[0]});
+  BOOST_TEST_REQUIRE(back.summary.converged(), back.summary.message);
+  for (int i = 0; i < 3; ++i) BOOST_TEST(std::abs(back.inputs[i] - u[i]) < 1e-7, "input " << i);
+  BOOST_TEST((back.contacts[0].force - moved.contacts[0].force).norm() <
+             1e-6 * (1.0 + moved.contacts[0].force.norm()));
+}
