@@ -1,5 +1,6 @@
 # Result writers (JSON, CSV, VTK, outlines), the workspace sampler and the pcr tool run as a program.
-pcr_add_test(NAME test_io LABELS robots SOURCES ${CMAKE_CURRENT_LIST_DIR}/cli/test_io.cpp)
+pcr_add_test(NAME test_io LABELS robots SOURCES ${CMAKE_CURRENT_LIST_DIR}/cli/test_io.cpp
+             ${CMAKE_CURRENT_LIST_DIR}/cli/test_io_obstacles.cpp)
 pcr_add_test(NAME test_workspace LABELS robots SOURCES ${CMAKE_CURRENT_LIST_DIR}/cli/test_workspace.cpp)
 # Under the sanitizers the out-of-memory case is left out: it runs the tool in a 600 MB address space
 # (ulimit -v), and AddressSanitizer reserves terabytes of shadow address space at start-up, so the

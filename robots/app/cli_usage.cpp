@@ -74,8 +74,10 @@ void print_solve_usage(std::ostream& out, const std::string& command) {
   out << "  --json             JSON to stdout instead of the table\n"
       << "  --json-file FILE   JSON to FILE (the table is still printed)\n";
   if (command == "fk" || command == "ik")
-    out << "  --csv DIR          DIR/platforms.csv, DIR/inputs.csv, DIR/rod_<name>.csv\n"
-        << "  --vtk FILE         legacy VTK polydata (rods and outlines) for ParaView\n"
+    out << "  --csv DIR          DIR/platforms.csv, inputs.csv, rod_<name>.csv (obstacles.csv, "
+           "contacts.csv)\n"
+        << "  --vtk FILE         legacy VTK polydata (rods, outlines, obstacles, contact forces) for "
+           "ParaView\n"
         << "  --png FILE         3-D picture drawn by gnuplot\n";
   if (command == "path") out << "  --csv FILE         one row per point\n";
   out << "exit codes: 0 converged, 1 solve failed ("

@@ -224,14 +224,16 @@ BOOST_AUTO_TEST_CASE(obstacles_on_links_fixed_to_the_world) {
   for (size_t i = 0; i < sa.rods[0].centerline.size(); ++i)
     BOOST_TEST((sa.rods[0].centerline[i] - sb.rods[0].centerline[i]).norm() < 1e-12);
 
-  // An obstacle on a moving link (the platform) is rejected: its reaction on the link is not modelled.
+  // A concentrated contact with an obstacle on a moving link (the platform) is rejected: its reaction on
+  // the platform is not modelled (distributed contact is: tests/robots/test_moving_obstacles.cpp).
   std::ifstream file(std::string(PCR_MODEL_DIR) + "/planar_post.urdf");
   std::stringstream text;
   text << file.rdbuf();
   std::string xml = text.str();
   const std::string post = R"(<pcr_obstacle name="post" type="capsule")";
   BOOST_TEST_REQUIRE(xml.find(post) != std::string::npos);
-  xml.replace(xml.find(post), post.size(), R"(<pcr_obstacle name="post" type="capsule" link="platform")");
+  xml.replace(xml.find(post), post.size(),
+              R"(<pcr_obstacle name="post" type="capsule" contact="point" link="platform")");
   try {
     RobotAssembly assembly(std::make_shared<const RobotModel>(parse_robot_model(xml)));
     BOOST_FAIL("an obstacle on a moving link was accepted");

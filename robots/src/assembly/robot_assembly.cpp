@@ -78,6 +78,7 @@ struct RobotAssembly::Builder {
   const VecX q0;                      // default joint values
   const std::vector<Pose> platform0;  // initial platform poses
   std::vector<std::vector<assembly::PlatformRodEnd>> platform_ends;
+  std::vector<std::vector<assembly::PlatformContact>> platform_contacts;  // rods touching their obstacles
 
   Builder(RobotAssembly& assembly, const AssemblyOptions& o)
       : a(assembly),
@@ -85,7 +86,8 @@ struct RobotAssembly::Builder {
         options(o),
         q0(m.default_joint_values()),
         platform0(m.initial_platform_poses()),
-        platform_ends(m.platforms().size()) {}
+        platform_ends(m.platforms().size()),
+        platform_contacts(m.platforms().size()) {}
 
   /// Platform poses and joint values.
   void add_pose_and_joint_variables() {
@@ -126,9 +128,14 @@ struct RobotAssembly::Builder {
     a.force_scale_ = std::max(a.force_scale_, rod->force_scale());
     a.moment_scale_ = std::max(a.moment_scale_, rod->moment_scale());
     a.rod_contacts_.emplace_back();
-    if (!e.obstacles.empty())
-      a.rod_contacts_.back() = add_rod_contact(a.problem_, *rod, vars,
-                                               assembly::rod_contact_options(m, e, options.contact_function));
+    if (!e.obstacles.empty()) {
+      const assembly::RodContactSetup contact = assembly::rod_contact_setup(
+          m, e, options.contact_function, rod->point_layout().p, a.platform_variables_, a.joint_variables_);
+      a.rod_contacts_.back() = add_rod_contact(a.problem_, *rod, vars, contact.options, contact.wrap_block);
+      if (contact.platform >= 0)
+        platform_contacts[contact.platform].push_back(
+            assembly::platform_contact(*rod, vars, a.rod_contacts_.back()));
+    }
     a.rod_couplings_.push_back({-1, -1});
     for (bool at_tip : {false, true})
       if (attached(at_tip ? e.end : e.start)) add_coupling(e, *rod, vars, at_tip);
@@ -167,7 +174,7 @@ struct RobotAssembly::Builder {
       a.platform_balances_.push_back(
           a.problem_.add_residual_block(std::make_shared<assembly::PlatformBalanceBlock>(
               pl.name, a.platform_variables_[p], platform_ends[p], loads, pl.mass, com, m.gravity(),
-              a.force_scale_, a.moment_scale_)));
+              a.force_scale_, a.moment_scale_, platform_contacts[p])));
     }
   }
 

@@ -88,9 +88,12 @@ void CouplingBlock::evaluate(const double* const* values, double* residual, doub
 
 // ---------------------------------------------------------------------------------------------------
 namespace {
-std::vector<VariableId> balance_variables(VariableId platform, const std::vector<PlatformRodEnd>& ends) {
+std::vector<VariableId> balance_variables(VariableId platform, const std::vector<PlatformRodEnd>& ends,
+                                          const std::vector<PlatformContact>& contacts) {
   std::vector<VariableId> v{platform};
   for (const PlatformRodEnd& e : ends) v = concat(v, e.end.variables());
+  const PlatformContactReaction appended(contacts, v);  // appends the contact variables
+  (void)appended;
   return v;
 }
 }  // namespace
@@ -98,15 +101,19 @@ std::vector<VariableId> balance_variables(VariableId platform, const std::vector
 PlatformBalanceBlock::PlatformBalanceBlock(const std::string& name, VariableId platform,
                                            std::vector<PlatformRodEnd> ends, std::vector<PlatformLoad> loads,
                                            double mass, const Vec3& center_of_mass, const Vec3& gravity,
-                                           double force_scale, double moment_scale)
-    : ResidualBlock("platform.balance", name, 7, balance_variables(platform, ends)),
+                                           double force_scale, double moment_scale,
+                                           std::vector<PlatformContact> contacts)
+    : ResidualBlock("platform.balance", name, 7, balance_variables(platform, ends, contacts)),
       ends_(std::move(ends)),
       loads_(std::move(loads)),
       mass_(mass),
       com_(center_of_mass),
       gravity_(gravity),
       force_scale_(force_scale),
-      moment_scale_(moment_scale) {}
+      moment_scale_(moment_scale) {
+  std::vector<VariableId> v = balance_variables(platform, ends_, {});
+  contact_ = PlatformContactReaction(std::move(contacts), v);  // the same indices as variables()
+}
 
 void PlatformBalanceBlock::evaluate(const double* const* values, double* residual,
                                     double* const* jacobians) const {
@@ -128,6 +135,7 @@ void PlatformBalanceBlock::evaluate(const double* const* values, double* residua
   Mat3 dmoment_dx = Mat3::Zero();
   int block = 1;
   std::vector<MatX> dy;
+  if (jacobians) contact_.zero_appended(jacobians, 7);
   for (const PlatformRodEnd& e : ends_) {
     RodEndVector y;
     e.end.evaluate(values + block, y, jacobians ? &dy : nullptr);
@@ -147,6 +155,7 @@ void PlatformBalanceBlock::evaluate(const double* const* values, double* residua
     }
     block += static_cast<int>(e.end.variables().size());
   }
+  contact_.add(values, x, force, moment, dmoment_dx, jacobians, 7, force_scale_, moment_scale_);
   Eigen::Map<Eigen::Matrix<double, 7, 1>> r(residual);
   r.head<3>() = force / force_scale_;
   r.segment<3>(3) = moment / moment_scale_;

@@ -10,6 +10,7 @@
 #include "link_frame.hpp"
 #include "pcr/rods/collocation/equations.hpp"
 #include "pcr/rods/rod_end.hpp"
+#include "platform_contact.hpp"
 
 namespace pcr::assembly {
 
@@ -45,11 +46,16 @@ class PlatformBalanceBlock final : public ResidualBlock {
  public:
   /// Rows: force balance / force_scale (3), moment balance about the platform origin / moment_scale
   /// (3), |Q|^2 - 1 (1):
-  ///   F_ext + m g - sum sigma n_end = 0
-  ///   M_ext + sum (R r_load) x F_load + (R c) x m g - sum sigma (m_end + (p_end - x) x n_end) = 0.
+  ///   F_ext + m g - sum sigma n_end - sum_j c_j F_j = 0
+  ///   M_ext + sum (R r_load) x F_load + (R c) x m g - sum sigma (m_end + (p_end - x) x n_end)
+  ///     - sum_j c_j (p_j - x) x F_j = 0
+  /// (the last sums: the reaction of contact with obstacles the platform carries, platform_contact.hpp).
+  /// contacts: rods touching obstacles carried by the platform; their reaction enters both balances
+  /// (platform_contact.hpp).
   PlatformBalanceBlock(const std::string& name, VariableId platform, std::vector<PlatformRodEnd> ends,
-                       std::vector<PlatformLoad> loads, double mass, const Vec3& center_of_mass, const Vec3& gravity,
-                       double force_scale, double moment_scale);
+                       std::vector<PlatformLoad> loads, double mass, const Vec3& center_of_mass,
+                       const Vec3& gravity, double force_scale, double moment_scale,
+                       std::vector<PlatformContact> contacts = {});
   void evaluate(const double* const* values, double* residual, double* const* jacobians) const override;
 
  private:
@@ -58,6 +64,7 @@ class PlatformBalanceBlock final : public ResidualBlock {
   double mass_;
   Vec3 com_, gravity_;
   double force_scale_, moment_scale_;
+  PlatformContactReaction contact_;
 };
 
 /// Selected pose components: position x, y, z (world) and rotation about x, y, z (target frame).

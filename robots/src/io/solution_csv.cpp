@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "contact_csv.hpp"
 #include "pcr/core/error.hpp"
 #include "pcr/robots/io/solution_writers.hpp"
 
@@ -87,6 +88,7 @@ void write_solution_csv(const std::string& directory, const RobotModel& model,
     }
     close_file(file, path);
   }
+  io_detail::write_contact_csv(dir, model, solution);
 }
 
 }  // namespace pcr

@@ -1,7 +1,9 @@
 // Results of a kinematics solve read from the assembly's variables x.
 #include <algorithm>
 
+#include "../assembly/contact_assembly.hpp"
 #include "pcr/core/error.hpp"
+#include "pcr/robots/io/solution_writers.hpp"
 #include "pcr/robots/kinematics.hpp"
 
 namespace pcr {
@@ -49,7 +51,11 @@ RobotSolution read_solution(const RobotAssembly& a, const VecX& x,
     r.min_axial_stretch = *std::min_element(stretches.begin(), stretches.end());
     s.rods.push_back(std::move(r));
     if (const RodContactVariables* contact = a.rod_contact(i)) {
-      for (ObstacleContact& c : read_rod_contact(rod, v, *contact, x)) s.contacts.push_back(std::move(c));
+      // Obstacles on moving links at the solution's link poses (the assembly holds their initial ones).
+      RodContactVariables placed = *contact;
+      placed.options.obstacles = assembly::rod_obstacles_at(
+          a.model(), a.model().rods()[i], joint_values_of_solution(a.model(), s), s.platforms);
+      for (ObstacleContact& c : read_rod_contact(rod, v, placed, x)) s.contacts.push_back(std::move(c));
     }
   }
   s.contact_gaps = rod_contact_gaps(s.contacts);

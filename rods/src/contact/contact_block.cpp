@@ -218,7 +218,7 @@ Vec3 centerline_at(const Problem& problem, const CollocationRod& rod, const RodV
 // initial guess penetrates it at a sample.
 void add_sharp_obstacle(Problem& problem, const CollocationRod& rod, const RodVariables& vars,
                         const RodContactOptions& options, const Obstacle& obstacle,
-                        RodContactVariables& out) {
+                        const ContactBlockWrapper& wrap_block, RodContactVariables& out) {
   const VecX x0 = problem.initial_values();
   const int samples = 16 * (rod.num_control_points() - 1);
   double best_u = 0.0, best_gap = std::numeric_limits<double>::infinity();
@@ -256,11 +256,15 @@ void add_sharp_obstacle(Problem& problem, const CollocationRod& rod, const RodVa
   out.sharp_offsets.push_back(problem.variable(id).offset);
   out.tangential_offsets.push_back(-1);
   if (!adhesive(obstacle)) {
-    out.sharp_blocks.push_back(problem.add_residual_block(contact::make_sharp_contact_block(
+    std::shared_ptr<ResidualBlock> block = contact::make_sharp_contact_block(
         where, std::move(v), rod.knots(), rod.control_point_size(), rod.point_layout().p, obstacle,
-        options.radius, options.function, rod.length_scale(), rod.force_scale())));
+        options.radius, options.function, rod.length_scale(), rod.force_scale());
+    out.sharp_blocks.push_back(problem.add_residual_block(wrap_block ? wrap_block(block) : block));
     return;
   }
+  require(!wrap_block, "rod '", rod.model().name, "': adhesive roller '", obstacle.name,
+          "' on a moving link: not supported (the no-slip kinematics are written for a fixed roller axis; "
+          "docs/contact.md)");
   const VariableId mu = problem.add_variable_block(where + ".tangential_force", VecX::Zero(1));
   if (group >= 0) problem.set_variable_group(mu, group);
   out.tangential_offsets.back() = problem.variable(mu).offset;
@@ -274,7 +278,7 @@ void add_sharp_obstacle(Problem& problem, const CollocationRod& rod, const RodVa
 }  // namespace
 
 RodContactVariables add_rod_contact(Problem& problem, const CollocationRod& rod, const RodVariables& vars,
-                                    const RodContactOptions& options) {
+                                    const RodContactOptions& options, const ContactBlockWrapper& wrap_block) {
   const std::string& name = rod.model().name;
   const RodDiscretization& d = rod.discretization();
   require(
@@ -303,7 +307,8 @@ RodContactVariables add_rod_contact(Problem& problem, const CollocationRod& rod,
           n - 1, ")");
   auto midpoints = std::make_shared<std::vector<double>>();
   for (int j = 0; j + 1 < n; ++j) midpoints->push_back(0.5 * (tau[j] + tau[j + 1]));
-  for (int k : out.sharp) add_sharp_obstacle(problem, rod, vars, options, options.obstacles[k], out);
+  for (int k : out.sharp)
+    add_sharp_obstacle(problem, rod, vars, options, options.obstacles[k], wrap_block, out);
   const int K = static_cast<int>(distributed.size());
   const auto spreads = derivative_spreads(rod.knots(), tau, *midpoints);
   for (int j = 0; j + 1 < n; ++j) {
@@ -329,9 +334,10 @@ RodContactVariables add_rod_contact(Problem& problem, const CollocationRod& rod,
     }
     for (VariableId e : out.sharp_variables) v.push_back(e);
     const SharpShares shares{midpoints, spreads[j], static_cast<int>(out.sharp.size())};
-    out.blocks.push_back(problem.add_residual_block(
+    std::shared_ptr<ResidualBlock> block =
         std::make_shared<ContactBlock>(where, std::move(v), std::move(basis), cp, po, distributed, options,
-                                       shares, rod.length_scale(), rod.force_scale())));
+                                       shares, rod.length_scale(), rod.force_scale());
+    out.blocks.push_back(problem.add_residual_block(wrap_block ? wrap_block(block) : block));
   }
   return out;
 }

@@ -82,6 +82,7 @@ ObstacleContact sharp_contact(const CollocationRod& rod, const RodVariables& var
   c.force = c.intervals.empty() ? Vec3::Zero() : force;
   c.adhesive = i < static_cast<int>(contact.tangential_offsets.size()) && contact.tangential_offsets[i] >= 0;
   if (c.adhesive && !c.intervals.empty()) c.tangential_force = L * x[contact.tangential_offsets[i]];
+  c.forces.push_back(c.force);
   return c;
 }
 
@@ -121,6 +122,7 @@ std::vector<ObstacleContact> read_rod_contact(const CollocationRod& rod, const R
         forces.push_back(lambda * g.normal * L * (tau[j + 1] - tau[j]));
       }
       c.intervals = contact_intervals(c, forces, tau, L, density_tolerance, gap_tolerance);
+      c.forces = forces;
       for (const ContactInterval& interval : c.intervals) c.force += interval.force;
     }
     sampled_min_gap(rod, vars, x, o.obstacles[k], o.radius, c);

@@ -40,6 +40,8 @@
 // (adhesion_block.cpp). Across the rod (along the roller's axis for a rod normal to it) the contact is
 // frictionless. The force acts through the centerline: the couple r nu x mu t L of the tangential force
 // about it (it acts on the rod's surface) is neglected.
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -80,8 +82,13 @@ struct RodContactVariables {
 /// Throws InputError for an unsupported formulation, no obstacle, a bad radius or obstacle, or an initial
 /// configuration (the problem's initial values) whose centerline penetrates an obstacle at a midpoint
 /// (gap < -1e-9 L0), naming the rod, the obstacle, the arc length and the gap.
+/// wrap_block, when given, is applied to every contact block before it is added to the problem (the
+/// robots' assembly wraps them to move the obstacles with a link whose pose depends on unknowns;
+/// options.obstacles are then their placement in the problem's initial configuration).
+using ContactBlockWrapper = std::function<std::shared_ptr<ResidualBlock>(std::shared_ptr<ResidualBlock>)>;
 RodContactVariables add_rod_contact(Problem& problem, const CollocationRod& rod, const RodVariables& vars,
-                                    const RodContactOptions& options);
+                                    const RodContactOptions& options,
+                                    const ContactBlockWrapper& wrap_block = {});
 
 /// One run of collocation cells [tau_j, tau_{j+1}] (arc lengths) in contact with an obstacle: from the first
 /// to the last cell carrying force, across cells between them that touch without carrying force.
@@ -106,6 +113,9 @@ struct ObstacleContact {
   /// Per midpoint: arc length s_j, density lambda_j [N/m] and gap g_j [m]. Sharp obstacles: the contact
   /// section s_c, the force magnitude |F| [N] and the gap there (one value each).
   std::vector<double> arc_lengths, densities, gaps;
+  /// Per midpoint: the cell's resultant lambda_j nu_j L (tau_{j+1} - tau_j) on the rod [N, world frame].
+  /// Sharp obstacles: the concentrated force (one value; zero when the contact is not active).
+  std::vector<Vec3> forces;
   bool concentrated = false;  ///< a sharp obstacle: a point force (one interval of zero length)
   /// An adhesive roller (Obstacle::law): the force's tangential part, signed along the rod's unit tangent
   /// at the contact section [N] (0 while the contact is open; included in `force`).
