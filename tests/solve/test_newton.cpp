@@ -397,3 +397,27 @@ BOOST_AUTO_TEST_CASE(chord_steps_reuse_the_last_factorisation) {
   BOOST_TEST_REQUIRE((newton.status == SolveStatus::Converged), newton.message);
   BOOST_TEST(newton.jacobian_evaluations == newton.iterations);
 }
+
+// Solvers over one problem share its structure's analysis (the second one takes the first one's): the
+// same iterates bit for bit as a solver over a copy made before any solve, which analyses on its own.
+BOOST_AUTO_TEST_CASE(solvers_over_one_problem_share_the_pattern_analysis) {
+  Problem p = broyden_problem(40);
+  for (VariableId v = 0; v < 40; ++v) p.set_variable_group(v, v < 20 ? 0 : 1);
+  const Problem own = p;
+  NewtonOptions o;
+  o.linear_solver = NewtonLinearSolver::BorderedBlocks;
+  NewtonSolver first(p, o), independent(own, o);
+  VecX x_first = p.initial_values(), x_independent = own.initial_values();
+  const SolveSummary s_first = first.solve(x_first);
+  NewtonSolver second(p, o);
+  VecX x_second = p.initial_values();
+  const SolveSummary s_second = second.solve(x_second);
+  const SolveSummary s_independent = independent.solve(x_independent);
+  BOOST_TEST(s_first.converged(), s_first.brief_report());
+  BOOST_TEST(std::string(second.factorization_kind()) == "bordered blocks");
+  BOOST_TEST(std::string(independent.factorization_kind()) == "bordered blocks");
+  BOOST_TEST(s_second.iterations == s_first.iterations);
+  BOOST_TEST(s_independent.iterations == s_first.iterations);
+  BOOST_TEST((x_second.array() == x_first.array()).all());
+  BOOST_TEST((x_independent.array() == x_first.array()).all());
+}

@@ -6,6 +6,7 @@
 // several threads at once on one Problem.
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -51,6 +52,34 @@ struct HessianStructure {
   std::vector<std::vector<int>> residual_map, objective_map;
 };
 
+struct NewtonPatternAnalysis;  // problem_system.hpp
+
+/// The Newton solvers' analysis of the structure (free-column pattern, structured LU's symbolic
+/// analysis), kept with the problem so that every solver over it analyses it once (several FK objects,
+/// or one object's solvers to two tolerances, over one assembly). Guarded by its own mutex: solvers in
+/// several threads may share one Problem. A copy of the Problem shares the (immutable) analysis.
+class SolverAnalyses {
+ public:
+  SolverAnalyses() = default;
+  SolverAnalyses(const SolverAnalyses& other) : newton_(other.newton()) {}
+  SolverAnalyses& operator=(const SolverAnalyses& other) {
+    set_newton(other.newton());
+    return *this;
+  }
+  std::shared_ptr<const NewtonPatternAnalysis> newton() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return newton_;
+  }
+  void set_newton(std::shared_ptr<const NewtonPatternAnalysis> analysis) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    newton_ = std::move(analysis);
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  std::shared_ptr<const NewtonPatternAnalysis> newton_;
+};
+
 struct Problem::Impl {
   // ---- Description. ----
   std::vector<VariableBlock> variables;
@@ -69,6 +98,8 @@ struct Problem::Impl {
   // Scratch sizes an evaluation needs: touched variable blocks, dense Jacobian / gradient entries and
   // dense Hessian squares of the largest block.
   size_t max_block_variables = 1, max_dense = 1, max_square = 1;
+  // ---- Solvers' analyses of the structure (keyed by version). ----
+  mutable SolverAnalyses analyses;
 
   int local_size(const std::vector<VariableId>& ids) const {
     int n = 0;

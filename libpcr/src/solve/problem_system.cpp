@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "pcr/core/error.hpp"
+#include "problem_impl.hpp"
 
 namespace pcr {
 
@@ -50,8 +51,22 @@ void ProblemSystem::prepare() {
   version_ = problem_.structure_version();
 }
 
+bool ProblemSystem::take_shared_analysis() {
+  const std::shared_ptr<const NewtonPatternAnalysis> a = problem_.impl().analyses.newton();
+  if (!a || a->version != version_ || a->linear_solver != options_.linear_solver ||
+      a->value_map.size() != static_cast<size_t>(J_.nonZeros()))
+    return false;
+  value_map_ = a->value_map;
+  J_free_ = a->J_free;
+  blocks_ = a->blocks;
+  return true;
+}
+
 // Free-column copy of J's pattern (J must hold the problem's pattern) and its symbolic analysis.
 void ProblemSystem::build_free_pattern() {
+  // The sparse LU's analysis waits until it is needed (factorize_free).
+  sparse_analyzed_ = false;
+  if (take_shared_analysis()) return;
   // J_free in CSC straight from the row-major J: count the entries per free column, then place them
   // row by row, so each column's rows come out sorted and value_map is the position written.
   const int n = static_cast<int>(J_.rows());
@@ -75,13 +90,18 @@ void ProblemSystem::build_free_pattern() {
       value_map_[p] = q;
     }
   }
-  // The sparse LU's analysis waits until it is needed (factorize_free).
-  sparse_analyzed_ = false;
   const bool grouped =
       std::any_of(column_groups_.begin(), column_groups_.end(), [](int g) { return g >= 0; });
   const bool structured = options_.linear_solver == NewtonLinearSolver::BorderedBlocks ||
                           (options_.linear_solver == NewtonLinearSolver::Auto && grouped);
   if (!structured || !blocks_.analyze_pattern(J_free_, column_groups_)) blocks_ = BorderedBlockLu();
+  auto shared = std::make_shared<NewtonPatternAnalysis>();
+  shared->version = version_;
+  shared->linear_solver = options_.linear_solver;
+  shared->value_map = value_map_;
+  shared->J_free = J_free_;
+  shared->blocks = blocks_;
+  problem_.impl().analyses.set_newton(std::move(shared));
 }
 
 bool ProblemSystem::factorize_free(bool sparse_only) {

@@ -10,6 +10,16 @@
 
 namespace pcr {
 
+/// What ProblemSystem derives from the problem's structure before its first factorisation, shared by every
+/// solver over the problem (Problem::Impl::analyses): the same Jacobian pattern gives the same analysis.
+struct NewtonPatternAnalysis {
+  std::uint64_t version = 0;           // the Problem::structure_version() analysed
+  NewtonLinearSolver linear_solver{};  // the NewtonOptions::linear_solver it was analysed for
+  std::vector<int> value_map;
+  Eigen::SparseMatrix<double> J_free;  // the free-column pattern, values zero
+  BorderedBlockLu blocks;              // analysed; default-constructed (unusable) when not structured
+};
+
 class ProblemSystem : public NonlinearSystem {
  public:
   ProblemSystem(const Problem& problem, const NewtonOptions& options)
@@ -33,7 +43,10 @@ class ProblemSystem : public NonlinearSystem {
   SystemStatus newton_direction(const VecX& r, VecX& dx) override;
 
  private:
+  /// J_free_, value_map_ and blocks_ from J_'s pattern: the problem's shared analysis when it has one
+  /// for this structure, else analysed here and shared.
   void build_free_pattern();
+  bool take_shared_analysis();
   /// Factorises J_free_ (the structured LU unless sparse_only or it fails); false when singular.
   bool factorize_free(bool sparse_only);
 
