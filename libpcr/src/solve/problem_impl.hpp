@@ -54,30 +54,33 @@ struct HessianStructure {
 
 struct NewtonPatternAnalysis;  // problem_system.hpp
 
-/// The Newton solvers' analysis of the structure (free-column pattern, structured LU's symbolic
-/// analysis), kept with the problem so that every solver over it analyses it once (several FK objects,
-/// or one object's solvers to two tolerances, over one assembly). Guarded by its own mutex: solvers in
-/// several threads may share one Problem. A copy of the Problem shares the (immutable) analysis.
+/// Newton solvers' analyses of the structure (free-column pattern, the structured LU's symbolic analysis)
+/// handed on between solvers over one Problem: a solver leaves its analysis here when it ends, and the
+/// next solver of the same structure takes it instead of analysing again (an FK's default-equilibrium
+/// solver, then its own). Guarded by a mutex: solvers in several threads may share one Problem.
+/// Defined in problem_system.cpp.
 class SolverAnalyses {
  public:
-  SolverAnalyses() = default;
-  SolverAnalyses(const SolverAnalyses& other) : newton_(other.newton()) {}
-  SolverAnalyses& operator=(const SolverAnalyses& other) {
-    set_newton(other.newton());
-    return *this;
-  }
-  std::shared_ptr<const NewtonPatternAnalysis> newton() const {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return newton_;
-  }
-  void set_newton(std::shared_ptr<const NewtonPatternAnalysis> analysis) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    newton_ = std::move(analysis);
-  }
+  /// The analysis left for this structure version and linear solver, removed from here (nullptr: none).
+  std::shared_ptr<NewtonPatternAnalysis> take(std::uint64_t version, int linear_solver);
+  /// Leaves an analysis for the next solver (replacing any other).
+  void leave(std::shared_ptr<NewtonPatternAnalysis> analysis);
 
  private:
-  mutable std::mutex mutex_;
-  std::shared_ptr<const NewtonPatternAnalysis> newton_;
+  std::mutex mutex_;
+  std::shared_ptr<NewtonPatternAnalysis> newton_;
+};
+
+/// A Problem's SolverAnalyses. Solvers refer to it weakly (a solver may outlive its Problem); a copy of
+/// the Problem starts with its own, empty one.
+struct SolverAnalysesRef {
+  std::shared_ptr<SolverAnalyses> ptr = std::make_shared<SolverAnalyses>();
+  SolverAnalysesRef() = default;
+  SolverAnalysesRef(const SolverAnalysesRef&) : SolverAnalysesRef() {}
+  SolverAnalysesRef& operator=(const SolverAnalysesRef&) {
+    ptr = std::make_shared<SolverAnalyses>();
+    return *this;
+  }
 };
 
 struct Problem::Impl {
@@ -98,8 +101,8 @@ struct Problem::Impl {
   // Scratch sizes an evaluation needs: touched variable blocks, dense Jacobian / gradient entries and
   // dense Hessian squares of the largest block.
   size_t max_block_variables = 1, max_dense = 1, max_square = 1;
-  // ---- Solvers' analyses of the structure (keyed by version). ----
-  mutable SolverAnalyses analyses;
+  // ---- Solvers' analyses of the structure, handed on between them (keyed by version). ----
+  SolverAnalysesRef analyses;
 
   int local_size(const std::vector<VariableId>& ids) const {
     int n = 0;
