@@ -397,3 +397,33 @@ BOOST_AUTO_TEST_CASE(chord_steps_reuse_the_last_factorisation) {
   BOOST_TEST_REQUIRE((newton.status == SolveStatus::Converged), newton.message);
   BOOST_TEST(newton.jacobian_evaluations == newton.iterations);
 }
+
+// A solver leaves its analysis of the structure to the next solver over the problem when it ends; the
+// next one takes it and iterates bit for bit as a solver over a copy made before any solve (which
+// analyses on its own), and as a third solver made while the second is alive (nothing left to take).
+BOOST_AUTO_TEST_CASE(a_solver_takes_the_pattern_analysis_its_predecessor_left) {
+  Problem p = broyden_problem(40);
+  for (VariableId v = 0; v < 40; ++v) p.set_variable_group(v, v < 20 ? 0 : 1);
+  const Problem own = p;
+  NewtonOptions o;
+  o.linear_solver = NewtonLinearSolver::BorderedBlocks;
+  VecX x_first = p.initial_values();
+  SolveSummary s_first;
+  {
+    NewtonSolver first(p, o);
+    s_first = first.solve(x_first);
+  }
+  BOOST_TEST(s_first.converged(), s_first.brief_report());
+  NewtonSolver second(p, o), third(p, o), independent(own, o);
+  VecX x_second = p.initial_values(), x_third = p.initial_values(), x_independent = own.initial_values();
+  const SolveSummary s_second = second.solve(x_second);
+  const SolveSummary s_third = third.solve(x_third);
+  const SolveSummary s_independent = independent.solve(x_independent);
+  for (const NewtonSolver* s : {&second, &third, &independent})
+    BOOST_TEST(std::string(s->factorization_kind()) == "bordered blocks");
+  for (const SolveSummary& s : {s_second, s_third, s_independent})
+    BOOST_TEST(s.iterations == s_first.iterations);
+  BOOST_TEST((x_second.array() == x_first.array()).all());
+  BOOST_TEST((x_third.array() == x_first.array()).all());
+  BOOST_TEST((x_independent.array() == x_first.array()).all());
+}

@@ -7,19 +7,28 @@
 namespace pcr {
 
 void BandLu::resize(int rows, int cols, int kl, int ku) {
+  reshape(rows, cols, kl, ku);
+  set_zero();
+}
+
+void BandLu::reshape(int rows, int cols, int kl, int ku) {
   rows_ = rows;
   cols_ = cols;
   kl_ = kl;
   ku_ = ku;
   ld_ = 2 * kl + ku + 1;
-  ab_.assign(static_cast<size_t>(ld_) * cols, 0.0);
+  ab_.clear();
   pivot_.assign(cols, 0);
   l_rows_.assign(cols, 0);
   u_first_.assign(cols, 0);
 }
 
 void BandLu::set_zero() {
-  std::fill(ab_.begin(), ab_.end(), 0.0);
+  const size_t size = static_cast<size_t>(ld_) * cols_;
+  if (ab_.size() != size)
+    ab_.assign(size, 0.0);
+  else
+    std::fill(ab_.begin(), ab_.end(), 0.0);
 }
 
 // dgbtf2: column j picks the largest of its kl entries below the diagonal as pivot, swaps that row

@@ -214,13 +214,9 @@ void BorderedBlockLu::build_groups(const Eigen::SparseMatrix<double>& A, const P
     }
     for (int c : group.columns) group_of_column_[c] = static_cast<int>(groups_.size());
     const int rows = static_cast<int>(group.rows.size()), columns = static_cast<int>(group.columns.size());
-    group.band.resize(rows, columns, kl, ku);
+    group.band.reshape(rows, columns, kl, ku);  // the numeric storage: on first factorize
     group.leftover_row = leftover_row;
     leftover_row += rows - columns;
-    group.B = MatX::Zero(rows, nb);
-    group.Ct = MatX::Zero(columns, nb);
-    group.W = MatX::Zero(rows, nb);
-    group.z = VecX::Zero(rows);
     groups_.push_back(std::move(group));
   }
 }
@@ -272,8 +268,19 @@ bool BorderedBlockLu::factorize(const Eigen::SparseMatrix<double>& A) {
     error_ = "BorderedBlockLu: factorize before analyze_pattern or with another pattern";
     return false;
   }
-  // B_g and C_g keep their zeros outside the pattern (only the factorisation writes outside it).
-  for (Group& g : groups_) g.band.set_zero();
+  // B_g and C_g keep their zeros outside the pattern (only the factorisation writes outside it). The
+  // numeric storage is made here the first time: an analysed pattern carries none (cheap to copy).
+  const int nb = static_cast<int>(border_columns_.size());
+  for (Group& g : groups_) {
+    if (!g.has_storage) {
+      g.B = MatX::Zero(g.rows.size(), nb);
+      g.Ct = MatX::Zero(g.columns.size(), nb);
+      g.W = MatX::Zero(g.rows.size(), nb);
+      g.z = VecX::Zero(g.rows.size());
+      g.has_storage = true;
+    }
+    g.band.set_zero();
+  }
   S_.setZero();
   const double* values = A.valuePtr();
   for (size_t p = 0; p < slots_.size(); ++p) {
@@ -349,7 +356,9 @@ int BorderedBlockLu::wide_columns() const {
 
 long BorderedBlockLu::factor_nonzeros() const {
   long count = static_cast<long>(S_.size());
-  for (const Group& g : groups_) count += g.band.factor_nonzeros() + g.Ct.size() + g.W.size();
+  const long nb = static_cast<long>(border_columns_.size());  // Ct: columns x nb, W: rows x nb
+  for (const Group& g : groups_)
+    count += g.band.factor_nonzeros() + static_cast<long>(g.columns.size() + g.rows.size()) * nb;
   return count;
 }
 

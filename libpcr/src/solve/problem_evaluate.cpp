@@ -84,13 +84,16 @@ bool has_pattern(const SparseRowMajor& M, int rows, int cols, const std::vector<
          std::equal(inner.begin(), inner.end(), M.innerIndexPtr());
 }
 
-// A compressed row-major matrix with the given row pointers and column indices (values zero).
+// A compressed row-major matrix with the given row pointers and column indices (values zero), the index
+// arrays copied as they are (a sparse-to-sparse assignment from a Map would re-insert every entry).
 SparseRowMajor make_pattern(int rows, int cols, const std::vector<int>& outer,
                             const std::vector<int>& inner) {
-  std::vector<double> zeros(inner.size(), 0.0);
-  Eigen::Map<const SparseRowMajor> map(rows, cols, static_cast<int>(inner.size()), outer.data(), inner.data(),
-                                       zeros.data());
-  return SparseRowMajor(map);
+  SparseRowMajor M(rows, cols);
+  M.resizeNonZeros(static_cast<Eigen::Index>(inner.size()));
+  std::copy(outer.begin(), outer.end(), M.outerIndexPtr());
+  std::copy(inner.begin(), inner.end(), M.innerIndexPtr());
+  std::fill(M.valuePtr(), M.valuePtr() + inner.size(), 0.0);
+  return M;
 }
 
 // max(l - c, c - u, 0), +inf for a non-finite c.

@@ -6,6 +6,7 @@
 // several threads at once on one Problem.
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -51,6 +52,37 @@ struct HessianStructure {
   std::vector<std::vector<int>> residual_map, objective_map;
 };
 
+struct NewtonPatternAnalysis;  // problem_system.hpp
+
+/// Newton solvers' analyses of the structure (free-column pattern, the structured LU's symbolic analysis)
+/// handed on between solvers over one Problem: a solver leaves its analysis here when it ends, and the
+/// next solver of the same structure takes it instead of analysing again (an FK's default-equilibrium
+/// solver, then its own). Guarded by a mutex: solvers in several threads may share one Problem.
+/// Defined in problem_system.cpp.
+class SolverAnalyses {
+ public:
+  /// The analysis left for this structure version and linear solver, removed from here (nullptr: none).
+  std::shared_ptr<NewtonPatternAnalysis> take(std::uint64_t version, int linear_solver);
+  /// Leaves an analysis for the next solver (replacing any other).
+  void leave(std::shared_ptr<NewtonPatternAnalysis> analysis);
+
+ private:
+  std::mutex mutex_;
+  std::shared_ptr<NewtonPatternAnalysis> newton_;
+};
+
+/// A Problem's SolverAnalyses. Solvers refer to it weakly (a solver may outlive its Problem); a copy of
+/// the Problem starts with its own, empty one.
+struct SolverAnalysesRef {
+  std::shared_ptr<SolverAnalyses> ptr = std::make_shared<SolverAnalyses>();
+  SolverAnalysesRef() = default;
+  SolverAnalysesRef(const SolverAnalysesRef&) : SolverAnalysesRef() {}
+  SolverAnalysesRef& operator=(const SolverAnalysesRef&) {
+    ptr = std::make_shared<SolverAnalyses>();
+    return *this;
+  }
+};
+
 struct Problem::Impl {
   // ---- Description. ----
   std::vector<VariableBlock> variables;
@@ -69,6 +101,8 @@ struct Problem::Impl {
   // Scratch sizes an evaluation needs: touched variable blocks, dense Jacobian / gradient entries and
   // dense Hessian squares of the largest block.
   size_t max_block_variables = 1, max_dense = 1, max_square = 1;
+  // ---- Solvers' analyses of the structure, handed on between them (keyed by version). ----
+  SolverAnalysesRef analyses;
 
   int local_size(const std::vector<VariableId>& ids) const {
     int n = 0;

@@ -4,8 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
+#include <mutex>
+#include <new>
 
 #include "pcr/core/error.hpp"
+#include "problem_impl.hpp"
 
 namespace pcr {
 
@@ -50,8 +54,55 @@ void ProblemSystem::prepare() {
   version_ = problem_.structure_version();
 }
 
+std::shared_ptr<NewtonPatternAnalysis> SolverAnalyses::take(std::uint64_t version, int linear_solver) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (!newton_ || newton_->version != version || static_cast<int>(newton_->linear_solver) != linear_solver)
+    return nullptr;
+  return std::move(newton_);
+}
+
+void SolverAnalyses::leave(std::shared_ptr<NewtonPatternAnalysis> analysis) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  newton_ = std::move(analysis);
+}
+
+ProblemSystem::ProblemSystem(const Problem& problem, const NewtonOptions& options)
+    : problem_(problem), options_(options), analyses_(problem.impl().analyses.ptr) {}
+
+ProblemSystem::~ProblemSystem() {
+  // value_map_ is current for version_ (prepare() clears it when the structure changes).
+  const std::shared_ptr<SolverAnalyses> analyses = analyses_.lock();
+  if (!analyses || value_map_.empty()) return;
+  try {
+    auto left = std::make_shared<NewtonPatternAnalysis>();
+    left->version = version_;
+    left->linear_solver = options_.linear_solver;
+    left->value_map = std::move(value_map_);
+    left->J_free.swap(J_free_);  // Eigen's SparseMatrix has no move: swap, not a copy
+    left->blocks = std::move(blocks_);
+    analyses->leave(std::move(left));
+  } catch (const std::bad_alloc&) {
+    // Nothing left: the next solver analyses the structure itself.
+  }
+}
+
+bool ProblemSystem::take_left_analysis() {
+  const std::shared_ptr<SolverAnalyses> analyses = analyses_.lock();
+  if (!analyses) return false;
+  const std::shared_ptr<NewtonPatternAnalysis> a =
+      analyses->take(version_, static_cast<int>(options_.linear_solver));
+  if (!a || a->value_map.size() != static_cast<size_t>(J_.nonZeros())) return false;
+  value_map_ = std::move(a->value_map);
+  J_free_.swap(a->J_free);
+  blocks_ = std::move(a->blocks);
+  return true;
+}
+
 // Free-column copy of J's pattern (J must hold the problem's pattern) and its symbolic analysis.
 void ProblemSystem::build_free_pattern() {
+  // The sparse LU's analysis waits until it is needed (factorize_free).
+  sparse_analyzed_ = false;
+  if (take_left_analysis()) return;
   // J_free in CSC straight from the row-major J: count the entries per free column, then place them
   // row by row, so each column's rows come out sorted and value_map is the position written.
   const int n = static_cast<int>(J_.rows());
@@ -75,8 +126,6 @@ void ProblemSystem::build_free_pattern() {
       value_map_[p] = q;
     }
   }
-  // The sparse LU's analysis waits until it is needed (factorize_free).
-  sparse_analyzed_ = false;
   const bool grouped =
       std::any_of(column_groups_.begin(), column_groups_.end(), [](int g) { return g >= 0; });
   const bool structured = options_.linear_solver == NewtonLinearSolver::BorderedBlocks ||

@@ -3,6 +3,8 @@
 // for the Newton loop. Unknowns: the free variables (a fixed variable keeps the value it has in x);
 // residual r = c(x) - c_l; J0: the free columns of the problem's Jacobian, factorised by the bordered
 // block LU when the problem tags variable groups (else, or when that fails, the sparse LU).
+#include <memory>
+
 #include "pcr/solve/bordered_block_lu.hpp"
 #include "pcr/solve/newton_solver.hpp"
 #include "pcr/solve/nonlinear_system.hpp"
@@ -10,10 +12,26 @@
 
 namespace pcr {
 
+class SolverAnalyses;  // problem_impl.hpp
+
+/// What ProblemSystem derives from the problem's structure, handed on to the next solver over the
+/// problem when a solver ends (Problem::Impl::analyses): the same structure gives the same analysis, and
+/// every factorisation overwrites the numeric parts (J_free's values, the structured LU's blocks).
+struct NewtonPatternAnalysis {
+  std::uint64_t version = 0;           // the Problem::structure_version() analysed
+  NewtonLinearSolver linear_solver{};  // the NewtonOptions::linear_solver it was analysed for
+  std::vector<int> value_map;
+  Eigen::SparseMatrix<double> J_free;  // the free-column pattern
+  BorderedBlockLu blocks;              // analysed; default-constructed (unusable) when not structured
+};
+
 class ProblemSystem : public NonlinearSystem {
  public:
-  ProblemSystem(const Problem& problem, const NewtonOptions& options)
-      : problem_(problem), options_(options) {}
+  ProblemSystem(const Problem& problem, const NewtonOptions& options);
+  /// Leaves the analysis of the structure to the next solver over the problem.
+  ~ProblemSystem() override;
+  ProblemSystem(const ProblemSystem&) = delete;
+  ProblemSystem& operator=(const ProblemSystem&) = delete;
   /// Validates the problem for Newton and sizes the workspace (only when its structure changed).
   void prepare();
   /// The point the next solve starts from and moves (the caller's vector, swapped with the trial point).
@@ -33,13 +51,17 @@ class ProblemSystem : public NonlinearSystem {
   SystemStatus newton_direction(const VecX& r, VecX& dx) override;
 
  private:
+  /// J_free_, value_map_ and blocks_ from J_'s pattern: the analysis a solver over the problem left for
+  /// this structure when there is one, else analysed here.
   void build_free_pattern();
+  bool take_left_analysis();
   /// Factorises J_free_ (the structured LU unless sparse_only or it fails); false when singular.
   bool factorize_free(bool sparse_only);
 
   const Problem& problem_;
   const NewtonOptions& options_;
-  std::uint64_t version_ = 0;  // problem structure the workspace was built for
+  std::weak_ptr<SolverAnalyses> analyses_;  // the problem's (Problem::Impl::analyses)
+  std::uint64_t version_ = 0;               // problem structure the workspace was built for
   VecX* x_ = nullptr;
 
   std::vector<int> reduced_column_;                 // global column -> free column, -1 for a fixed one

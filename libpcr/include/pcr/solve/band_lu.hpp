@@ -25,7 +25,11 @@ class BandLu {
   void resize(int n, int kl, int ku) { resize(n, n, kl, ku); }
   /// The same for a rows x cols matrix, rows >= cols (entries A(i, j) with j - ku <= i <= j + kl).
   void resize(int rows, int cols, int kl, int ku);
-  /// Zeroes the matrix (before entries are written for a new factorisation).
+  /// The shape of resize without the storage, which the next set_zero() makes (an analysed pattern is
+  /// then cheap to copy).
+  void reshape(int rows, int cols, int kl, int ku);
+  /// Zeroes the matrix (before entries are written for a new factorisation), sizing its storage first
+  /// after reshape.
   void set_zero();
   /// Entry A(i, j); |i - j| must lie within the band (not checked: callers map entries once).
   double& at(int i, int j) { return ab_[index(i, j)]; }

@@ -81,6 +81,7 @@ class BorderedBlockLu {
     };
     std::vector<RowSpan> coupled_rows;
     mutable VecX z;
+    bool has_storage = false;  // B, Ct, W, z sized (by the first factorize)
     int leftover() const { return static_cast<int>(rows.size() - columns.size()); }
   };
   enum Target { kBand, kB, kC, kD };

@@ -113,7 +113,8 @@ class Problem {
                         Eigen::SparseMatrix<double, Eigen::RowMajor>& H) const;
 
  private:
-  struct Impl;  // problem_impl.hpp
+  struct Impl;                 // problem_impl.hpp
+  friend class ProblemSystem;  // keeps its pattern analysis in Impl (problem_system.hpp)
   std::unique_ptr<Impl> impl_;
   void ensure_impl();
   const Impl& impl() const;
