@@ -126,9 +126,14 @@ struct RobotAssembly::Builder {
     a.force_scale_ = std::max(a.force_scale_, rod->force_scale());
     a.moment_scale_ = std::max(a.moment_scale_, rod->moment_scale());
     a.rod_contacts_.emplace_back();
-    if (!e.obstacles.empty())
-      a.rod_contacts_.back() = add_rod_contact(a.problem_, *rod, vars,
-                                               assembly::rod_contact_options(m, e, options.contact_function));
+    if (!e.obstacles.empty()) {
+      const bool relaxed = options.contact_method == ContactMethod::Ipopt;  // contact_ipopt.hpp
+      a.rod_contacts_.back() =
+          add_rod_contact(a.problem_, *rod, vars,
+                          assembly::rod_contact_options(
+                              m, e, relaxed ? ComplementarityFunction::GapOnly : options.contact_function));
+      if (relaxed) relax_rod_contact(a.problem_, *rod, a.rod_contacts_.back());
+    }
     a.rod_couplings_.push_back({-1, -1});
     for (bool at_tip : {false, true})
       if (attached(at_tip ? e.end : e.start)) add_coupling(e, *rod, vars, at_tip);
@@ -228,8 +233,13 @@ RobotAssembly::RobotAssembly(std::shared_ptr<const RobotModel> model, const Asse
   int free_unknowns = 0;
   for (int v = 0; v < problem_.num_variable_blocks(); ++v)
     if (!problem_.variable_fixed(v)) free_unknowns += problem_.variable(v).size;
-  require(free_unknowns == problem_.num_rows(), "robot '", model_->name(), "': the assembly has ",
-          problem_.num_rows(), " equations for ", free_unknowns,
+  // Relaxed contact (contact_ipopt.hpp) adds one inequality row a b <= mu per contact pair.
+  int product_rows = 0;
+  for (const RodContactVariables& c : rod_contacts_)
+    if (c.relaxation >= 0)
+      product_rows += static_cast<int>(c.multipliers.size() * c.distributed.size() + c.sharp.size());
+  require(free_unknowns == problem_.num_rows() - product_rows, "robot '", model_->name(),
+          "': the assembly has ", problem_.num_rows() - product_rows, " equations for ", free_unknowns,
           " unknowns (with inputs fixed); check the rod couplings");
 }
 
