@@ -1,5 +1,5 @@
-// The two contact solvers (docs/contact.md, "Solvers"): the semismooth Newton method (Fischer-Burmeister
-// rows, pcr's Newton) and Ipopt in Scholtes' relaxation (contact_ipopt.hpp), on
+// The two contact solvers (docs/contact.md, "Solvers compared"): the semismooth Newton method
+// (Fischer-Burmeister rows, pcr's Newton) and Ipopt in Scholtes' relaxation (contact_ipopt.hpp), on
 //  - plane: a heavy steel cantilever (r = 1 mm, L = 1 m, degree 4) on a floor H below its clamp, from
 //    the straight rod; error = |clamp force - 2 q l / 3| (Timoshenko beam theory with the touchdown l, the
 //    reference of tests/contact), relative to 2 q l / 3;

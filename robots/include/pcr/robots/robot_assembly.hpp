@@ -49,9 +49,9 @@ struct AssemblyOptions {
   /// Complementarity function of the contact rows of rods with obstacles (rod_contact.hpp,
   /// docs/contact.md); such rods are always discretised in the mixed form at the midpoints.
   ComplementarityFunction contact_function = ComplementarityFunction::FischerBurmeister;
-  /// How the contact conditions are solved (contact_ipopt.hpp, docs/contact.md "Solvers"): Semismooth
-  /// (contact_function rows, a square system for Newton) or Ipopt (Scholtes' relaxation with inequalities:
-  /// forward kinematics then solves by Ipopt along a homotopy in the relaxation, whatever
+  /// How the contact conditions are solved (contact_ipopt.hpp, docs/contact.md "Solvers compared"):
+  /// Semismooth (contact_function rows, a square system for Newton) or Ipopt (Scholtes' relaxation with
+  /// inequalities: forward kinematics then solves by Ipopt along a homotopy in the relaxation, whatever
   /// KinematicsOptions::solver says; inverse kinematics rejects it).
   ContactMethod contact_method = ContactMethod::Semismooth;
 };

@@ -1,6 +1,6 @@
 #pragma once
 // Frictionless contact solved by Ipopt instead of the semismooth Newton method (docs/contact.md,
-// "Solvers"). The contact problem of rod_contact.hpp is a complementarity problem; here it is a
+// "Solvers compared"). The contact problem of rod_contact.hpp is a complementarity problem; here it is a
 // mathematical program with complementarity constraints (MPCC) in Scholtes' relaxation (Scholtes,
 // "Convergence properties of a regularization scheme for mathematical programs with complementarity
 // constraints", SIAM J. Optim. 11 (2001) 918-936): for every contact pair with a = g / L0 and
@@ -29,7 +29,7 @@
 
 namespace pcr {
 
-/// How the contact conditions are solved (docs/contact.md, "Solvers").
+/// How the contact conditions are solved (docs/contact.md, "Solvers compared").
 enum class ContactMethod {
   Semismooth,  ///< one complementarity-function row per pair, pcr's Newton (square system)
   Ipopt,       ///< Scholtes' relaxation with inequalities, Ipopt, homotopy in mu
