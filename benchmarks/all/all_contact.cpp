@@ -2,9 +2,10 @@
 // post, frictionless contact, docs/contact.md) by cold FK at the default inputs, the middle rod meshed
 // by E elements of degree 4 (the model's hint replaced), a new solver object per solve (assembly
 // included), with the post's contact distributed (the model's: densities at the midpoints) or a point
-// contact (contact="point": one force at an unknown section). The rod touches the post at one point
-// (its radius of curvature, 0.5 m, is far above the post's, 20 mm), so both discretise the same
-// problem. No closed form or independent method covers it (the shooting solver has no contact): the
+// contact (contact="point": one force at an unknown section), each solved by the semismooth Newton method
+// ("newton") and by Ipopt in Scholtes' relaxation ("ipopt", AssemblyOptions::contact_method). The rod touches
+// the post at one point (its radius of curvature, 0.5 m, is far above the post's, 20 mm), so both discretise
+// the same problem. No closed form or independent method covers it (the shooting solver has no contact): the
 // reference is the point form at E = 256, a SELF-CONVERGENCE reference that measures the discretisation
 // error only where the runs are much coarser than it.
 //  - contact_post_platform: error = platform position error [m];
@@ -64,14 +65,21 @@ bool run_contact_scenes(const AllConfig& config, Recorder& out) {
   if (!ref.summary.converged()) return false;
   const std::vector<int> meshes =
       config.quick ? std::vector<int>{8, 24, 64} : std::vector<int>{8, 12, 16, 24, 32, 48, 64, 128};
-  for (bool point : {false, true}) {
-    const std::string method =
-        point ? "collocation-mixed-newton-point" : "collocation-mixed-newton-distributed";
+  for (int run = 0; run < 4; ++run) {
+    const bool point = run % 2 == 1;
+    // The contact solver: semismooth Newton (default) or Ipopt in Scholtes' relaxation (contact_ipopt.hpp).
+    KinematicsOptions options;
+    options.assembly.contact_method = run < 2 ? ContactMethod::Semismooth : ContactMethod::Ipopt;
+    const std::string method = std::string("collocation-mixed-") + (run < 2 ? "newton" : "ipopt") +
+                               (point ? "-point" : "-distributed");
     for (int elements : meshes) {
+      // Ipopt takes 5-25x the time (docs/contact.md, "Solvers compared"): its runs stop at E = 48.
+      if (run >= 2 && elements > 48) continue;
       const std::shared_ptr<const RobotModel> model = planar_post(elements, point);
       RobotSolution sol;
-      const Timing t = time_repeated(
-          [&] { sol = ForwardKinematics(model).solve(model->default_input_values()); }, config.repeats());
+      const Timing t =
+          time_repeated([&] { sol = ForwardKinematics(model, options).solve(model->default_input_values()); },
+                        config.repeats());
       const bool ok = sol.summary.converged();
       std::string status = to_string(sol.summary.status);
       for (const RodContactGap& g : sol.contact_gaps)

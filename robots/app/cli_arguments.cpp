@@ -29,6 +29,7 @@ constexpr OptionScope kOptionScopes[] = {
     {"--threads", "workspace"},
     {"--seed", "workspace"},
     {"--solver", "fk path"},
+    {"--contact-method", "fk path"},
     {"--degree", "fk ik path workspace"},
     {"--elements", "fk ik path workspace"},
     {"--formulation", "fk ik path workspace"},
@@ -96,6 +97,8 @@ std::string expect(const std::string& option, const std::string& value,
 bool apply_solve_option(SolveArguments& a, const std::string& arg, const std::string& value) {
   if (arg == "--solver") {
     a.solver = expect(arg, value, {"newton", "ipopt"});
+  } else if (arg == "--contact-method") {
+    a.contact_method = expect(arg, value, {"semismooth", "ipopt"});
   } else if (arg == "--degree") {
     a.degree = parse_count(value, arg, 2);
   } else if (arg == "--elements") {

@@ -36,6 +36,7 @@ struct SolveArguments {
   int threads = 1;                        ///< workspace: --threads T
   std::uint64_t seed = 1;                 ///< workspace: --seed S
   std::string solver;                     ///< "", "newton" or "ipopt"
+  std::string contact_method;             ///< fk, path: "", "semismooth" or "ipopt"
   int degree = 0, elements = 0;           ///< 0 = not given
   std::string formulation;                ///< "", "auto", "mixed", "condensed" or "primal"
   std::string mixed_points;               ///< "", "midpoints" or "greville"

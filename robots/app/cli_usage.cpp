@@ -60,6 +60,9 @@ void print_solve_usage(std::ostream& out, const std::string& command) {
       << "  --tolerance T      max-abs of the dimensionless residuals (default 1e-10); a looser T saves\n"
       << "                     iterations, e.g. for many solves along a path: on the teleoperation\n"
       << "                     robot (R5b) the solver added about 1e-2 T m to the inputs (docs/cli.md)\n";
+  if (command == "fk" || command == "path")
+    out << "  --contact-method semismooth|ipopt   contact solver (docs/contact.md): semismooth Newton\n"
+        << "                     (default) or Ipopt with the complementarity relaxed (Scholtes)\n";
   if (command != "workspace")
     out << "  --points N         centerline points per rod in the results (default 21)\n";
   if (command == "path")

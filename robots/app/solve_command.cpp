@@ -49,10 +49,12 @@ pcr::VecX resolve_inputs(const pcr::RobotModel& model, const std::vector<NamedAr
 pcr::KinematicsOptions kinematics_options(const SolveArguments& args) {
   pcr::KinematicsOptions options;
   // The word options (already checked by the argument parser; "" where not given).
-  const std::pair<const char*, const std::string*> word_options[] = {{"solver", &args.solver},
-                                                                     {"formulation", &args.formulation},
-                                                                     {"mixed_points", &args.mixed_points},
-                                                                     {"objective", &args.objective}};
+  const std::pair<const char*, const std::string*> word_options[] = {
+      {"solver", &args.solver},
+      {"formulation", &args.formulation},
+      {"mixed_points", &args.mixed_points},
+      {"objective", &args.objective},
+      {"contact_method", &args.contact_method}};
   for (const auto& [name, word] : word_options)
     if (!word->empty()) pcr::set_kinematics_option(options, name, *word);
   pcr::RodDiscretization& d = options.assembly.discretization;

@@ -197,6 +197,10 @@ const ResidualBlock& Problem::residual(ResidualId id) const {
   require(id >= 0 && id < num_residual_blocks(), "residual: id ", id, " out of range");
   return *impl().residuals[id];
 }
+std::shared_ptr<const ResidualBlock> Problem::residual_block(ResidualId id) const {
+  require(id >= 0 && id < num_residual_blocks(), "residual_block: id ", id, " out of range");
+  return impl().residuals[id];
+}
 int Problem::num_residual_blocks() const {
   return static_cast<int>(impl().residuals.size());
 }

@@ -129,9 +129,14 @@ struct RobotAssembly::Builder {
     a.moment_scale_ = std::max(a.moment_scale_, rod->moment_scale());
     a.rod_contacts_.emplace_back();
     if (!e.obstacles.empty()) {
+      const bool relaxed = options.contact_method == ContactMethod::Ipopt;  // contact_ipopt.hpp
       const assembly::RodContactSetup contact = assembly::rod_contact_setup(
-          m, e, options.contact_function, rod->point_layout().p, a.platform_variables_, a.joint_variables_);
+          m, e, relaxed ? ComplementarityFunction::GapOnly : options.contact_function, rod->point_layout().p,
+          a.platform_variables_, a.joint_variables_);
+      require(!relaxed || !contact.wrap_block, "rod '", e.name,
+              "': contact_method = ipopt with obstacles on a moving link is not supported (use semismooth)");
       a.rod_contacts_.back() = add_rod_contact(a.problem_, *rod, vars, contact.options, contact.wrap_block);
+      if (relaxed) relax_rod_contact(a.problem_, *rod, a.rod_contacts_.back());
       if (contact.platform >= 0)
         platform_contacts[contact.platform].push_back(
             assembly::platform_contact(*rod, vars, a.rod_contacts_.back()));
@@ -235,8 +240,13 @@ RobotAssembly::RobotAssembly(std::shared_ptr<const RobotModel> model, const Asse
   int free_unknowns = 0;
   for (int v = 0; v < problem_.num_variable_blocks(); ++v)
     if (!problem_.variable_fixed(v)) free_unknowns += problem_.variable(v).size;
-  require(free_unknowns == problem_.num_rows(), "robot '", model_->name(), "': the assembly has ",
-          problem_.num_rows(), " equations for ", free_unknowns,
+  // Relaxed contact (contact_ipopt.hpp) adds one inequality row a b <= mu per contact pair.
+  int product_rows = 0;
+  for (const RodContactVariables& c : rod_contacts_)
+    if (c.relaxation >= 0)
+      product_rows += static_cast<int>(c.multipliers.size() * c.distributed.size() + c.sharp.size());
+  require(free_unknowns == problem_.num_rows() - product_rows, "robot '", model_->name(),
+          "': the assembly has ", problem_.num_rows() - product_rows, " equations for ", free_unknowns,
           " unknowns (with inputs fixed); check the rod couplings");
 }
 

@@ -2,6 +2,7 @@
 // derivatives at the last solution by the implicit function theorem.
 #include <stdexcept>
 
+#include "contact_ipopt_fk.hpp"
 #include "fk_data.hpp"
 #include "pcr/core/error.hpp"
 #include "pcr/math/quaternion.hpp"
@@ -16,6 +17,8 @@ namespace kinematics {
 FkModel::FkModel(std::shared_ptr<const RobotAssembly> a, const KinematicsOptions& o)
     : assembly(std::move(a)), options(o) {
   require(assembly != nullptr, "ForwardKinematics: no assembly");
+  // Relaxed contact rows (AssemblyOptions::contact_method = Ipopt) are not a square system: Ipopt only.
+  if (!relaxed_contacts(*assembly).empty()) options.solver = SolverKind::Ipopt;
   sample_bases = pcr::sample_bases(*assembly, options.centerline_points);
 }
 
@@ -26,6 +29,9 @@ const VecX* FkModel::default_equilibrium() const {
     if (options.solver == SolverKind::Newton) {
       NewtonSolver newton(assembly->problem(), newton_options(options));
       default_summary_ = newton.solve(default_x_);
+    } else if (!relaxed_contacts(*assembly).empty()) {
+      std::unique_ptr<IpoptSolver> ipopt;
+      default_summary_ = solve_relaxed_contact(*assembly, options, ipopt, default_x_);
     } else {
       IpoptSolver ipopt(assembly->problem(), ipopt_options(options));
       default_summary_ = ipopt.solve(default_x_);
@@ -53,6 +59,7 @@ SolveSummary FkData::solve_at(const VecX& u, VecX& x_io, int max_jacobian_evalua
     if (!newton) newton = std::make_unique<NewtonSolver>(a.problem(), newton_options(o));
     return newton->solve(x_io, o.max_iterations, max_jacobian_evaluations);
   }
+  if (!relaxed_contacts(a).empty()) return solve_relaxed_contact(a, o, ipopt, x_io);
   if (!ipopt) ipopt = std::make_unique<IpoptSolver>(a.problem(), ipopt_options(o));
   return ipopt->solve(x_io);
 }

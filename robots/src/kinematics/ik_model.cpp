@@ -83,6 +83,11 @@ IkModel::IkModel(std::shared_ptr<const RobotAssembly> a, const std::vector<LinkT
     : assembly(std::move(a)), options(o), targets(t) {
   require(assembly != nullptr, "InverseKinematics: no assembly");
   require(!targets.empty(), "inverse kinematics: no target given");
+  for (int i = 0; i < assembly->num_rods(); ++i) {
+    const RodContactVariables* c = assembly->rod_contact(i);
+    require(c == nullptr || c->relaxation < 0,
+            "inverse kinematics: contact_method ipopt is for forward kinematics only (use semismooth)");
+  }
   square = assembly->problem();
   add_targets(*this, square);
   // Square problem: inputs free (no bounds: Newton checks them afterwards).

@@ -5,7 +5,7 @@
 namespace pcr {
 namespace {
 
-const char* const kWordOptions = "solver, formulation, mixed_points or objective";
+const char* const kWordOptions = "contact_method, solver, formulation, mixed_points or objective";
 
 std::string listed(const std::vector<std::string>& words) {
   std::string list;
@@ -31,6 +31,7 @@ std::vector<std::string> kinematics_option_words(const std::string& name) {
   if (name == "formulation") return {"auto", "mixed", "condensed", "primal"};
   if (name == "mixed_points") return {"midpoints", "greville"};
   if (name == "objective") return {"distance", "effort", "energy"};
+  if (name == "contact_method") return {"semismooth", "ipopt"};
   return {};
 }
 
@@ -45,6 +46,8 @@ void set_kinematics_option(KinematicsOptions& o, const std::string& name, const 
     o.solver = word == "ipopt" ? SolverKind::Ipopt : SolverKind::Newton;
   } else if (name == "formulation") {
     set_formulation(o, word);
+  } else if (name == "contact_method") {
+    o.assembly.contact_method = word == "ipopt" ? ContactMethod::Ipopt : ContactMethod::Semismooth;
   } else if (name == "mixed_points") {
     o.assembly.discretization.mixed_points =
         word == "greville" ? MixedPoints::Greville : MixedPoints::Midpoints;

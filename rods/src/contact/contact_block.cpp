@@ -16,6 +16,7 @@
 namespace pcr {
 
 const char* to_string(ComplementarityFunction function) {
+  if (function == ComplementarityFunction::GapOnly) return "gap_only";
   return function == ComplementarityFunction::Min ? "min" : "fischer_burmeister";
 }
 
@@ -23,6 +24,12 @@ namespace contact {
 
 void complementarity(ComplementarityFunction f, double a, double b, double& phi, double& phi_a,
                      double& phi_b) {
+  if (f == ComplementarityFunction::GapOnly) {  // the gap row of the Ipopt treatment (contact_ipopt.cpp)
+    phi = a;
+    phi_a = 1.0;
+    phi_b = 0.0;
+    return;
+  }
   if (f == ComplementarityFunction::Min) {
     phi = std::min(a, b);
     phi_a = a <= b ? 1.0 : 0.0;

@@ -65,6 +65,8 @@ class Problem {
   const VariableBlock& variable(VariableId id) const;
   int num_variable_blocks() const;
   const ResidualBlock& residual(ResidualId id) const;
+  /// The same block, shared (blocks are immutable): for a block that wraps another one.
+  std::shared_ptr<const ResidualBlock> residual_block(ResidualId id) const;
   int num_residual_blocks() const;
   bool residual_active(ResidualId id) const;
   /// First row of an active residual block in c(x); -1 when inactive.

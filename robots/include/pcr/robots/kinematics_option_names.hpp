@@ -6,6 +6,7 @@
 //                 (the last three: exactly that formulation for every rod without a model hint)
 //   mixed_points  midpoints | greville
 //   objective     distance | effort | energy (inverse kinematics)
+//   contact_method  semismooth | ipopt (AssemblyOptions::contact_method; ipopt: forward kinematics only)
 #include <string>
 #include <vector>
 

@@ -19,6 +19,7 @@
 
 #include "pcr/robots/robot_model.hpp"
 #include "pcr/rods/collocation_rod.hpp"
+#include "pcr/rods/contact_ipopt.hpp"
 #include "pcr/rods/rod_contact.hpp"
 #include "pcr/solve/problem.hpp"
 
@@ -48,6 +49,11 @@ struct AssemblyOptions {
   /// Complementarity function of the contact rows of rods with obstacles (rod_contact.hpp,
   /// docs/contact.md); such rods are always discretised in the mixed form at the midpoints.
   ComplementarityFunction contact_function = ComplementarityFunction::FischerBurmeister;
+  /// How the contact conditions are solved (contact_ipopt.hpp, docs/contact.md "Solvers compared"):
+  /// Semismooth (contact_function rows, a square system for Newton) or Ipopt (Scholtes' relaxation with
+  /// inequalities: forward kinematics then solves by Ipopt along a homotopy in the relaxation, whatever
+  /// KinematicsOptions::solver says; inverse kinematics rejects it).
+  ContactMethod contact_method = ContactMethod::Semismooth;
 };
 
 /// Radius of gyration over length, sqrt(min(EI1, EI2) / EA) / L, with the longest length of a fed

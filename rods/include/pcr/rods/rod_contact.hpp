@@ -51,7 +51,9 @@
 
 namespace pcr {
 
-enum class ComplementarityFunction { FischerBurmeister, Min };
+/// GapOnly is not a complementarity function: its row is the scaled gap g / L0 alone, for the Ipopt
+/// treatment (contact_ipopt.hpp), which bounds it below by 0 and adds the relaxed product row.
+enum class ComplementarityFunction { FischerBurmeister, Min, GapOnly };
 const char* to_string(ComplementarityFunction function);
 
 struct RodContactOptions {
@@ -76,6 +78,11 @@ struct RodContactVariables {
                                             ///< an adhesive roller "rod.adhesive_contact" (6 rows)
   /// Per sharp obstacle: the index in x of its tangential force mu (adhesive rollers), else -1.
   std::vector<int> tangential_offsets;
+  /// Ipopt treatment only (relax_rod_contact, contact_ipopt.hpp): the fixed relaxation parameter mu of
+  /// the rod's product rows (-1 without), and the blocks that replace `blocks` and `sharp_blocks` (which
+  /// are switched off).
+  VariableId relaxation = -1;
+  std::vector<ResidualId> relaxed_blocks;
 };
 
 /// Adds the multipliers and the contact rows of a rod added with RodDiscretization::contact_forces.
