@@ -109,20 +109,11 @@ void AdhesiveContactBlock::evaluate(const double* const* values, double* residua
   const double* e = values[num_points()];
   const double u = e[0], lambda = e[1], mu = values[num_points() + 1][0], L = values[num_points() + 2][0];
   const Eigen::Map<const Vec3> G(e + 2);
-  const double ub = std::clamp(u, 0.0, 1.0);
-  const bool inside = u == ub;
-  const BasisDerivatives b = basis_derivatives(knots_, ub, 2);
-  const int active = static_cast<int>(b.values.cols());
-  VecX a(active), b1(active);  // dp/dP_i and dp'/dP_i
-  Vec3 p = Vec3::Zero(), p1 = Vec3::Zero(), p2 = Vec3::Zero();
-  for (int i = 0; i < active; ++i) {
-    const Eigen::Map<const Vec3> P(values[b.first + i] + p_offset_);
-    a[i] = b.values(0, i) + b.values(1, i) * (u - ub);
-    b1[i] = b.values(1, i);
-    p += a[i] * P;
-    p1 += b1[i] * P;
-    if (inside) p2 += b.values(2, i) * P;
-  }
+  const ContactSection cs = contact_section(knots_, values, p_offset_, u);
+  const BasisDerivatives& b = cs.basis;
+  const int active = cs.active;
+  const VecX &a = cs.a, &b1 = cs.b1;  // dp/dP_i and dp'/dP_i
+  const Vec3 &p = cs.p, &p1 = cs.p1, &p2 = cs.p2;
   const ObstacleGap g = obstacle_gap(roller_, p, radius_);
   const ObstacleOffset v = obstacle_offset(axis_, p);
   const double q = p1.squaredNorm(), speed = std::sqrt(q);

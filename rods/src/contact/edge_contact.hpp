@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "pcr/rods/rod_contact.hpp"
+#include "pcr/splines/basis.hpp"
 #include "pcr/splines/knot_vector.hpp"
 
 namespace pcr::contact {
@@ -22,6 +23,19 @@ struct HatWeight {
   double weight = 0.0, derivative = 0.0;
 };
 HatWeight midpoint_share(const std::vector<double>& midpoints, int j, double u);
+
+/// The centerline at the contact section u of a concentrated contact: p(u), p'(u) and p''(u) from the
+/// rod's control points (values[i] + p_offset), with dp/dP_i = a_i and dp'/dP_i = b1_i for the active
+/// control points basis.first + i. Beyond [0, 1] the centerline is extended along the end tangent,
+/// p(u) = p(ub) + p'(ub) (u - ub) with ub = clamp(u, 0, 1), and p'' = 0 there (inside = false).
+struct ContactSection {
+  BasisDerivatives basis;  // at ub, up to the second derivative
+  bool inside = true;
+  int active = 0;
+  VecX a, b1;
+  Vec3 p = Vec3::Zero(), p1 = Vec3::Zero(), p2 = Vec3::Zero();
+};
+ContactSection contact_section(const KnotVector& knots, const double* const* values, int p_offset, double u);
 
 /// The rows of one sharp obstacle (edge, point) touching a rod (rod_contact.hpp). Variables: all the rod's
 /// control points (the contact section moves along the rod), then the obstacle's block

@@ -58,20 +58,11 @@ class SharpContactBlock final : public ResidualBlock {
     const double* e = values[num_points()];
     const double u = e[0], lambda = e[1];
     const Eigen::Map<const Vec3> G(e + 2);
-    const double ub = std::clamp(u, 0.0, 1.0);
-    const bool inside = u == ub;
-    const BasisDerivatives b = basis_derivatives(knots_, ub, 2);
-    const int active = static_cast<int>(b.values.cols());
-    VecX a(active), b1(active);  // dp/dP_i and dp'/dP_i
-    Vec3 p = Vec3::Zero(), p1 = Vec3::Zero(), p2 = Vec3::Zero();
-    for (int i = 0; i < active; ++i) {
-      const Eigen::Map<const Vec3> P(values[b.first + i] + p_offset_);
-      a[i] = b.values(0, i) + b.values(1, i) * (u - ub);
-      b1[i] = b.values(1, i);
-      p += a[i] * P;
-      p1 += b1[i] * P;
-      if (inside) p2 += b.values(2, i) * P;
-    }
+    const ContactSection cs = contact_section(knots_, values, p_offset_, u);
+    const BasisDerivatives& b = cs.basis;
+    const int active = cs.active;
+    const VecX &a = cs.a, &b1 = cs.b1;  // dp/dP_i and dp'/dP_i
+    const Vec3 &p = cs.p, &p1 = cs.p1, &p2 = cs.p2;
     const ObstacleGap g = obstacle_gap(obstacle_, p, radius_);
     const ObstacleOffset v = obstacle_offset(obstacle_, p);
     const double q = p1.squaredNorm(), step = v.offset.dot(p1) / q, z = u - step;
@@ -127,6 +118,26 @@ std::shared_ptr<ResidualBlock> make_sharp_contact_block(std::string name, std::v
                                                         double force_scale) {
   return std::make_shared<SharpContactBlock>(std::move(name), std::move(variables), knots, point_size,
                                              p_offset, obstacle, radius, function, length_scale, force_scale);
+}
+
+ContactSection contact_section(const KnotVector& knots, const double* const* values, int p_offset, double u) {
+  ContactSection s;
+  const double ub = std::clamp(u, 0.0, 1.0);
+  s.inside = u == ub;
+  s.basis = basis_derivatives(knots, ub, 2);
+  const BasisDerivatives& b = s.basis;
+  s.active = static_cast<int>(b.values.cols());
+  s.a.resize(s.active);
+  s.b1.resize(s.active);
+  for (int i = 0; i < s.active; ++i) {
+    const Eigen::Map<const Vec3> P(values[b.first + i] + p_offset);
+    s.a[i] = b.values(0, i) + b.values(1, i) * (u - ub);
+    s.b1[i] = b.values(1, i);
+    s.p += s.a[i] * P;
+    s.p1 += s.b1[i] * P;
+    if (s.inside) s.p2 += b.values(2, i) * P;
+  }
+  return s;
 }
 
 }  // namespace pcr::contact
