@@ -1,6 +1,6 @@
 // Drawn rods against published references: the divergence speed of an axially moving beam between two
-// clamps (the stability verdict changes there), and O'Reilly's small-deflection solution of a rod drawn
-// over a sharp obstacle under gravity (Appendix A).
+// clamps and between a clamp and a pin (the stability verdict changes there), and O'Reilly's small-deflection
+// solution of a rod drawn over a sharp obstacle under gravity (Appendix A).
 #include <boost/test/unit_test.hpp>
 
 #include <Eigen/Dense>
@@ -21,39 +21,30 @@ using namespace pcr;
 
 namespace {
 
-// Steel wire r = 1 mm between two clamps a span l = 0.5 m apart, drawn at c, tension T = 10 N in the
-// straight state: the reference length l / (1 + T / EA) stretched to l carries n . d3 = EA eps3 = T.
+// Steel wire r = 1 mm between two clamps (or pins) a span l = 0.5 m apart, drawn at c, tension T = 10 N in
+// the straight state: the reference length l / (1 + T / EA) stretched to l carries n . d3 = EA eps3 = T.
 constexpr double kSpan = 0.5, kTension = 10.0;
 
-RodModel moving_beam(double c) {
+// tip: Clamped (clamped-clamped span) or Spherical (a pin at the tip: clamped-pinned; a pin at both ends
+// would leave the twist free).
+RodModel moving_beam(double c, RodEndKind tip = RodEndKind::Clamped) {
   RodModel m = test::steel_wire(1e-3, 1.0);
   m.name = "moving_beam";
   m.length = kSpan / (1.0 + kTension / m.shear_extension_stiffness[2]);
-  m.tip.kind = RodEndKind::Clamped;
+  m.tip.kind = tip;
   m.tip.position = Vec3(0.0, 0.0, kSpan);
   m.drawing_speed = c;
   return m;
 }
 
-}  // namespace
-
-BOOST_AUTO_TEST_CASE(divergence_speed_of_an_axially_moving_clamped_beam) {
-  // Euler-Bernoulli divergence of the translating beam between clamps (Wickert & Mote, "Classical
-  // vibration analysis of axially moving continua", J. Appl. Mech. 57 (1990) 738-744: the lowest
-  // frequency vanishes where the axial momentum flux exceeds tension plus the buckling load):
-  //   rho A c_d^2 = T + 4 pi^2 EI / l^2.
-  // The Cosserat rod's shear, rotary inertia and extensibility move it by O((r / l)^2, T / EA) ~ 1e-5, far
-  // inside the +-0.5 % bracket asserted.
-  const RodModel probe = moving_beam(0.0);
-  const double EI = probe.bending_torsion_stiffness[0], rhoA = probe.mass_per_length;
-  const double c_d = std::sqrt((kTension + 4.0 * M_PI * M_PI * EI / (kSpan * kSpan)) / rhoA);
-  BOOST_TEST_MESSAGE("c_d (Euler-Bernoulli, clamped-clamped) = " << c_d << " m/s");
+// The verdicts of collocation and shooting just below and above the divergence speed c_d.
+void check_verdicts_around(double c_d, RodEndKind tip) {
   RodSolveOptions o;
   o.discretization = {RodFormulation::Mixed, 6, 16};
   o.tolerance = 1e-12;
   o.stability_verdict = true;
   for (double factor : {0.995, 1.005}) {
-    const RodModel m = moving_beam(factor * c_d);
+    const RodModel m = moving_beam(factor * c_d, tip);
     const RodSolution col = solve_rod(m, o);
     BOOST_REQUIRE(col.summary.converged());
     // The straight state: section force T along the axis (n = N + rho A c^2 p', drawn_rod.hpp).
@@ -72,6 +63,36 @@ BOOST_AUTO_TEST_CASE(divergence_speed_of_an_axially_moving_clamped_beam) {
     BOOST_TEST((sc.verdict == expected), "collocation at " << factor << " c_d: " << to_string(sc.verdict));
     BOOST_TEST((ss.verdict == expected), "shooting at " << factor << " c_d: " << to_string(ss.verdict));
   }
+}
+
+// Euler-Bernoulli divergence of the translating beam (Wickert & Mote, "Classical vibration analysis of
+// axially moving continua", J. Appl. Mech. 57 (1990) 738-744: the lowest frequency vanishes where the
+// axial momentum flux exceeds tension plus the buckling load of the span):
+//   rho A c_d^2 = T + (x / l)^2 EI,   x = 2 pi between clamps, x = the smallest root of tan x = x
+//   (4.4934) between a clamp and a pin (Timoshenko & Gere, Theory of Elastic Stability, 2.6).
+// The Cosserat rod's shear, rotary inertia and extensibility move it by O((r / l)^2, T / EA) ~ 1e-5, far
+// inside the +-0.5 % bracket asserted.
+double divergence_speed(double x) {
+  const RodModel probe = moving_beam(0.0);
+  const double EI = probe.bending_torsion_stiffness[0], rhoA = probe.mass_per_length;
+  return std::sqrt((kTension + x * x * EI / (kSpan * kSpan)) / rhoA);
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(divergence_speed_of_an_axially_moving_clamped_beam) {
+  const double c_d = divergence_speed(2.0 * M_PI);
+  BOOST_TEST_MESSAGE("c_d (Euler-Bernoulli, clamped-clamped) = " << c_d << " m/s");
+  check_verdicts_around(c_d, RodEndKind::Clamped);
+}
+
+BOOST_AUTO_TEST_CASE(divergence_speed_of_an_axially_moving_clamped_pinned_beam) {
+  double x = 4.5;  // tan x = x near 3 pi / 2 - 0.22: Newton on f = sin x - x cos x, f' = x sin x
+  for (int i = 0; i < 50; ++i) x -= (std::sin(x) - x * std::cos(x)) / (x * std::sin(x));
+  BOOST_REQUIRE(std::abs(std::sin(x) - x * std::cos(x)) < 1e-14);
+  const double c_d = divergence_speed(x);
+  BOOST_TEST_MESSAGE("c_d (Euler-Bernoulli, clamped-pinned, x = " << x << ") = " << c_d << " m/s");
+  check_verdicts_around(c_d, RodEndKind::Spherical);
 }
 
 namespace {
