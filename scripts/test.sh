@@ -7,8 +7,7 @@
 #     under 20 minutes on 2 cores. -Og rather than -O1: the sanitizer build takes 7.5 instead of about 10
 #     minutes (collocation_rod.cpp alone: 62 s against 136 s), its tests 118 instead of 82 s. -g0: 8 %
 #     less compile time than line tables; reports still name the functions (UBSan's also file:line); to
-#     read an ASan report with lines, rebuild with -g1. PCR_SANITIZE_TESTS=OFF: the libraries and the pcr
-#     tool are instrumented, the test sources are not (instrumenting them took 2.5x their compile time).
+#     read an ASan report with lines, rebuild with -g1.
 set -euo pipefail
 # Elapsed time of each stage in the log (CI budget: 20 minutes for the whole of .ci/run).
 stage() { echo "test.sh: $1 at $((SECONDS / 60)) min $((SECONDS % 60)) s"; }
@@ -40,9 +39,9 @@ sanitizer_skip+=";test_paths_through_folds"  # the fold code runs sanitized thro
 sanitizer_skip+=";test_contact_edges"  # edges, points, rollers: Release only (test_contact runs the contact rows)
 sanitizer_skip+=";test_contact_adhesion"  # adhesive rollers: Release only (as test_contact_edges)
 sanitizer_skip+=";test_contact_ipopt;test_moving_obstacles"  # Ipopt as test_ipopt; moving obstacles: Release only
+sanitizer_skip+=";test_robot_model"  # the loader runs sanitized through test_fuzz_corpus, test_model_file_checks
 bash "$root/scripts/build.sh" "$root/build/sanitize" -DPCR_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-Og -g0" -DPCR_BUILD_BENCHMARKS=OFF -DPCR_BUILD_PYTHON=OFF \
-  -DPCR_SANITIZE_TESTS=OFF -DPCR_TEST_CXX_FLAGS=-Wno-maybe-uninitialized \
   -DPCR_SKIP_TESTS="$sanitizer_skip"
 stage "sanitizer build done"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
