@@ -126,10 +126,10 @@ void AdhesiveContactBlock::evaluate(const double* const* values, double* residua
   for (int r = 0; r < 3; ++r) residual[r] = (G[r] - lambda * g.normal[r] - mu * t[r]) * density_scale_;
   residual[3] = (u * L - roller_.stuck_section - arc.value) / length_scale_;
   complementarity(function_, gap, force, residual[4], phi_a, phi_b);
-  residual[5] = closed ? v.offset.dot(p1) / q : mu * density_scale_;
+  const NearestSectionStep step = nearest_section_step(v, p1);
+  residual[5] = closed ? step.value : mu * density_scale_;
   if (jacobians == nullptr) return;
-  const Vec3 ds_dp = v.jacobian.transpose() * p1 / q;
-  const Vec3 ds_dp1 = v.offset / q - 2.0 * v.offset.dot(p1) * p1 / (q * q);
+  const Vec3 &ds_dp = step.d_p, &ds_dp1 = step.d_p1;
   for (int k = 0; k < num_points(); ++k)
     if (jacobians[k] != nullptr) std::fill(jacobians[k], jacobians[k] + 6 * point_size_, 0.0);
   for (int i = 0; i < active; ++i) {

@@ -37,6 +37,15 @@ struct ContactSection {
 };
 ContactSection contact_section(const KnotVector& knots, const double* const* values, int p_offset, double u);
 
+/// The step s = v . p' / |p'|^2 from a section towards the section nearest to an obstacle (v = p - c(p),
+/// obstacle_offset; s = 0 where p' is normal to v) and its derivatives ds/dp = J_v^T p' / |p'|^2 and
+/// ds/dp' = v / |p'|^2 - 2 (v . p') p' / |p'|^4.
+struct NearestSectionStep {
+  double value = 0.0;
+  Vec3 d_p = Vec3::Zero(), d_p1 = Vec3::Zero();
+};
+NearestSectionStep nearest_section_step(const ObstacleOffset& v, const Vec3& p1);
+
 /// The rows of one sharp obstacle (edge, point) touching a rod (rod_contact.hpp). Variables: all the rod's
 /// control points (the contact section moves along the rod), then the obstacle's block
 /// [u_c, lambda, G (3)].

@@ -27,6 +27,15 @@ HatWeight midpoint_share(const std::vector<double>& midpoints, int j, double u) 
   return {};
 }
 
+NearestSectionStep nearest_section_step(const ObstacleOffset& v, const Vec3& p1) {
+  const double q = p1.squaredNorm();
+  NearestSectionStep s;
+  s.value = v.offset.dot(p1) / q;
+  s.d_p = v.jacobian.transpose() * p1 / q;
+  s.d_p1 = v.offset / q - 2.0 * s.value * p1 / q;
+  return s;
+}
+
 namespace {
 
 class SharpContactBlock final : public ResidualBlock {
@@ -65,15 +74,15 @@ class SharpContactBlock final : public ResidualBlock {
     const Vec3 &p = cs.p, &p1 = cs.p1, &p2 = cs.p2;
     const ObstacleGap g = obstacle_gap(obstacle_, p, radius_);
     const ObstacleOffset v = obstacle_offset(obstacle_, p);
-    const double q = p1.squaredNorm(), step = v.offset.dot(p1) / q, z = u - step;
+    const NearestSectionStep step = nearest_section_step(v, p1);
+    const double z = u - step.value;
     const bool clamped = z <= 0.0 || z >= 1.0;
     double phi_a = 0.0, phi_b = 0.0;
     for (int r = 0; r < 3; ++r) residual[r] = (G[r] - lambda * g.normal[r]) * density_scale_;
-    residual[3] = z <= 0.0 ? u : z >= 1.0 ? u - 1.0 : step;
+    residual[3] = z <= 0.0 ? u : z >= 1.0 ? u - 1.0 : step.value;
     complementarity(function_, g.gap / length_scale_, lambda * density_scale_, residual[4], phi_a, phi_b);
     if (jacobians == nullptr) return;
-    const Vec3 ds_dp = v.jacobian.transpose() * p1 / q;
-    const Vec3 ds_dp1 = v.offset / q - 2.0 * v.offset.dot(p1) * p1 / (q * q);
+    const Vec3 &ds_dp = step.d_p, &ds_dp1 = step.d_p1;
     for (int k = 0; k < num_points(); ++k)
       if (jacobians[k] != nullptr) std::fill(jacobians[k], jacobians[k] + 5 * point_size_, 0.0);
     for (int i = 0; i < active; ++i) {
