@@ -4,10 +4,16 @@
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
+#include <iomanip>
+#include <memory>
+#include <sstream>
 #include <string>
 
 #include "drawn_fixtures.hpp"
 #include "pcr/math/quaternion.hpp"
+#include "pcr/robots/kinematics.hpp"
+#include "pcr/robots/urdf_loader.hpp"
+#include "pcr/rods/drawn_rod.hpp"
 #include "pcr/rods/rod_solve.hpp"
 #include "pcr/rods/shooting/rod_shooting.hpp"
 #include "pcr/rods/stability/rod_stability.hpp"
@@ -130,6 +136,16 @@ BOOST_AUTO_TEST_CASE(drawn_universal_ends_the_verdict_cannot_test) {
   curved.intrinsic.curvature = Vec3(0.1, 0.0, 0.0);
   BOOST_TEST(drawn_end_problem(curved).find("universal base") != std::string::npos,
              drawn_end_problem(curved));
+  // Not restricted to round sections: m_i = lambda M_i with the same lambda = 1 / (1 - rho c^2 / E) in
+  // both bending directions of any homogeneous section (m = M + rho c^2 R J kappa, rho J_i = rho I_i).
+  RodModel flat = moving_beam(10.0, RodEndKind::Clamped, RodEndKind::Universal);
+  flat.set_material_and_section(Material::from_poisson_ratio(200e9, 0.3, 7850.0),
+                                CrossSection::rectangle(4e-3, 2e-3));
+  const DrawnConstants d = drawn_constants(flat, Vec3::Zero(), Vec3::Zero());
+  const double lambda = 1.0 / (1.0 - 7850.0 * 100.0 / 200e9);
+  for (int i = 0; i < 2; ++i)  // round-off of the effective constants
+    BOOST_TEST(1.0 + d.flux_moment[i] / d.k_bt[i] == lambda, boost::test_tools::tolerance(1e-13));
+  BOOST_TEST(drawn_end_problem(flat).empty(), drawn_end_problem(flat));
 
   // The state part, below c_d (c = 20 m/s, c_d = 25.6 m/s): a span twisted by 0.3 rad (the universal tip's
   // frame turned about the tangent), and one whose first axis is tilted towards the tangent (d3 . a =
@@ -154,5 +170,48 @@ BOOST_AUTO_TEST_CASE(drawn_universal_ends_the_verdict_cannot_test) {
     const Verdicts r = verdicts(at_rest);
     BOOST_TEST((r.collocation.verdict == StabilityVerdict::Stable), r.collocation.reason);
     BOOST_TEST((r.shooting.verdict == StabilityVerdict::Stable), r.shooting.reason);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(pinned_span_in_a_robot) {
+  // The span of divergence_speed_of_an_axially_moving_pinned_beam as a robot rod. A robot's couplings
+  // hold the effective N, M (docs/model_format.md "drawing_speed"), so their conditions are natural ones
+  // of the effective energy; the verdict (robot_stability.hpp) changes at c_d as the rod's does.
+  const double c_d = divergence_speed(M_PI);
+  const RodModel beam = moving_beam(c_d, RodEndKind::Spherical, RodEndKind::Universal);
+  KinematicsOptions options;
+  options.stability_verdict = true;
+  for (double factor : {0.995, 1.005}) {
+    std::ostringstream xml;
+    xml << std::setprecision(17) << R"(<robot name="span">
+  <link name="base"/>
+  <link name="support"/>
+  <joint name="support_joint" type="fixed">
+    <parent link="base"/>
+    <child link="support"/>
+    <origin xyz="0 0 )"
+        << kSpan << R"(" rpy="0 0 0"/>
+  </joint>
+  <pcr_rod name="span" drawing_speed=")"
+        << factor * c_d << R"(">
+    <start link="base" xyz="0 0 0" rpy="0 0 0" coupling="spherical"/>
+    <end link="support" xyz="0 0 0" rpy="0 0 0" coupling="universal" axis="1 0 0"/>
+    <material youngs_modulus="200e9" poisson_ratio="0.3" density="7850"/>
+    <section type="circle" radius="0.001"/>
+    <length value=")"
+        << beam.length << R"("/>
+    <discretization formulation="mixed" degree="6" elements="16"/>
+  </pcr_rod>
+</robot>)";
+    ForwardKinematics fk(std::make_shared<const RobotModel>(parse_robot_model(xml.str(), "span.urdf")),
+                         options);
+    const RobotSolution s = fk.solve(VecX());
+    BOOST_REQUIRE(s.summary.converged());
+    const Stability& v = s.stability_verdict;
+    BOOST_TEST_MESSAGE("robot, c = " << factor << " c_d: " << to_string(v.verdict) << " (" << v.unstable_modes
+                                     << " unstable modes, margin " << v.margin << ") " << v.reason);
+    const bool below = factor < 1.0;
+    BOOST_TEST((v.verdict == (below ? StabilityVerdict::Stable : StabilityVerdict::Unstable)), v.reason);
+    BOOST_TEST(v.unstable_modes == (below ? 0 : 2));
   }
 }
