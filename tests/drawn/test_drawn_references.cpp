@@ -1,6 +1,5 @@
-// Drawn rods against published references: the divergence speed of an axially moving beam between two
-// clamps and between a clamp and a pin (the stability verdict changes there), and O'Reilly's small-deflection
-// solution of a rod drawn over a sharp obstacle under gravity (Appendix A).
+// Drawn rods against published references: O'Reilly's small-deflection solution of a rod drawn over a
+// sharp obstacle under gravity (Appendix A). The divergence speeds: test_drawn_divergence.cpp.
 #include <boost/test/unit_test.hpp>
 
 #include <Eigen/Dense>
@@ -10,9 +9,6 @@
 #include "drawn_fixtures.hpp"
 #include "pcr/math/quaternion.hpp"
 #include "pcr/rods/collocation_rod.hpp"
-#include "pcr/rods/rod_solve.hpp"
-#include "pcr/rods/shooting/rod_shooting.hpp"
-#include "pcr/rods/stability/rod_stability.hpp"
 #include "pcr/solve/jacobian_check.hpp"
 #include "pcr/solve/newton_solver.hpp"
 #include "pcr/solve/problem.hpp"
@@ -21,83 +17,6 @@ using namespace pcr;
 
 namespace {
 
-// Steel wire r = 1 mm between two clamps (or pins) a span l = 0.5 m apart, drawn at c, tension T = 10 N in
-// the straight state: the reference length l / (1 + T / EA) stretched to l carries n . d3 = EA eps3 = T.
-constexpr double kSpan = 0.5, kTension = 10.0;
-
-// tip: Clamped (clamped-clamped span) or Spherical (a pin at the tip: clamped-pinned; a pin at both ends
-// would leave the twist free).
-RodModel moving_beam(double c, RodEndKind tip = RodEndKind::Clamped) {
-  RodModel m = test::steel_wire(1e-3, 1.0);
-  m.name = "moving_beam";
-  m.length = kSpan / (1.0 + kTension / m.shear_extension_stiffness[2]);
-  m.tip.kind = tip;
-  m.tip.position = Vec3(0.0, 0.0, kSpan);
-  m.drawing_speed = c;
-  return m;
-}
-
-// The verdicts of collocation and shooting just below and above the divergence speed c_d.
-void check_verdicts_around(double c_d, RodEndKind tip) {
-  RodSolveOptions o;
-  o.discretization = {RodFormulation::Mixed, 6, 16};
-  o.tolerance = 1e-12;
-  o.stability_verdict = true;
-  for (double factor : {0.995, 1.005}) {
-    const RodModel m = moving_beam(factor * c_d, tip);
-    const RodSolution col = solve_rod(m, o);
-    BOOST_REQUIRE(col.summary.converged());
-    // The straight state: section force T along the axis (n = N + rho A c^2 p', drawn_rod.hpp).
-    const RodState mid = col.at(0.5 * m.length);
-    BOOST_TEST(mid.force[2] == kTension, boost::test_tools::tolerance(1e-9));
-    BOOST_TEST(mid.position.head<2>().norm() < 1e-12);
-    const Stability sc = col.stability_verdict;
-    const ShootingSolution sh = solve_rod_shooting(m);
-    BOOST_REQUIRE(sh.summary.converged());
-    const Stability ss = rod_stability(m, sh);
-    BOOST_TEST_MESSAGE("c = " << factor << " c_d: collocation " << to_string(sc.verdict) << " ("
-                              << sc.unstable_modes << " unstable modes, margin " << sc.margin
-                              << "), shooting " << to_string(ss.verdict) << " (" << ss.unstable_modes
-                              << ", margin " << ss.margin << ")");
-    const StabilityVerdict expected = factor < 1.0 ? StabilityVerdict::Stable : StabilityVerdict::Unstable;
-    BOOST_TEST((sc.verdict == expected), "collocation at " << factor << " c_d: " << to_string(sc.verdict));
-    BOOST_TEST((ss.verdict == expected), "shooting at " << factor << " c_d: " << to_string(ss.verdict));
-  }
-}
-
-// Euler-Bernoulli divergence of the translating beam (Wickert & Mote, "Classical vibration analysis of
-// axially moving continua", J. Appl. Mech. 57 (1990) 738-744: the lowest frequency vanishes where the
-// axial momentum flux exceeds tension plus the buckling load of the span):
-//   rho A c_d^2 = T + (x / l)^2 EI,   x = 2 pi between clamps, x = the smallest root of tan x = x
-//   (4.4934) between a clamp and a pin (Timoshenko & Gere, Theory of Elastic Stability, 2.6).
-// The Cosserat rod's shear, rotary inertia and extensibility move it by O((r / l)^2, T / EA) ~ 1e-5, far
-// inside the +-0.5 % bracket asserted.
-double divergence_speed(double x) {
-  const RodModel probe = moving_beam(0.0);
-  const double EI = probe.bending_torsion_stiffness[0], rhoA = probe.mass_per_length;
-  return std::sqrt((kTension + x * x * EI / (kSpan * kSpan)) / rhoA);
-}
-
-}  // namespace
-
-BOOST_AUTO_TEST_CASE(divergence_speed_of_an_axially_moving_clamped_beam) {
-  const double c_d = divergence_speed(2.0 * M_PI);
-  BOOST_TEST_MESSAGE("c_d (Euler-Bernoulli, clamped-clamped) = " << c_d << " m/s");
-  check_verdicts_around(c_d, RodEndKind::Clamped);
-}
-
-BOOST_AUTO_TEST_CASE(divergence_speed_of_an_axially_moving_clamped_pinned_beam) {
-  double x = 4.5;  // tan x = x near 3 pi / 2 - 0.22: Newton on f = sin x - x cos x, f' = x sin x
-  for (int i = 0; i < 50; ++i) x -= (std::sin(x) - x * std::cos(x)) / (x * std::sin(x));
-  BOOST_REQUIRE(std::abs(std::sin(x) - x * std::cos(x)) < 1e-14);
-  const double c_d = divergence_speed(x);
-  BOOST_TEST_MESSAGE("c_d (Euler-Bernoulli, clamped-pinned, x = " << x << ") = " << c_d << " m/s");
-  check_verdicts_around(c_d, RodEndKind::Spherical);
-}
-
-namespace {
-
-// ---------------------------------------------------------------------------------------------------
 // O'Reilly (1997), Appendix A: a rod drawn at c over a sharp rigid obstacle at zeta = 0 between guides at
 // zeta = -a and zeta = +b, gravity g along -E1, contact pushing the centreline to u1(0) = L_obs (rigid
 // sections, so (A12)'s director term h d11(0) vanishes). Small-deflection flexural solution (A1)-(A3):

@@ -35,32 +35,11 @@ Stability verdict(const RodModel& model, double length, const JacobiStateAt& sta
   RodModel held_model = model;
   held_model.length = length;
   const HeldRod rod = held_rod(held_model, states(0.0).rotation, states(length).rotation);
+  const std::string joint_state = drawn_joint_state_problem(model, rod, states);
+  if (!joint_state.empty()) return unknown_stability("rod '" + model.name + "': " + joint_state);
   HeldRodOptions options;
   options.min_segments = std::max(options.min_segments, min_segments);
   return held_rod_stability(held_rod_index(rod, states, options));
-}
-
-// A drawn rod's end conditions hold for the section's n, m (end_equations.hpp); they are natural
-// conditions of the effective rod's energy only where they say the same for N, M: clamped ends, and
-// spherical ends without an applied moment on a rod without intrinsic curvature (m = 0 iff M = 0 there,
-// drawn_rod.hpp). A loaded or free end (n(L) = F, i.e. N(L) = F - rho A c^2 p'(L)) and the moment rows of
-// the other joints are not.
-std::string drawn_end_problem(const RodModel& model) {
-  if (model.drawing_speed == 0.0) return {};
-  std::ostringstream msg;
-  const RodEnd* ends[2] = {&model.base, &model.tip};
-  const char* names[2] = {"base", "tip"};
-  for (int k = 0; k < 2; ++k) {
-    const RodEndKind kind = ends[k]->kind;
-    const bool natural =
-        kind == RodEndKind::Clamped || (kind == RodEndKind::Spherical && ends[k]->moment.isZero(0.0) &&
-                                        model.intrinsic.curvature.isZero(0.0));
-    if (!natural)
-      msg << (msg.tellp() > 0 ? "; " : "") << "rod '" << model.name << "': drawn rod (drawing_speed "
-          << model.drawing_speed << " m/s) with a " << to_string(kind) << " " << names[k]
-          << ": its conditions on the section force or moment are not those of the effective rod's energy";
-  }
-  return msg.str();
 }
 
 }  // namespace
