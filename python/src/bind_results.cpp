@@ -99,6 +99,8 @@ void bind_contacts(py::module_& m) {
       .def_readonly("arc_lengths", &ObstacleContact::arc_lengths, "contact cell midpoints s_j [m]")
       .def_readonly("densities", &ObstacleContact::densities, "contact force density per cell [N/m]")
       .def_readonly("gaps", &ObstacleContact::gaps, "gap at each cell midpoint [m]")
+      .def_readonly("forces", &ObstacleContact::forces,
+                    "per cell: its resultant contact force on the rod [N]; sharp obstacles: the point force")
       .def("__repr__", [](const ObstacleContact& c) {
         return "<pcr.ObstacleContact " + c.rod + " on " + c.obstacle + ", " +
                std::to_string(c.intervals.size()) + " intervals>";

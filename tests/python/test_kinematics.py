@@ -160,6 +160,11 @@ def test_contacts_equal_the_tool_bit_for_bit():
             assert [interval.s_begin, interval.s_end] == [ri["s_begin"], ri["s_end"]]
             assert interval.force.tolist() == ri["force"]
         assert len(contact.arc_lengths) == len(contact.densities) == len(contact.gaps) > 0
+        assert len(contact.forces) == len(contact.arc_lengths)
+        # The cells' forces add up to the resultant the tool reports (sums of the same terms in another
+        # order: round-off, 1e-12 of the force).
+        total = np.sum(np.array(contact.forces), axis=0)
+        assert np.linalg.norm(total - np.array(r["force"])) <= 1e-12 * np.linalg.norm(r["force"])
     assert len(result.contact_gaps) == len(ref["contact_gaps"]) == 1
     for gap, r in zip(result.contact_gaps, ref["contact_gaps"]):
         assert [gap.min_gap, gap.arc_length, gap.tolerance] == [r["min_gap"], r["arc_length"], r["tolerance"]]
