@@ -5,9 +5,11 @@
 #include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <fstream>
+#include <random>
 #include <sstream>
 #include <string>
 
+#include "pcr/math/so3.hpp"
 #include "pcr/robots/kinematics.hpp"
 #include "pcr/robots/robot_stability.hpp"
 #include "pcr/robots/urdf_loader.hpp"
@@ -101,4 +103,97 @@ BOOST_AUTO_TEST_CASE(hinged_column_against_the_closed_form) {
     BOOST_TEST_MESSAGE("k / k_cr = " << ratio << ": K_red - closed form = " << (K_red - (k - k_cr)) / k_cr
                                      << " k_cr, asymmetry " << v.asymmetry);
   }
+}
+
+// The passive column of K_red against finite differences of the equilibrium: a dead torque tau about the
+// hinge axis (world y) on passive_hinge's hinge link adds tau to the hinge's generalised force; FK with the
+// inputs fixed at tau = +-h gives d(border)/d tau, which must be K_red^-1's hinge column (the compliance:
+// the platform and the rods follow). Central differences: truncation O(h^2) times the third derivative of
+// the equilibrium path; with h = 1e-5 N m (a hinge motion of ~1e-5 rad against its 1e-1-rad scale of
+// nonlinearity) that is ~1e-8 relative, and the solves' residual 1e-12 x M0 = 3e-14 N m gives an error of
+// ~3e-9 relative. The bound 1e-6 of the column's largest entry covers both with a margin of 100.
+BOOST_AUTO_TEST_CASE(passive_hinge_compliance_against_finite_differences) {
+  std::ifstream file(test::model_path("passive_hinge"));
+  std::stringstream text;
+  text << file.rdbuf();
+  const std::string xml = text.str();
+  const auto model = model_from(xml, "passive_hinge");
+  ForwardKinematics fk(model, test::tight_kinematics());
+  const VecX u = model->default_input_values();
+  BOOST_TEST_REQUIRE(fk.solve(u).summary.converged());
+  const BorderStiffness K = robot_border_stiffness(fk.assembly(), fk.state());
+  BOOST_TEST_REQUIRE(K.ok, K.failure);
+  BOOST_TEST_REQUIRE(K.stiffness.rows() == 7);  // the platform (6), the hinge (1)
+  // K_red in SI units, inverted: the compliance, its hinge column (rad or m per N m).
+  const VecX D = K.coordinate_scale;
+  const MatX K_si =
+      K.energy_scale * D.cwiseInverse().asDiagonal() * K.stiffness * D.cwiseInverse().asDiagonal();
+  const VecX predicted = K_si.inverse().col(6);
+
+  const double h = 1e-5;  // N m
+  VecX border[2];
+  Mat3 rotation[2];
+  for (int side = 0; side < 2; ++side) {
+    const double tau = side == 0 ? h : -h;
+    std::string loaded = xml;
+    std::ostringstream load;
+    load << "  <pcr_load link=\"hinge\" xyz=\"0 0 0\" force=\"0 0 0\" torque=\"0 " << tau
+         << " 0\"/>\n</robot>";
+    loaded.replace(loaded.rfind("</robot>"), 8, load.str());
+    ForwardKinematics perturbed(model_from(loaded, "passive_hinge"), test::tight_kinematics());
+    const RobotSolution s = perturbed.solve(u);
+    BOOST_TEST_REQUIRE(s.summary.converged());
+    border[side] = VecX::Zero(7);
+    border[side].head<3>() = s.platforms[0].position;
+    rotation[side] = s.platforms[0].rotation();
+    border[side][6] = s.passive_joints[0];
+  }
+  // The world rotation vector from R- to R+: log(R+ R-^T) (dtheta is world-frame, dR = [dtheta]x R).
+  VecX measured = (border[0] - border[1]) / (2.0 * h);
+  measured.segment<3>(3) = so3_log(rotation[0] * rotation[1].transpose()) / (2.0 * h);
+  const double scale = predicted.cwiseAbs().maxCoeff();
+  BOOST_TEST_MESSAGE("hinge compliance column: predicted "
+                     << predicted.transpose() << ", largest difference "
+                     << (measured - predicted).cwiseAbs().maxCoeff() / scale << " of its largest entry");
+  BOOST_TEST((measured - predicted).cwiseAbs().maxCoeff() < 1e-6 * scale,
+             "difference " << (measured - predicted).transpose());
+  BOOST_TEST(predicted[6] > 0.0);  // the hinge turns with the torque it is given
+}
+
+// universal_passive builds each universal coupling of universal_pair from two spring-less passive revolute
+// joints (test_joints: the same equilibria). The Morse index does not depend on the coordinates or on
+// the split, so both models must count the same unstable modes, though universal_pair counts the
+// universal freedoms in its rods' held counts (with the joint map's curvature term) and universal_passive
+// in the border. Inputs: 0.3 of the way from the defaults to uniform random points of the input box
+// (seed 5); the first is an equilibrium with many unstable modes (rods twisted in loops), the others
+// stable.
+BOOST_AUTO_TEST_CASE(universal_passive_counts_as_universal_pair) {
+  const auto pair = load_model("universal_pair"), passive = load_model("universal_passive");
+  ForwardKinematics fa(pair, with_verdict()), fb(passive, with_verdict());
+  std::mt19937 rng(5);
+  int unstable = 0, stable = 0;
+  for (int n = 0; n < 3; ++n) {
+    VecX u = pair->default_input_values();
+    for (int i = 0; i < u.size(); ++i) {
+      const ActuationInput& in = pair->inputs()[i];
+      u[i] += 0.3 * (std::uniform_real_distribution<double>(in.lower, in.upper)(rng) - u[i]);
+    }
+    const RobotSolution a = fa.solve(u), b = fb.solve(u);
+    BOOST_TEST_REQUIRE(a.summary.converged());
+    BOOST_TEST_REQUIRE(b.summary.converged());
+    // The same equilibrium (both at the default tolerance 1e-10 x 0.26 m, condition < 1e2).
+    BOOST_TEST_REQUIRE((a.platforms[0].position - b.platforms[0].position).norm() < 1e-8);
+    const Stability &va = a.stability_verdict, &vb = b.stability_verdict;
+    BOOST_TEST(to_string(va.verdict) == to_string(vb.verdict), vb.reason);
+    BOOST_TEST(va.unstable_modes == vb.unstable_modes, "input set " << n);
+    BOOST_TEST(va.neutral_modes == vb.neutral_modes);
+    BOOST_TEST(vb.asymmetry < 1e-5);  // the collocation's discretisation error (test_robot_verdict)
+    unstable += va.unstable_modes > 0;
+    stable += va.verdict == StabilityVerdict::Stable;
+    BOOST_TEST_MESSAGE("input set " << n << ": " << va.unstable_modes << " unstable modes (pair: border "
+                                    << va.border_unstable_modes << "; passive: border "
+                                    << vb.border_unstable_modes << ")");
+  }
+  BOOST_TEST(unstable >= 1);  // both verdicts met: the comparison is not vacuous
+  BOOST_TEST(stable >= 1);
 }
