@@ -36,16 +36,20 @@ std::shared_ptr<const RobotModel> model_from(const std::string& xml, const std::
 constexpr double kE = 200e9, kRadius = 0.5e-3, kLength = 0.2;
 const double kEI = kE * M_PI * std::pow(kRadius, 4) / 4.0;
 
-std::string hinged_column(double k, double P) {
+// joint_type revolute: a hinge about y; prismatic: a slider along z.
+std::string hinged_column(double k, double P, const std::string& joint_type = "revolute") {
+  const bool slider = joint_type == "prismatic";
   std::ostringstream xml;
   xml << R"(<robot name="hinged_column">
   <link name="base"/>
   <link name="hinge"/>
-  <joint name="hinge" type="revolute">
+  <joint name="hinge" type=")"
+      << joint_type << R"(">
     <parent link="base"/>
     <child link="hinge"/>
     <origin xyz="0 0 0" rpy="0 0 0"/>
-    <axis xyz="0 1 0"/>
+    <axis xyz=")"
+      << (slider ? "0 0 1" : "0 1 0") << R"("/>
     <limit lower="-0.5" upper="0.5" effort="0" velocity="1"/>
   </joint>
   <pcr_joint name="hinge" passive="true" stiffness=")"
@@ -108,6 +112,23 @@ BOOST_AUTO_TEST_CASE(hinged_column_against_the_closed_form) {
     BOOST_TEST_MESSAGE("k / k_cr = " << ratio << ": K_red - closed form = " << (K_red - (k - k_cr)) / k_cr
                                      << " k_cr, asymmetry " << v.asymmetry);
   }
+}
+
+// The same column on a slider along its axis with a spring k [N/m]: moving the slider translates the
+// column and its load (dead, no gravity) without changing their shape, so the slider's reduced stiffness
+// is k exactly: K_hat = k L0^2 / M0 (a prismatic joint's coordinate scaled by the length scale L0).
+BOOST_AUTO_TEST_CASE(column_on_a_slider_has_the_spring_stiffness) {
+  const double k = 50.0;
+  ForwardKinematics fk(model_from(hinged_column(k, 0.3, "prismatic"), "slider_column"), with_verdict());
+  const RobotSolution s = fk.solve(VecX());
+  BOOST_TEST_REQUIRE(s.summary.converged());
+  const Stability& v = s.stability_verdict;
+  BOOST_TEST(to_string(v.verdict) == std::string("stable"), v.reason);
+  // Exact but for round-off in the compliance solve and its inversion (measured 3e-16 relative); the
+  // bound 1e-6 leaves room for the FK Jacobian's condition (up to ~1e10 for slender steel rods).
+  const double K_red = v.margin * v.energy_scale / (v.length_scale * v.length_scale);
+  BOOST_TEST(std::abs(K_red - k) < 1e-6 * k, "K_red " << K_red << " N/m");
+  BOOST_TEST_MESSAGE("slider: K_red / k - 1 = " << K_red / k - 1.0);
 }
 
 // passive_hinge at its default inputs: one unstable mode, the platform tilting out of the robot's plane as
