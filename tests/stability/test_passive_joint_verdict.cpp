@@ -10,6 +10,7 @@
 #include <string>
 
 #include "pcr/math/so3.hpp"
+#include "pcr/robots/io/solution_writers.hpp"
 #include "pcr/robots/kinematics.hpp"
 #include "pcr/robots/robot_stability.hpp"
 #include "pcr/robots/urdf_loader.hpp"
@@ -146,6 +147,13 @@ BOOST_AUTO_TEST_CASE(passive_hinge_default_pose_against_the_discrete_model) {
   const test::DiscreteRods::Inertia d = test::discrete_robot_inertia(fk.assembly(), fk.state(), 16);
   BOOST_TEST(d.negative == 1);
   BOOST_TEST(d.zero == 0);
+  // The verdict in the results table and JSON (pcr fk --stability), no longer `unknown`.
+  std::ostringstream table, json;
+  write_solution_table(table, *model, s);
+  write_solution_json(json, *model, s, {});
+  BOOST_TEST(table.str().find("stability: unstable (1 unstable mode, margin") != std::string::npos,
+             table.str());
+  BOOST_TEST(json.str().find("\"verdict\": \"unstable\"") != std::string::npos);
 }
 
 // The passive column of K_red against finite differences of the equilibrium: a dead torque tau about the
