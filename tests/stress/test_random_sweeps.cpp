@@ -247,6 +247,9 @@ bool solve_and_check(const std::string& name, ForwardKinematics& fk, const VecX&
     ++stats.verdicts;
     stats.stable += out.stability_verdict.verdict == StabilityVerdict::Stable ? 1 : 0;
     ++stats.verdict_kinds[to_string(out.stability_verdict.verdict)];
+    if (out.stability_verdict.verdict == StabilityVerdict::Unknown)
+      BOOST_TEST_MESSAGE(name << ": verdict unknown at " << u.transpose() << ": "
+                              << out.stability_verdict.reason);
   }
   const Consistency c = check_solution(model, out);
   BOOST_TEST(c.finite, name << ": converged with non-finite values at " << u.transpose());
