@@ -18,6 +18,21 @@ DiscreteTip tip_of(RodEndKind kind) {
   return DiscreteTip::Free;
 }
 
+/// Joint values at the state x: inputs and passive joints.
+VecX state_joint_values(const RobotAssembly& assembly, const VecX& x) {
+  const RobotModel& model = assembly.model();
+  VecX q = model.default_joint_values();
+  const VecX u = assembly.inputs(x);
+  for (size_t i = 0; i < model.inputs().size(); ++i)
+    if (model.inputs()[i].kind == ActuationInput::Kind::JointValue)
+      q[model.joints()[model.inputs()[i].index].value_index] = u[static_cast<int>(i)];
+  const std::vector<int>& passive = model.passive_joints();
+  for (size_t k = 0; k < passive.size(); ++k)
+    q[model.joints()[passive[k]].value_index] =
+        x[assembly.problem().variable(assembly.passive_joint_variable(static_cast<int>(k))).offset];
+  return q;
+}
+
 /// The discrete hinge of passive joint j (a revolute joint on a fixed link) at the state x: its world axis,
 /// spring, and the weights and loads on the links it moves.
 DiscreteHingeSpec hinge_of(const RobotAssembly& assembly, const VecX& x, int passive, const VecX& q,
@@ -69,16 +84,8 @@ DiscreteRods::Inertia discrete_robot_inertia(const RobotAssembly& assembly, cons
     if (platform_of_link[load.link] >= 0)  // else on a hinge's link (hinge_of)
       platforms[platform_of_link[load.link]].forces.emplace_back(load.point, load.force);
   }
-  // Joint values at the state: inputs and passive joints.
-  VecX q = model.default_joint_values();
-  const VecX u = assembly.inputs(x);
-  for (size_t i = 0; i < model.inputs().size(); ++i)
-    if (model.inputs()[i].kind == ActuationInput::Kind::JointValue)
-      q[model.joints()[model.inputs()[i].index].value_index] = u[static_cast<int>(i)];
+  const VecX q = state_joint_values(assembly, x);
   const std::vector<int>& passive = model.passive_joints();
-  for (size_t k = 0; k < passive.size(); ++k)
-    q[model.joints()[passive[k]].value_index] =
-        x[assembly.problem().variable(assembly.passive_joint_variable(static_cast<int>(k))).offset];
   std::vector<DiscreteHingeSpec> hinges;
   for (size_t k = 0; k < passive.size(); ++k)
     hinges.push_back(hinge_of(assembly, x, static_cast<int>(k), q, poses));
