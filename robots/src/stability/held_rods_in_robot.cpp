@@ -20,8 +20,11 @@ std::string robot_assumption_failure(const RobotModel& model) {
   }
   for (const ExternalLoad& load : model.loads())
     if (!load.torque.isZero(0.0))
-      add("dead torque on link '" + model.links()[load.link].name +
-          "' has no potential (a platform turns about any axis)");
+      add("dead torque on link '" + model.links()[load.link].name + "' has no potential (" +
+          (model.carrying_platform(load.link) >= 0
+               ? "a platform turns about any axis"
+               : "treated as non-conservative on links that passive joints turn") +
+          ")");
   return msg.str();
 }
 
