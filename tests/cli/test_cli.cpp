@@ -172,7 +172,8 @@ BOOST_AUTO_TEST_CASE(ik_of_an_fk_pose_gives_back_the_fk_inputs) {
 // --stability through the tool (also the sanitizer pass's coverage of the verdict code). The counts are
 // those test_stability_verdict checks against an independent discrete energy model: stewart_gough's
 // default pose stable, planar_three_rod's default pose 1 unstable mode (its platform tilts out of the
-// plane); the table names the verdict; a model with a passive joint is "unknown" with the reason.
+// plane); the table names the verdict; passive_hinge's default pose 1 unstable mode (as
+// planar_three_rod's; test_passive_joint_verdict); a model with contact is "unknown" with the reason.
 BOOST_AUTO_TEST_CASE(stability_verdict_in_the_json_and_the_table) {
   const Run stewart = run_pcr("fk " + model("stewart_gough.urdf") + " --stability --json");
   BOOST_REQUIRE_EQUAL(stewart.exit_code, 0);
@@ -193,8 +194,14 @@ BOOST_AUTO_TEST_CASE(stability_verdict_in_the_json_and_the_table) {
   const Run hinge = run_pcr("fk " + model("passive_hinge.urdf") + " --stability --json");
   BOOST_REQUIRE_EQUAL(hinge.exit_code, 0);
   const test_json::Value h = test_json::parse(hinge.out);
-  BOOST_CHECK_EQUAL(h["stability"]["verdict"].text, "unknown");
-  BOOST_CHECK_MESSAGE(contains(h["stability"]["reason"].text, "passive"), h["stability"]["reason"].text);
+  BOOST_CHECK_EQUAL(h["stability"]["verdict"].text, "unstable");
+  BOOST_CHECK_EQUAL(h["stability"]["unstable_modes"].number, 1);
+  BOOST_CHECK_EQUAL(h["stability"]["platform_unstable_modes"].number, 1);
+  const Run post = run_pcr("fk " + model("planar_post.urdf") + " --stability --json");
+  BOOST_REQUIRE_EQUAL(post.exit_code, 0);
+  const test_json::Value c = test_json::parse(post.out);
+  BOOST_CHECK_EQUAL(c["stability"]["verdict"].text, "unknown");
+  BOOST_CHECK_MESSAGE(contains(c["stability"]["reason"].text, "obstacles"), c["stability"]["reason"].text);
 }
 
 BOOST_AUTO_TEST_CASE(unreachable_ik_target_fails_with_exit_code_1) {

@@ -120,10 +120,26 @@ struct DiscreteTerms {
     const auto& P = s.platforms_[p];
     return perturbed(L.vars(P.index + 3), constant(P.Q));
   }
+  Q4 hinge_turn(int h, Local& L) const {
+    const auto& H = s.hinges_[h];
+    const HD t = L.var(H.index);
+    return perturbed({t * H.spec.axis[0], t * H.spec.axis[1], t * H.spec.axis[2]}, constant(H.turn));
+  }
+  /// A point given at the hinge's value, turned with it.
+  V3 on_hinge(int h, const Vec3& point, Local& L) const {
+    const Vec3& o = s.hinges_[h].spec.origin;
+    return add(constant(o), rotate(hinge_turn(h, L), constant(Vec3(point - o))));
+  }
+  Q4 base_frame(int r, Local& L) const {
+    const auto& rod = s.rods_[r];
+    if (rod.spec.base_hinge < 0) return constant(rod.base_q);
+    return mul(hinge_turn(rod.spec.base_hinge, L), constant(rod.base_q));
+  }
   V3 node(int r, int i, Local& L) const {
     const auto& rod = s.rods_[r];
     const int idx = rod.p_index[i];
     if (idx == -1) return constant(rod.p[i]);
+    if (idx == -3) return on_hinge(rod.spec.base_hinge, rod.spec.base_position, L);
     if (idx >= 0) return add(constant(rod.p[i]), L.vars(idx));
     const auto& P = s.platforms_[rod.spec.platform];  // attached tip: x + R(Q) r
     return add(add(constant(P.x), L.vars(P.index)),
@@ -167,7 +183,7 @@ struct DiscreteTerms {
     {
       Local L;
       const Q4 q0 = frame(r, 0, L);
-      accumulate(L, bending(constant(rod.base_q), q0, 0.5 * h, 0.5 * h, rod.spec.k_bt));
+      accumulate(L, bending(base_frame(r, L), q0, 0.5 * h, 0.5 * h, rod.spec.k_bt));
     }
     if (rod.spec.tip == DiscreteTip::Clamped || rod.spec.tip == DiscreteTip::Collar) {
       Local L;
@@ -181,6 +197,18 @@ struct DiscreteTerms {
       accumulate(L, -dot(constant(F), node(r, i, L)));
     }
   }
+  void hinge_terms(int h) {
+    const auto& H = s.hinges_[h];
+    {
+      Local L;
+      const HD angle = L.var(H.index) + (H.spec.value + H.angle - H.spec.rest);
+      accumulate(L, angle * angle * (0.5 * H.spec.stiffness));
+    }
+    for (const auto& f : H.spec.forces) {
+      Local L;
+      accumulate(L, -dot(constant(f.second), on_hinge(h, f.first, L)));
+    }
+  }
   void platform_terms(int p) {
     const auto& P = s.platforms_[p];
     for (const auto& f : P.spec.forces) {
@@ -192,7 +220,14 @@ struct DiscreteTerms {
   }
 };
 
-DiscreteRods::DiscreteRods(std::vector<DiscreteRodSpec> rods, std::vector<DiscretePlatformSpec> platforms) {
+DiscreteRods::DiscreteRods(std::vector<DiscreteRodSpec> rods, std::vector<DiscretePlatformSpec> platforms,
+                           std::vector<DiscreteHingeSpec> hinges) {
+  for (auto& spec : hinges) {
+    Hinge H;
+    H.spec = spec;
+    H.index = num_variables_++;
+    hinges_.push_back(H);
+  }
   for (auto& spec : rods) {
     Rod rod;
     rod.spec = spec;
@@ -200,6 +235,7 @@ DiscreteRods::DiscreteRods(std::vector<DiscreteRodSpec> rods, std::vector<Discre
     rod.p.assign(N + 1, Vec3::Zero());
     rod.q.assign(N, Eigen::Vector4d(1, 0, 0, 0));
     rod.p_index.assign(N + 1, -1);
+    if (spec.base_hinge >= 0) rod.p_index[0] = -3;
     rod.q_index.assign(N, -1);
     for (int i = 1; i <= N; ++i) {
       if (i == N && spec.tip != DiscreteTip::Free) {
@@ -262,6 +298,7 @@ double DiscreteRods::assemble(VecX* gradient, MatX* hessian) const {
   DiscreteTerms terms{*this, 0.0, gradient, hessian};
   for (size_t r = 0; r < rods_.size(); ++r) terms.rod_terms(static_cast<int>(r));
   for (size_t p = 0; p < platforms_.size(); ++p) terms.platform_terms(static_cast<int>(p));
+  for (size_t h = 0; h < hinges_.size(); ++h) terms.hinge_terms(static_cast<int>(h));
   return terms.energy;
 }
 
@@ -276,6 +313,17 @@ void DiscreteRods::step(const VecX& dy) {
     P.x += dy.segment<3>(P.index);
     P.Q = retracted(dy.segment<3>(P.index + 3), P.Q);
   }
+  for (Hinge& H : hinges_) {  // the turn's angle: 2 atan(t / 2) (DiscreteHingeSpec)
+    H.turn = retracted(dy[H.index] * H.spec.axis, H.turn);
+    H.angle += 2.0 * std::atan(0.5 * dy[H.index]);
+  }
+  for (Rod& rod : rods_)  // bases on hinges turn with them
+    if (rod.spec.base_hinge >= 0) {
+      const Hinge& H = hinges_[rod.spec.base_hinge];
+      rod.p[0] =
+          H.spec.origin + Eigen::Quaterniond(H.turn[0], H.turn[1], H.turn[2], H.turn[3]).toRotationMatrix() *
+                              (rod.spec.base_position - H.spec.origin);
+    }
   for (Rod& rod : rods_)  // attached tips follow their platform
     if (rod.spec.tip != DiscreteTip::Free) {
       const Platform& P = platforms_[rod.spec.platform];
@@ -300,6 +348,7 @@ bool DiscreteRods::relax(int max_iterations) {
         if (idx >= 0) largest = std::max(largest, dy.segment<3>(idx).cwiseAbs().maxCoeff() / L);
       for (int idx : rod.q_index) largest = std::max(largest, dy.segment<3>(idx).cwiseAbs().maxCoeff());
     }
+    for (const Hinge& H : hinges_) largest = std::max(largest, std::abs(dy[H.index]));
     if (largest < 1e-11) return true;
   }
   return false;

@@ -31,6 +31,7 @@ struct DiscreteRodSpec {
   Vec3 distributed_force = Vec3::Zero();  ///< dead, per length [N/m]
   Vec3 base_position = Vec3::Zero();      ///< the base is clamped in the world
   Mat3 base_rotation = Mat3::Identity();
+  int base_hinge = -1;  ///< the passive hinge (DiscreteHingeSpec) the base turns with, or -1: fixed
   DiscreteTip tip = DiscreteTip::Free;
   Vec3 tip_force = Vec3::Zero();            ///< free tip: dead force
   int platform = -1;                        ///< attached tip: its platform
@@ -44,9 +45,21 @@ struct DiscretePlatformSpec {
   std::vector<std::pair<Vec3, Vec3>> forces;
 };
 
+/// A passive revolute joint between the world and clamped rod bases: the bases (position and frame, given
+/// at the joint's value) and the dead forces on its link turn by the angle change t about the world axis
+/// through `origin`; its spring adds 1/2 k (value + t - rest)^2. A rotation is perturbed as
+/// normalise([1, t a / 2]) (x) (its rotation so far), which turns by 2 atan(t / 2) = t + O(t^3): the same
+/// gradient and Hessian at t = 0 as the exact angle.
+struct DiscreteHingeSpec {
+  Vec3 origin = Vec3::Zero(), axis = Vec3::UnitY();  ///< world frame, unit axis
+  double stiffness = 0.0, rest = 0.0, value = 0.0;   ///< [N m/rad], [rad], [rad]
+  std::vector<std::pair<Vec3, Vec3>> forces;         ///< (world point at `value`, world force)
+};
+
 class DiscreteRods {
  public:
-  DiscreteRods(std::vector<DiscreteRodSpec> rods, std::vector<DiscretePlatformSpec> platforms);
+  DiscreteRods(std::vector<DiscreteRodSpec> rods, std::vector<DiscretePlatformSpec> platforms,
+               std::vector<DiscreteHingeSpec> hinges = {});
 
   /// Start state of rod r from a continuous one: positions at the nodes, frames at the segment centres.
   void set_rod(int r, const std::function<void(double s, Vec3& p, Mat3& R)>& state);
@@ -71,7 +84,8 @@ class DiscreteRods {
     std::vector<Eigen::Vector4d> q;  // segments 0..N-1
     Eigen::Vector4d base_q,
         twist_q;  // clamp frame; collar twist (tip frame = platform q (x) attachment (x) twist)
-    std::vector<int> p_index, q_index;  // first variable, -1 fixed, -2 the platform-attached tip node
+    std::vector<int> p_index, q_index;  // first variable, -1 fixed, -2 the platform-attached tip node,
+                                        // -3 the base node on a hinge
     int twist_index = -1;
   };
   struct Platform {
@@ -80,8 +94,15 @@ class DiscreteRods {
     Eigen::Vector4d Q = Eigen::Vector4d(1, 0, 0, 0);
     int index = -1;
   };
+  struct Hinge {
+    DiscreteHingeSpec spec;
+    Eigen::Vector4d turn = Eigen::Vector4d(1, 0, 0, 0);  // rotation since `value`
+    double angle = 0.0;                                  // its angle about the axis
+    int index = -1;
+  };
   std::vector<Rod> rods_;
   std::vector<Platform> platforms_;
+  std::vector<Hinge> hinges_;
   int num_variables_ = 0;
 
   double assemble(VecX* gradient, MatX* hessian) const;

@@ -20,16 +20,18 @@ std::string robot_assumption_failure(const RobotModel& model) {
   }
   for (const ExternalLoad& load : model.loads())
     if (!load.torque.isZero(0.0))
-      add("dead torque on link '" + model.links()[load.link].name +
-          "' has no potential (a platform turns about any axis)");
-  if (!model.passive_joints().empty())
-    add("passive joints: their coordinates are not in the reduced stiffness yet");
+      add("dead torque on link '" + model.links()[load.link].name + "' has no potential (" +
+          (model.carrying_platform(load.link) >= 0
+               ? "a platform turns about any axis"
+               : "treated as non-conservative on links that passive joints turn") +
+          ")");
   return msg.str();
 }
 
 namespace {
 
-/// Joint values of the model at the state x: inputs from x, the other moving joints at their defaults.
+/// Joint values of the model at the state x: inputs and passive joints from x (every moving joint is one
+/// or the other).
 VecX joint_values(const RobotAssembly& assembly, const VecX& x) {
   const RobotModel& model = assembly.model();
   VecX q = model.default_joint_values();
@@ -39,6 +41,10 @@ VecX joint_values(const RobotAssembly& assembly, const VecX& x) {
     if (in.kind == ActuationInput::Kind::JointValue)
       q[model.joints()[in.index].value_index] = u[static_cast<int>(i)];
   }
+  const std::vector<int>& passive = model.passive_joints();
+  for (size_t j = 0; j < passive.size(); ++j)
+    q[model.joints()[passive[j]].value_index] =
+        x[assembly.problem().variable(assembly.passive_joint_variable(static_cast<int>(j))).offset];
   return q;
 }
 

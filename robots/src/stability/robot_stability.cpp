@@ -1,5 +1,5 @@
 // robot_stability (robot_stability.hpp): the rods' counts with their links held plus the negative
-// eigenvalues of the platforms' reduced stiffness.
+// eigenvalues of the border's (platforms' and passive joints') reduced stiffness.
 #include "pcr/robots/robot_stability.hpp"
 
 #include <algorithm>
@@ -24,10 +24,10 @@ double scaled_asymmetry(const MatX& K) {
 /// residual of the solve); beyond this the state is not an accurate equilibrium.
 constexpr double kMaxAsymmetry = 1e-4;
 
-/// Adds the platforms' count (negative eigenvalues of the symmetrised K_hat below -tolerance, neutral ones
+/// Adds the border's count (negative eigenvalues of the symmetrised K_hat below -tolerance, neutral ones
 /// within it) and margin to s; false with s Unknown on failure.
-bool add_platforms(const RobotAssembly& assembly, const VecX& x, Stability& s) {
-  const stability::PlatformStiffness border = stability::platform_stiffness(assembly, x);
+bool add_border(const RobotAssembly& assembly, const VecX& x, Stability& s) {
+  const BorderStiffness border = robot_border_stiffness(assembly, x);
   if (!border.ok) {
     s = unknown_stability(border.failure);
     return false;
@@ -36,8 +36,8 @@ bool add_platforms(const RobotAssembly& assembly, const VecX& x, Stability& s) {
   s.asymmetry = std::max(s.asymmetry, asymmetry);
   if (asymmetry > kMaxAsymmetry) {
     std::ostringstream msg;
-    msg << "platforms' reduced stiffness not symmetric: relative asymmetry " << asymmetry << " > "
-        << kMaxAsymmetry;
+    msg << "reduced stiffness of the platforms and passive joints not symmetric: relative asymmetry "
+        << asymmetry << " > " << kMaxAsymmetry;
     s = unknown_stability(msg.str());
     return false;
   }
@@ -76,18 +76,19 @@ Stability robot_stability(const RobotAssembly& assembly, const VecX& x) {
     if (rod.margin < rod_margin) weakest = rod;
     rod_margin = std::min(rod_margin, rod.margin);
   }
-  if (assembly.model().platforms().empty()) {
+  if (assembly.model().platforms().empty() && assembly.model().passive_joints().empty()) {
     s.margin = assembly.num_rods() > 0 ? rod_margin : 0.0;
     s.length_scale = weakest.length_scale;
     s.energy_scale = weakest.energy_scale;
-  } else if (!add_platforms(assembly, x, s))
+  } else if (!add_border(assembly, x, s))
     return s;
   s.unstable_modes = s.border_unstable_modes;
   for (int n : s.rod_unstable_modes) s.unstable_modes += n;
   s.verdict = verdict_of(s.unstable_modes, s.neutral_modes);
   if (s.verdict == StabilityVerdict::Critical)
     s.reason =
-        "zero eigenvalue of the platforms' reduced stiffness: a fold or bifurcation point, or a symmetry";
+        "zero eigenvalue of the reduced stiffness of the platforms and passive joints: a fold or bifurcation "
+        "point, or a symmetry";
   return s;
 }
 

@@ -16,15 +16,33 @@
 // Assumptions (else the verdict is `unknown` with the reason): conservative loads (dead forces and
 // gravity; no dead couple on a platform or at a rod end that can turn, no distributed couple), no
 // passive joints (not yet covered), no rod at a conjugate point with its links held (A singular).
+#include <string>
+
 #include "pcr/robots/robot_assembly.hpp"
 #include "pcr/rods/stability/stability.hpp"
 
 namespace pcr {
 
+/// The reduced stiffness of the border coordinates at the converged FK state x in the dimensionless form
+/// K_hat = D K_red D / M0 (before symmetrising), or a failure. Coordinates: per platform (RobotModel
+/// order) [dx / L0 (3), dtheta (3)] (world frame, rotation vector), then per passive joint
+/// (RobotModel::passive_joints() order) dq / L0 (prismatic) or dq [rad] (revolute, continuous); D holds
+/// L0 or 1 for each (coordinate_scale), L0 = length_scale, M0 = energy_scale (the assembly's length and
+/// moment scales). K_red = M0 D^-1 K_hat D^-1 is the stiffness in SI units: N/m, N/rad, N m/rad against
+/// (dx, dtheta, dq). Empty (ok) without platforms and passive joints.
+struct BorderStiffness {
+  bool ok = false;
+  std::string failure;
+  MatX stiffness;
+  VecX coordinate_scale;  ///< D
+  double length_scale = 0.0, energy_scale = 0.0;
+};
+BorderStiffness robot_border_stiffness(const RobotAssembly& assembly, const VecX& x);
+
 /// Verdict on the equilibrium x of the assembly's FK system (inputs at the values x holds); x must be a
-/// converged solution. Rod counts, platform count and margin as in Stability (margin: smallest eigenvalue
-/// of the platforms' reduced stiffness K_hat = D K_red D / M0, D = diag(L0, L0, L0, 1, 1, 1) per platform,
-/// L0 and M0 the assembly's length and moment scales; without platforms, the smallest rod margin).
+/// converged solution. Rod counts, border count and margin as in Stability (margin: smallest eigenvalue
+/// of the border's reduced stiffness K_hat (robot_border_stiffness); without platforms and passive joints,
+/// the smallest rod margin).
 Stability robot_stability(const RobotAssembly& assembly, const VecX& x);
 
 }  // namespace pcr
