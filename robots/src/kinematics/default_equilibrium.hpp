@@ -1,0 +1,37 @@
+#pragma once
+// The equilibrium at a model's default inputs (DefaultEquilibrium, kinematics.hpp), the start of cold
+// forward kinematics solves (fk_strategies.cpp), shared per model and options (internal header of
+// pcr::robots). A cold solve from it costs about twice the solve itself: sharing it makes each further
+// ForwardKinematics over the same model as cheap as one over a shared assembly.
+//
+// The registry (one per process) keys each equilibrium by the model's owner (the control block of its
+// std::shared_ptr, held as a weak_ptr: the registry never keeps a model alive, and a dead model's entry
+// is dropped at the next look-up) and by the options it depends on (equal_start_options). It holds the
+// state only (no assembly: that would own the model), so it lives as long as the model does.
+#include <memory>
+#include <mutex>
+
+#include "pcr/robots/kinematics.hpp"
+
+namespace pcr::kinematics {
+
+/// One default equilibrium, solved by the first caller of get (std::call_once: callers in other threads
+/// wait for it, and every caller sees the same bits); read-only after that.
+class SharedDefaultEquilibrium {
+ public:
+  /// Solves it on `assembly` with `options` on the first call (any assembly of the model with the
+  /// options of the registry's key: they are the same system); returns it on every call.
+  const DefaultEquilibrium& get(const RobotAssembly& assembly, const KinematicsOptions& options);
+
+ private:
+  std::once_flag solved_;
+  DefaultEquilibrium value_;
+};
+
+/// The shared default equilibrium of the assembly's model and of the options that shape it (the
+/// assembly's own options, and those of `options` that the solve reads); a new one for a model or
+/// options not seen yet. options.solver: the effective one (Ipopt where contacts are relaxed).
+std::shared_ptr<SharedDefaultEquilibrium> shared_default_equilibrium(const RobotAssembly& assembly,
+                                                                     const KinematicsOptions& options);
+
+}  // namespace pcr::kinematics
