@@ -109,6 +109,26 @@ BOOST_AUTO_TEST_CASE(fk_objects_over_one_model_share_one_default_equilibrium) {
   BOOST_TEST(model_alive.expired());
 }
 
+BOOST_AUTO_TEST_CASE(models_under_one_owner_keep_their_own_default_equilibria) {
+  // Two models owned by one object, reached through aliasing pointers (one control block): each gets
+  // its own default equilibrium, of its own assembly's size, with its model's default inputs.
+  struct TwoModels {
+    RobotModel stewart_gough, planar;
+  };
+  const auto both = std::make_shared<const TwoModels>(
+      TwoModels{load_robot_model(std::string(PCR_MODEL_DIR) + "/stewart_gough.urdf"),
+                load_robot_model(std::string(PCR_MODEL_DIR) + "/planar_three_rod.urdf")});
+  ForwardKinematics fk_sg(std::shared_ptr<const RobotModel>(both, &both->stewart_gough));
+  ForwardKinematics fk_planar(std::shared_ptr<const RobotModel>(both, &both->planar));
+  BOOST_TEST(&fk_sg.default_equilibrium() != &fk_planar.default_equilibrium());
+  for (const ForwardKinematics* fk : {&fk_sg, &fk_planar}) {
+    const DefaultEquilibrium& d = fk->default_equilibrium();
+    BOOST_TEST(d.converged);
+    BOOST_TEST(d.x.size() == fk->assembly().problem().num_variables());
+    BOOST_TEST((fk->assembly().inputs(d.x) == fk->assembly().model().default_input_values()));
+  }
+}
+
 BOOST_AUTO_TEST_CASE(cold_solves_in_two_threads_share_one_default_equilibrium_solve) {
   // Serial reference on its own model object (its own default equilibrium).
   const auto reference_model = load_stewart_gough();

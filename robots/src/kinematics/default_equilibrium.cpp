@@ -19,14 +19,16 @@ bool equal_solver_options(const KinematicsOptions& a, const KinematicsOptions& b
          a.reuse_factorization == b.reuse_factorization && a.linear_solver == b.linear_solver;
 }
 
-/// Whether two std::shared_ptr share ownership (one control block): the same model object, not one at
-/// an address a dead model had.
-bool same_owner(const std::weak_ptr<const RobotModel>& a, const std::weak_ptr<const RobotModel>& b) {
-  return !a.owner_before(b) && !b.owner_before(a);
+/// The same model object: one owner (control block, kept by the weak_ptr: no other object can take its
+/// place while the entry exists) and one address (aliasing pointers of one owner may point to several).
+bool same_model(const std::weak_ptr<const RobotModel>& a, const RobotModel* a_address,
+                const std::weak_ptr<const RobotModel>& b, const RobotModel* b_address) {
+  return a_address == b_address && !a.owner_before(b) && !b.owner_before(a);
 }
 
 struct RegistryEntry {
   std::weak_ptr<const RobotModel> model;
+  const RobotModel* model_address;  // compared only, never dereferenced
   AssemblyOptions assembly_options;
   KinematicsOptions options;  // equal_solver_options decides
   std::shared_ptr<SharedDefaultEquilibrium> equilibrium;
@@ -76,10 +78,11 @@ std::shared_ptr<SharedDefaultEquilibrium> shared_default_equilibrium(const Robot
                                [](const RegistryEntry& e) { return e.model.expired(); }),
                 entries.end());
   for (const RegistryEntry& e : entries)
-    if (same_owner(e.model, model) && e.assembly_options == assembly.options() &&
-        equal_solver_options(e.options, options))
+    if (same_model(e.model, e.model_address, model, &assembly.model()) &&
+        e.assembly_options == assembly.options() && equal_solver_options(e.options, options))
       return e.equilibrium;
-  entries.push_back({model, assembly.options(), options, std::make_shared<SharedDefaultEquilibrium>()});
+  entries.push_back(
+      {model, &assembly.model(), assembly.options(), options, std::make_shared<SharedDefaultEquilibrium>()});
   return entries.back().equilibrium;
 }
 
