@@ -1,7 +1,7 @@
 #pragma once
 // The equilibrium at a model's default inputs (DefaultEquilibrium, kinematics.hpp), the start of cold
 // forward kinematics solves (fk_strategies.cpp), shared per model and options (internal header of
-// pcr::robots). Its solve is about 40 % of the instructions of a cold stewart_gough FK object (assembly,
+// pcr::robots). Its solve is about half of the instructions of a cold stewart_gough FK object (assembly,
 // default equilibrium, solve from it; callgrind): FK objects after the first over a model skip it.
 //
 // The registry (one per process) keys each equilibrium by the model object (its std::shared_ptr's
