@@ -70,6 +70,20 @@ VecX hermite_guess(const CollocationRod& rod, const Pose& start, const Pose* end
 
 }  // namespace
 
+bool operator==(const AssemblyOptions& a, const AssemblyOptions& b) {
+  const RodDiscretization &d = a.discretization, &e = b.discretization;
+  return d.formulation == e.formulation && d.degree == e.degree && d.elements == e.elements &&
+         d.mixed_points == e.mixed_points && d.contact_forces == e.contact_forces &&
+         a.use_model_hints == b.use_model_hints &&
+         a.formulation_by_slenderness == b.formulation_by_slenderness &&
+         a.primal_min_gyration_ratio == b.primal_min_gyration_ratio &&
+         a.condense_mixed_rods == b.condense_mixed_rods && a.contact_function == b.contact_function &&
+         a.contact_method == b.contact_method;
+}
+bool operator!=(const AssemblyOptions& a, const AssemblyOptions& b) {
+  return !(a == b);
+}
+
 // Builds a RobotAssembly's problem step by step (the constructor's parts).
 struct RobotAssembly::Builder {
   RobotAssembly& a;
@@ -228,7 +242,7 @@ struct RobotAssembly::Builder {
 };
 
 RobotAssembly::RobotAssembly(std::shared_ptr<const RobotModel> model, const AssemblyOptions& options)
-    : model_(std::move(model)) {
+    : model_(std::move(model)), options_(options) {
   require(model_ != nullptr, "RobotAssembly: no model");
   Builder build(*this, options);
   build.add_pose_and_joint_variables();

@@ -3,9 +3,9 @@
 // FkModel is what an FK object solves on, immutable and shared; FkData is one object's per-solve state.
 #include <limits>
 #include <memory>
-#include <mutex>
 #include <vector>
 
+#include "default_equilibrium.hpp"
 #include "path_predictor.hpp"
 #include "pcr/robots/kinematics.hpp"
 #include "pcr/solve/ipopt_solver.hpp"
@@ -24,16 +24,13 @@ struct FkModel {
   KinematicsOptions options;
   std::vector<std::vector<BasisDerivatives>> sample_bases;  ///< read_solution
 
-  /// The equilibrium at the model's default inputs, solved from the straight initial guess on first use
-  /// (once per model, shared by every FK over it and thread-safe; its own solver, so the state is the
-  /// same bits whichever FK asks first). nullptr when that solve did not converge.
-  const VecX* default_equilibrium() const;
+  /// The equilibrium at the model's default inputs, solved on first use (default_equilibrium.hpp: once
+  /// per model and options, shared by every FK over them and thread-safe; its own solver, so the state
+  /// is the same bits whichever FK asks first).
+  const DefaultEquilibrium& default_equilibrium() const { return default_start->get(*assembly, options); }
 
  private:
-  mutable std::once_flag default_once_;
-  mutable VecX default_x_;
-  mutable bool default_converged_ = false;
-  mutable SolveSummary default_summary_;
+  std::shared_ptr<SharedDefaultEquilibrium> default_start;
 };
 
 struct FkData {

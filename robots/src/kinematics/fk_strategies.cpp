@@ -304,7 +304,8 @@ constexpr FkStrategy kStrategies[] = {
 
 SolveSummary solve_with_fallbacks(FkData& data, const VecX& inputs, VecX& x) {
   FkAttempt a(data, inputs, x);
-  a.x_default = data.model->default_equilibrium();
+  const DefaultEquilibrium& start = data.model->default_equilibrium();
+  a.x_default = start.converged ? &start.x : nullptr;
   for (const FkStrategy& s : kStrategies)
     if (s.attempt(a, s.name)) break;
   if (!a.x_default)

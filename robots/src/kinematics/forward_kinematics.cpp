@@ -20,25 +20,7 @@ FkModel::FkModel(std::shared_ptr<const RobotAssembly> a, const KinematicsOptions
   // Relaxed contact rows (AssemblyOptions::contact_method = Ipopt) are not a square system: Ipopt only.
   if (!relaxed_contacts(*assembly).empty()) options.solver = SolverKind::Ipopt;
   sample_bases = pcr::sample_bases(*assembly, options.centerline_points);
-}
-
-const VecX* FkModel::default_equilibrium() const {
-  std::call_once(default_once_, [this] {
-    default_x_ = assembly->initial_guess();
-    assembly->set_inputs(default_x_, assembly->model().default_input_values());
-    if (options.solver == SolverKind::Newton) {
-      NewtonSolver newton(assembly->problem(), newton_options(options));
-      default_summary_ = newton.solve(default_x_);
-    } else if (!relaxed_contacts(*assembly).empty()) {
-      std::unique_ptr<IpoptSolver> ipopt;
-      default_summary_ = solve_relaxed_contact(*assembly, options, ipopt, default_x_);
-    } else {
-      IpoptSolver ipopt(assembly->problem(), ipopt_options(options));
-      default_summary_ = ipopt.solve(default_x_);
-    }
-    default_converged_ = default_summary_.converged() && default_x_.allFinite();
-  });
-  return default_converged_ ? &default_x_ : nullptr;
+  default_start = shared_default_equilibrium(*assembly, options);
 }
 
 FkData::FkData(std::shared_ptr<const FkModel> m) : model(std::move(m)), x(model->assembly->initial_guess()) {}
@@ -132,6 +114,9 @@ const VecX& ForwardKinematics::state() const {
 }
 bool ForwardKinematics::has_solution() const {
   return data().has_solution;
+}
+const DefaultEquilibrium& ForwardKinematics::default_equilibrium() const {
+  return data().model->default_equilibrium();
 }
 
 RobotSolution ForwardKinematics::solve(const VecX& inputs) {

@@ -12,6 +12,9 @@ namespace pcr::kinematics {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t);
 
+/// The FK's default equilibrium is shared between options whose fields read here are equal: a field
+/// that newton_options or ipopt_options starts to read belongs in equal_solver_options
+/// (default_equilibrium.cpp).
 NewtonOptions newton_options(const KinematicsOptions& o);
 /// Ipopt on the full assembly (FK with SolverKind::Ipopt, IK in the full space).
 IpoptOptions ipopt_options(const KinematicsOptions& o);

@@ -15,7 +15,8 @@
 // Model and data: what a kinematics object solves on - the assembly, the problems built
 // from it (IK: targets as equations, bounds and objective, the FK system at a solution, the reduced
 // space) and the options - is immutable once constructed and shared: by the objects over one
-// std::shared_ptr<const RobotAssembly>, and by with_fresh_state() copies. What a solve changes - the
+// std::shared_ptr<const RobotAssembly>, and by with_fresh_state() copies; the equilibrium at the default
+// inputs (DefaultEquilibrium) even by every FK over one model and options. What a solve changes - the
 // state x, the path predictor's history, the Newton / Ipopt workspaces, the last Jacobian sign - belongs
 // to one object. So objects that share a model may solve in different threads at once (Newton paths
 // only: Ipopt 3.11's MUMPS keeps global state, ipopt_solver.hpp). The objects are movable (the
@@ -98,6 +99,17 @@ struct KinematicsOptions {
   IkOptions ik;  ///< inverse kinematics only
 };
 
+/// The equilibrium at the model's default inputs, solved by Newton (Ipopt for SolverKind::Ipopt) from
+/// the straight initial guess: where a cold forward kinematics solve starts (and the continuations of its
+/// fallbacks). Solved once per model and options that shape it (the assembly options, the solver and
+/// its tolerance, iteration limit, factorisation reuse and linear solver) on first use, and shared by
+/// every ForwardKinematics over them (also across threads): "Model and data" above.
+struct DefaultEquilibrium {
+  bool converged = false;
+  VecX x;                ///< the assembly's variables; the straight initial guess when not converged
+  SolveSummary summary;  ///< of its one solve
+};
+
 namespace kinematics {
 struct FkData;
 struct IkData;
@@ -125,6 +137,9 @@ class ForwardKinematics {
   /// The assembly's variables at the last converged solution.
   const VecX& state() const;
   bool has_solution() const;
+  /// The start of cold solves (solved here if no ForwardKinematics over the same model and options
+  /// needed it yet); the same object for all of them.
+  const DefaultEquilibrium& default_equilibrium() const;
 
   /// d(platform poses)/d(inputs) at the last solution: 6 rows per platform [dx (3), dtheta (3)].
   MatX input_jacobian() const;

@@ -56,6 +56,12 @@ struct AssemblyOptions {
   ContactMethod contact_method = ContactMethod::Semismooth;
 };
 
+/// Field by field (the discretisation's fields included). Assemblies of one model with equal options are
+/// the same system, variable for variable: forward kinematics shares results derived from them
+/// (default_equilibrium.hpp), so a field added to AssemblyOptions belongs in this comparison.
+bool operator==(const AssemblyOptions& a, const AssemblyOptions& b);
+bool operator!=(const AssemblyOptions& a, const AssemblyOptions& b);
+
 /// Radius of gyration over length, sqrt(min(EI1, EI2) / EA) / L, with the longest length of a fed
 /// rod (a solid circle of diameter d: d / (4 L)).
 double gyration_ratio(const RodElement& rod);
@@ -78,6 +84,8 @@ class RobotAssembly {
 
   const RobotModel& model() const { return *model_; }
   const std::shared_ptr<const RobotModel>& model_ptr() const { return model_; }
+  /// The options it was built with.
+  const AssemblyOptions& options() const { return options_; }
   /// The forward kinematics system: inputs fixed, square.
   const Problem& problem() const { return problem_; }
 
@@ -119,6 +127,7 @@ class RobotAssembly {
   struct Builder;  // the constructor's steps (robot_assembly.cpp)
   friend struct Builder;
   std::shared_ptr<const RobotModel> model_;
+  AssemblyOptions options_;
   Problem problem_;
   std::vector<std::shared_ptr<const CollocationRod>> rods_;
   std::vector<RodVariables> rod_variables_;

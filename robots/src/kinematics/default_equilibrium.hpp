@@ -1,0 +1,38 @@
+#pragma once
+// The equilibrium at a model's default inputs (DefaultEquilibrium, kinematics.hpp), the start of cold
+// forward kinematics solves (fk_strategies.cpp), shared per model and options (internal header of
+// pcr::robots). Its solve is about half of the instructions of a cold stewart_gough FK object (assembly,
+// default equilibrium, solve from it; callgrind): FK objects after the first over a model skip it.
+//
+// The registry (one per process) keys each equilibrium by the model object (its std::shared_ptr's
+// control block, held as a weak_ptr: the registry never keeps a model alive, and a dead model's entry is
+// dropped at the next look-up, and its address) and by the options it depends on (AssemblyOptions'
+// operator==, equal_solver_options). It holds the state only, no assembly (an assembly owns its model),
+// so each FK object still builds or shares its own assembly.
+#include <memory>
+#include <mutex>
+
+#include "pcr/robots/kinematics.hpp"
+
+namespace pcr::kinematics {
+
+/// One default equilibrium, solved by the first caller of get (std::call_once: callers in other threads
+/// wait for it, and every caller sees the same bits); read-only after that.
+class SharedDefaultEquilibrium {
+ public:
+  /// Solves it on `assembly` with `options` on the first call (any assembly of the model with the
+  /// options of the registry's key: they are the same system); returns it on every call.
+  const DefaultEquilibrium& get(const RobotAssembly& assembly, const KinematicsOptions& options);
+
+ private:
+  std::once_flag solved_;
+  DefaultEquilibrium value_;
+};
+
+/// The shared default equilibrium of the assembly's model and of the options that shape it (the
+/// assembly's own options, and those of `options` that the solve reads); a new one for a model or
+/// options not seen yet. options.solver: the effective one (Ipopt where contacts are relaxed).
+std::shared_ptr<SharedDefaultEquilibrium> shared_default_equilibrium(const RobotAssembly& assembly,
+                                                                     const KinematicsOptions& options);
+
+}  // namespace pcr::kinematics
