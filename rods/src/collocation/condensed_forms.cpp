@@ -127,10 +127,42 @@ struct CondensedSummedTipZ {
 template <typename Z, typename T, typename Local>
 void condensed_summed_wrench(const Local& z, const PointConstants& c, const Vec3& moment_point, double u,
                              V3<T>& n, V3<T>& m) {
-  const T L = get<Z, Z::L>(z)[0];
-  n = get<Z, Z::wrench>(z).template head<3>() - c.f.cast<T>() * (u * L);
-  m = condensed_moment<T>(get<Z, Z::p>(z), n, get<Z, Z::wrench>(z).template tail<3>(), L, get<Z, Z::I>(z), c,
-                          moment_point, u);
+  condensed_wrench_from_integral<Z, T>(z, V3<T>(get<Z, Z::I>(z)), c, moment_point, u, n, m);
+}
+
+// The tip rows of a condensed form with loads: the end conditions with n(1), m(1) from
+// tip_wrench(z, c, moment_point, n, m) on the local vector of TipZ (entries p, q and what tip_wrench reads).
+template <typename TipZ, typename TipWrench>
+void add_loaded_tip(const FormBuilder& b, const PointBasis& basis, const TipWrench& tip_wrench) {
+  const PointConstants c = b.constants_at(1.0);
+  const EndData e = b.end_data(true);
+  const Vec3 c_point = b.rod().moment_point();
+  b.add<TipZ, 7>(b.end_kind(true), 1.0, basis, {b.vars().wrench, b.vars().length},
+                 [c, e, c_point, tip_wrench](const auto& z, auto* r) {
+                   using T = typename std::decay_t<decltype(z)>::Scalar;
+                   V3<T> n, m;
+                   tip_wrench(z, c, c_point, n, m);
+                   end_conditions<T>(e.kind, cast_target<T>(e.target), e.loads, c, get<TipZ, TipZ::p>(z),
+                                     get<TipZ, TipZ::q>(z), n, m, r);
+                 });
+}
+
+// The internal force and moment of a condensed form with loads at a sample point from its position p and
+// I(u) = integral_0^u p du' (the forms hold I in different ways): n(s) = n - f s, condensed_moment.
+void loaded_internal_wrench(const CollocationRod& rod, const VecX& x, const RodVariables& vars, const Vec3& p,
+                            const Vec3& I, RodState& st) {
+  const double L = rod.length(x, vars), u = st.s / L;
+  PointConstants loads;
+  loads.f = rod.model().distributed_force();
+  loads.l = rod.model().loads.moment_per_length;
+  st.force = x.segment<3>(vars.wrench_offset) - loads.f * (u * L);
+  st.moment = condensed_moment<double>(p, st.force, x.segment<3>(vars.wrench_offset + 3), L, I, loads,
+                                       rod.moment_point(), u);
+}
+
+void require_basis_integrals(const CollocationRod& rod, const BasisDerivatives& d) {
+  require(static_cast<int>(d.integrals.size()) == rod.num_control_points(), "rod '", rod.model().name,
+          "': sample basis without the basis integrals the condensed form with loads needs");
 }
 
 class CondensedForm final : public RodForm {
@@ -180,35 +212,22 @@ class CondensedLoadedForm final : public RodForm {
     add_integral_rows(b);
     add_condensed_end(b, false);
     if (!b.adds_end(true)) return;
-    const PointConstants c = b.constants_at(1.0);
-    const EndData e = b.end_data(true);
-    b.add<CondensedLoadedTipZ, 7>(b.end_kind(true), 1.0, with_integrals(b, b.end_basis(true), 1.0),
-                                  {wrench, L}, [c, e, c_point](const auto& z, auto* r) {
-                                    using T = typename std::decay_t<decltype(z)>::Scalar;
-                                    using Z = CondensedLoadedTipZ;
-                                    V3<T> n, m;
-                                    condensed_loaded_wrench<Z, T>(z, c, c_point, 1.0, n, m);
-                                    end_conditions<T>(e.kind, cast_target<T>(e.target), e.loads, c,
-                                                      get<Z, Z::p>(z), get<Z, Z::q>(z), n, m, r);
-                                  });
+    add_loaded_tip<CondensedLoadedTipZ>(
+        b, with_integrals(b, b.end_basis(true), 1.0),
+        [](const auto& z, const PointConstants& c, const Vec3& c_point, auto& n, auto& m) {
+          condensed_loaded_wrench<CondensedLoadedTipZ>(z, c, c_point, 1.0, n, m);
+        });
   }
 
   void internal_wrench(const CollocationRod& rod, const VecX& x, const RodVariables& vars,
                        const BasisDerivatives& d, const PointValues& value, RodState& st) const override {
-    const int n_points = rod.num_control_points(), size = kCondensedLoadedPoint.size;
-    require(d.integrals.size() == n_points, "rod '", rod.model().name,
-            "': sample basis without the basis integrals the condensed form with loads needs");
-    const double L = rod.length(x, vars), u = st.s / L;
+    require_basis_integrals(rod, d);
+    const int size = kCondensedLoadedPoint.size;
+    // I(u) = T_k + sum_i J_i(u) P_i over the active control points k .. k + degree.
     Vec3 I = x.segment<3>(vars.control_point_offset + d.first * size + kCondensedLoadedPoint.integral);
     for (int i = 0; i <= rod.discretization().degree; ++i)
       I += d.integrals[d.first + i] * x.segment<3>(vars.control_point_offset + (d.first + i) * size);
-    PointConstants loads;
-    loads.f = rod.model().distributed_force();
-    loads.l = rod.model().loads.moment_per_length;
-    st.force = x.segment<3>(vars.wrench_offset) - loads.f * (u * L);
-    st.moment =
-        condensed_moment<double>(value.segment<3>(kCondensedLoadedPoint.p), st.force,
-                                 x.segment<3>(vars.wrench_offset + 3), L, I, loads, rod.moment_point(), u);
+    loaded_internal_wrench(rod, x, vars, value.segment<3>(kCondensedLoadedPoint.p), I, st);
   }
 
  private:
@@ -269,35 +288,22 @@ class CondensedSummedForm final : public RodForm {
     b.add_unit_quaternion_rows(kCondensedPoint);
     add_condensed_end(b, false);
     if (!b.adds_end(true)) return;
-    const PointConstants c = b.constants_at(1.0);
-    const EndData e = b.end_data(true);
-    b.add<CondensedSummedTipZ, 7>(b.end_kind(true), 1.0, widened(b, b.end_basis(true), 1.0), {wrench, L},
-                                  [c, e, c_point](const auto& z, auto* r) {
-                                    using T = typename std::decay_t<decltype(z)>::Scalar;
-                                    using Z = CondensedSummedTipZ;
-                                    V3<T> n, m;
-                                    condensed_summed_wrench<Z, T>(z, c, c_point, 1.0, n, m);
-                                    end_conditions<T>(e.kind, cast_target<T>(e.target), e.loads, c,
-                                                      get<Z, Z::p>(z), get<Z, Z::q>(z), n, m, r);
-                                  });
+    add_loaded_tip<CondensedSummedTipZ>(
+        b, widened(b, b.end_basis(true), 1.0),
+        [](const auto& z, const PointConstants& c, const Vec3& c_point, auto& n, auto& m) {
+          condensed_summed_wrench<CondensedSummedTipZ>(z, c, c_point, 1.0, n, m);
+        });
   }
 
   void internal_wrench(const CollocationRod& rod, const VecX& x, const RodVariables& vars,
                        const BasisDerivatives& d, const PointValues& value, RodState& st) const override {
-    const int n_points = rod.num_control_points(), size = kCondensedPoint.size;
-    require(d.integrals.size() == n_points, "rod '", rod.model().name,
-            "': sample basis without the basis integrals the condensed form with loads needs");
-    const double L = rod.length(x, vars), u = st.s / L;
+    require_basis_integrals(rod, d);
+    const int size = kCondensedPoint.size;
+    // I(u) = sum_j J_j(u) P_j over every control point.
     Vec3 I = Vec3::Zero();
-    for (int j = 0; j < n_points; ++j)
+    for (int j = 0; j < rod.num_control_points(); ++j)
       if (d.integrals[j] != 0.0) I += d.integrals[j] * x.segment<3>(vars.control_point_offset + j * size);
-    PointConstants loads;
-    loads.f = rod.model().distributed_force();
-    loads.l = rod.model().loads.moment_per_length;
-    st.force = x.segment<3>(vars.wrench_offset) - loads.f * (u * L);
-    st.moment =
-        condensed_moment<double>(value.segment<3>(kCondensedPoint.p), st.force,
-                                 x.segment<3>(vars.wrench_offset + 3), L, I, loads, rod.moment_point(), u);
+    loaded_internal_wrench(rod, x, vars, value.segment<3>(kCondensedPoint.p), I, st);
   }
 
  private:

@@ -35,18 +35,10 @@ void add_mixed_end(const FormBuilder& b, bool at_tip) {
 /// RodDiscretization::contact_forces.
 struct MixedContactZ {
   enum Entry { q, q_u, p_u, n, n_u, m, m_u, L, F, kEntries };
-  static constexpr LocalLayout<kEntries> layout{{{{kMixedPoint.q, 4, 0},
-                                                  {kMixedPoint.q, 4, 1},
-                                                  {kMixedPoint.p, 3, 1},
-                                                  {kMixedPoint.n, 3, 0},
-                                                  {kMixedPoint.n, 3, 1},
-                                                  {kMixedPoint.m, 3, 0},
-                                                  {kMixedPoint.m, 3, 1},
-                                                  {kDirect, 1},
-                                                  {kDirect, 3}}}};
+  static constexpr LocalLayout<kEntries> layout = append(MixedZ::layout, {kDirect, 3});
 };
-static_assert(MixedContactZ::layout.offset(MixedContactZ::F) == MixedZ::layout.size(),
-              "MixedContactZ is MixedZ followed by F");
+static_assert(int{MixedContactZ::F} == int{MixedZ::kEntries} && int{MixedContactZ::L} == int{MixedZ::L},
+              "MixedContactZ names MixedZ's entries, then F");
 
 /// mixed_field with the contact force density F added to f: n' + f + F = 0 (rod_contact.hpp).
 template <typename T>

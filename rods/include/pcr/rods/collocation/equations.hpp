@@ -244,16 +244,24 @@ struct CondensedLoadedZ {
                                                   {kCondensedLoadedPoint.p, 3, kIntegral}}}};
 };
 
-/// n(s), m(s) of the condensed form with loads at u from its local vector (Z: CondensedLoadedZ or the
-/// tip's CondensedLoadedTipZ, which name the same quantities).
+/// n(s) = n - f s and m(s) (condensed_moment) at u from a local vector with the entries p, wrench, L of Z
+/// and the integral I(u) (which the condensed forms with loads hold in different ways).
 template <typename Z, typename T, typename Local>
-void condensed_loaded_wrench(const Local& z, const PointConstants& c, const Vec3& moment_point, double u,
-                             V3<T>& n, V3<T>& m) {
+void condensed_wrench_from_integral(const Local& z, const V3<T>& I, const PointConstants& c,
+                                    const Vec3& moment_point, double u, V3<T>& n, V3<T>& m) {
   const T L = get<Z, Z::L>(z)[0];
-  const V3<T> I = get<Z, Z::T_first>(z) + get<Z, Z::I_active>(z);
   n = get<Z, Z::wrench>(z).template head<3>() - c.f.cast<T>() * (u * L);
   m = condensed_moment<T>(get<Z, Z::p>(z), n, get<Z, Z::wrench>(z).template tail<3>(), L, I, c, moment_point,
                           u);
+}
+
+/// n(s), m(s) of the condensed form with loads at u from its local vector (Z: CondensedLoadedZ or the
+/// tip's CondensedLoadedTipZ, which name the same quantities): I(u) = T_first + I_active.
+template <typename Z, typename T, typename Local>
+void condensed_loaded_wrench(const Local& z, const PointConstants& c, const Vec3& moment_point, double u,
+                             V3<T>& n, V3<T>& m) {
+  const V3<T> I = get<Z, Z::T_first>(z) + get<Z, Z::I_active>(z);
+  condensed_wrench_from_integral<Z, T>(z, I, c, moment_point, u, n, m);
 }
 
 template <typename T>

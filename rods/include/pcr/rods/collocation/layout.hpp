@@ -94,6 +94,16 @@ struct LocalLayout {
   }
 };
 
+/// The layout `base` followed by the entry `extra` (a kernel that reads another's local vector and one
+/// more block).
+template <int K>
+constexpr LocalLayout<K + 1> append(const LocalLayout<K>& base, LocalEntry extra) {
+  LocalLayout<K + 1> out{};
+  for (int i = 0; i < K; ++i) out.entries[i] = base.entries[i];
+  out.entries[K] = extra;
+  return out;
+}
+
 /// Entry E of the local vector z of the kernel layout Z (a struct with an enum of entry names and a
 /// static LocalLayout `layout`), as a fixed-size segment; scalars are 1-vectors (get<...>(z)[0]).
 template <typename Z, int E, typename Vector>
