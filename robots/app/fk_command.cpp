@@ -9,8 +9,7 @@ int fk_command(int argc, const char* const* argv, std::ostream& out, std::ostrea
     print_solve_usage(out, "fk");
     return kConverged;
   }
-  const std::shared_ptr<const pcr::RobotModel> model = load_model(args.model_path);
-  for (const std::string& link : args.links) model->link_index(link);  // InputError naming an unknown link
+  const std::shared_ptr<const pcr::RobotModel> model = load_model_with_links(args);
   const pcr::VecX inputs = resolve_inputs(*model, args.inputs);
   pcr::ForwardKinematics fk(model, kinematics_options(args));
   const pcr::RobotSolution solution = fk.solve(inputs);

@@ -157,8 +157,7 @@ int path_command(int argc, const char* const* argv, std::ostream& out, std::ostr
     print_solve_usage(out, "path");
     return kConverged;
   }
-  const std::shared_ptr<const pcr::RobotModel> model = load_model(args.model_path);
-  for (const std::string& link : args.links) model->link_index(link);  // InputError naming an unknown link
+  const std::shared_ptr<const pcr::RobotModel> model = load_model_with_links(args);
   const pcr::KinematicsOptions options = kinematics_options(args);
   const auto assembly = std::make_shared<const pcr::RobotAssembly>(model, options.assembly);
   std::vector<pcr::PathEvent> events;

@@ -20,6 +20,12 @@ std::shared_ptr<const pcr::RobotModel> load_model(const std::string& path) {
   return std::make_shared<const pcr::RobotModel>(pcr::load_robot_model(path));
 }
 
+std::shared_ptr<const pcr::RobotModel> load_model_with_links(const SolveArguments& args) {
+  std::shared_ptr<const pcr::RobotModel> model = load_model(args.model_path);
+  for (const std::string& link : args.links) model->link_index(link);  // InputError naming an unknown link
+  return model;
+}
+
 pcr::VecX resolve_inputs(const pcr::RobotModel& model, const std::vector<NamedArgument>& overrides) {
   pcr::VecX inputs = model.default_input_values();
   for (const NamedArgument& arg : overrides) {

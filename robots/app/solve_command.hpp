@@ -18,6 +18,9 @@ enum ExitCode { kConverged = 0, kSolveFailed = 1, kBadUsage = 2, kOutputFailed =
 
 /// Loads MODEL; a missing file is a UsageError naming it (load errors are pcr::InputError).
 std::shared_ptr<const pcr::RobotModel> load_model(const std::string& path);
+/// load_model(args.model_path), and every --link LINK must name one of its links (pcr::InputError naming
+/// an unknown one).
+std::shared_ptr<const pcr::RobotModel> load_model_with_links(const SolveArguments& args);
 
 /// The model's default inputs with the --input NAME=VALUE overrides; UsageError for an unknown name
 /// (listing the valid ones) or a value outside the input's bounds.

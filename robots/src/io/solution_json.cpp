@@ -53,8 +53,7 @@ std::vector<std::string> selected_component_names(const LinkTarget& target) {
 /// One target as given, its link's reached pose and the distance between them.
 void write_target(JsonWriter& json, const LinkTarget& target, const Pose& reached) {
   json.begin_object();
-  json.key("mode");
-  json.value(mode_name(target.mode));
+  json.member("mode", mode_name(target.mode));
   json.key("components");
   json.begin_array();
   for (const std::string& name : selected_component_names(target)) json.value(name);
@@ -71,10 +70,8 @@ void write_target(JsonWriter& json, const LinkTarget& target, const Pose& reache
   json.array(reached.position);
   json.key("reached_quaternion_wxyz");
   json.array(VecX(reached.orientation));
-  json.key("position_error");
-  json.value((reached.position - target.pose.position).norm());
-  json.key("orientation_error");
-  json.value(rotation_angle_between(reached.rotation(), target.pose.rotation()));
+  json.member("position_error", (reached.position - target.pose.position).norm());
+  json.member("orientation_error", rotation_angle_between(reached.rotation(), target.pose.rotation()));
   json.end_object();
 }
 
@@ -105,16 +102,14 @@ void write_joint_values(JsonWriter& json, const RobotModel& model, const RobotSo
   json.key("inputs");
   json.begin_object();
   for (size_t i = 0; i < model.inputs().size() && static_cast<int>(i) < solution.inputs.size(); ++i) {
-    json.key(model.inputs()[i].name);
-    json.value(solution.inputs[static_cast<int>(i)]);
+    json.member(model.inputs()[i].name, solution.inputs[static_cast<int>(i)]);
   }
   json.end_object();
   json.key("passive_joints");
   json.begin_object();
   const std::vector<int>& passive = model.passive_joints();
   for (size_t i = 0; i < passive.size() && static_cast<int>(i) < solution.passive_joints.size(); ++i) {
-    json.key(model.joints()[passive[i]].name);
-    json.value(solution.passive_joints[static_cast<int>(i)]);
+    json.member(model.joints()[passive[i]].name, solution.passive_joints[static_cast<int>(i)]);
   }
   json.end_object();
 }
@@ -161,12 +156,9 @@ void write_rods(JsonWriter& json, const std::vector<RodResult>& rods) {
   for (const RodResult& rod : rods) {
     json.key(rod.name);
     json.begin_object();
-    json.key("length");
-    json.value(rod.length);
-    json.key("axial_force");
-    json.value(rod.axial_force);
-    json.key("min_axial_stretch");
-    json.value(rod.min_axial_stretch);
+    json.member("length", rod.length);
+    json.member("axial_force", rod.axial_force);
+    json.member("min_axial_stretch", rod.min_axial_stretch);
     write_wrench(json, "base_wrench", rod.base_force, rod.base_moment);
     write_wrench(json, "tip_wrench", rod.tip_force, rod.tip_moment);
     json.key("centerline");
@@ -180,27 +172,19 @@ void write_rods(JsonWriter& json, const std::vector<RodResult>& rods) {
 
 void write_summary(JsonWriter& json, const SolveSummary& s) {
   json.begin_object();
-  json.key("solver");
-  json.value(s.solver);
-  json.key("status");
-  json.value(to_string(s.status));
-  json.key("iterations");
-  json.value(s.iterations);
-  json.key("jacobian_evaluations");
-  json.value(s.jacobian_evaluations);
-  json.key("residual_max_abs");
-  json.value(s.residual_max_abs);
+  json.member("solver", s.solver);
+  json.member("status", to_string(s.status));
+  json.member("iterations", s.iterations);
+  json.member("jacobian_evaluations", s.jacobian_evaluations);
+  json.member("residual_max_abs", s.residual_max_abs);
   json.key("residual_by_kind");
   json.begin_object();
   for (const auto& kind : s.residual_by_kind) {
-    json.key(kind.first);
-    json.value(kind.second);
+    json.member(kind.first, kind.second);
   }
   json.end_object();
-  json.key("wall_time_seconds");
-  json.value(s.wall_time_seconds);
-  json.key("message");
-  json.value(s.message);
+  json.member("wall_time_seconds", s.wall_time_seconds);
+  json.member("message", s.message);
   json.end_object();
 }
 
@@ -223,10 +207,8 @@ void write_solution_object(JsonWriter& json, const RobotModel& model, const Robo
                            const std::vector<LinkTarget>& targets, const SolutionExtras& extras) {
   const bool top_level = json.depth() == 0;
   json.begin_object();
-  json.key("model");
-  json.value(model.name());
-  json.key("status");
-  json.value(to_string(solution.summary.status));
+  json.member("model", model.name());
+  json.member("status", to_string(solution.summary.status));
   write_joint_values(json, model, solution);
   write_platform_poses(json, model, solution);
   write_link_poses(json, extras.links);
@@ -239,8 +221,7 @@ void write_solution_object(JsonWriter& json, const RobotModel& model, const Robo
   write_summary(json, solution.summary);
   if (top_level) {
     // Counted before this member is written: the nulls above stand for NaN or infinite values.
-    json.key("non_finite_values");
-    json.value(json.non_finite_count());
+    json.member("non_finite_values", json.non_finite_count());
   }
   json.end_object();
 }

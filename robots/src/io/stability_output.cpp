@@ -24,30 +24,21 @@ void write_stability_member(JsonWriter& json, const Stability& s) {
   if (s.verdict == StabilityVerdict::NotChecked) return;
   json.key("stability");
   json.begin_object();
-  json.key("verdict");
-  json.value(to_string(s.verdict));
+  json.member("verdict", to_string(s.verdict));
   if (s.verdict != StabilityVerdict::Unknown) {
-    json.key("unstable_modes");
-    json.value(s.unstable_modes);
-    json.key("neutral_modes");
-    json.value(s.neutral_modes);
-    json.key("margin");
-    json.value(s.margin);
-    json.key("length_scale");
-    json.value(s.length_scale);
-    json.key("energy_scale");
-    json.value(s.energy_scale);
-    json.key("asymmetry");
-    json.value(s.asymmetry);
+    json.member("unstable_modes", s.unstable_modes);
+    json.member("neutral_modes", s.neutral_modes);
+    json.member("margin", s.margin);
+    json.member("length_scale", s.length_scale);
+    json.member("energy_scale", s.energy_scale);
+    json.member("asymmetry", s.asymmetry);
     json.key("rod_unstable_modes");
     json.begin_array();
     for (int n : s.rod_unstable_modes) json.value(n);
     json.end_array();
-    json.key("platform_unstable_modes");
-    json.value(s.border_unstable_modes);
+    json.member("platform_unstable_modes", s.border_unstable_modes);
   }
-  json.key("reason");
-  json.value(s.reason);
+  json.member("reason", s.reason);
   json.end_object();
 }
 

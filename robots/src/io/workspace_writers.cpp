@@ -26,10 +26,8 @@ namespace {
 
 void write_sample(JsonWriter& json, const RobotModel& model, const WorkspaceSample& s) {
   json.begin_object();
-  json.key("index");
-  json.value(s.index);
-  json.key("status");
-  json.value(to_string(s.status));
+  json.member("index", s.index);
+  json.member("status", to_string(s.status));
   json.key("inputs");
   json.array(s.inputs);
   if (s.converged()) {
@@ -46,12 +44,9 @@ void write_sample(JsonWriter& json, const RobotModel& model, const WorkspaceSamp
     }
     json.end_object();
   }
-  json.key("iterations");
-  json.value(s.iterations);
-  json.key("residual_max_abs");
-  json.value(s.residual_max_abs);
-  json.key("message");
-  json.value(s.message);
+  json.member("iterations", s.iterations);
+  json.member("residual_max_abs", s.residual_max_abs);
+  json.member("message", s.message);
   json.end_object();
 }
 
@@ -60,20 +55,13 @@ void write_sample(JsonWriter& json, const RobotModel& model, const WorkspaceSamp
 int write_workspace_json(std::ostream& out, const RobotModel& model, const WorkspaceResult& result) {
   JsonWriter json(out);
   json.begin_object();
-  json.key("model");
-  json.value(model.name());
-  json.key("seed");
-  json.value(result.seed);
-  json.key("first_sample");
-  json.value(result.first_sample);
-  json.key("samples");
-  json.value(static_cast<std::int64_t>(result.samples.size()));
-  json.key("failures");
-  json.value(result.failures);
-  json.key("threads");
-  json.value(result.threads);
-  json.key("wall_time_seconds");
-  json.value(result.wall_time_seconds);
+  json.member("model", model.name());
+  json.member("seed", result.seed);
+  json.member("first_sample", result.first_sample);
+  json.member("samples", static_cast<std::int64_t>(result.samples.size()));
+  json.member("failures", result.failures);
+  json.member("threads", result.threads);
+  json.member("wall_time_seconds", result.wall_time_seconds);
   json.key("inputs");
   json.begin_array();
   for (const ActuationInput& input : model.inputs()) json.value(input.name);

@@ -15,77 +15,92 @@ namespace {
 
 constexpr int kQ = 3, kN = 7, kM = 10;  // offsets in a mixed control point [P, Q, N, M]
 
-/// dphi/dq_k of phi(R^T n, R^T m) through R(q) alone: sum_ab (n g_n^T + m g_m^T)_ab (dR/dq_k)_ab.
-Quat quaternion_gradient(const Vec3& n, const Vec3& m, const Vec3& g_n, const Vec3& g_m,
-                         const QuatRotationJacobian& dR) {
-  const Mat3 D = n * g_n.transpose() + m * g_m.transpose();
-  Quat dq;
-  for (int k = 0; k < 4; ++k) dq[k] = D.cwiseProduct(dR[k]).sum();
-  return dq;
-}
-
 /// phi(n_b, m_b) with its partials g_n = dphi/dn_b, g_m = dphi/dm_b (body frame).
 using BodyFunctional = std::function<double(const Vec3& n_b, const Vec3& m_b, Vec3& g_n, Vec3& g_m)>;
+
+/// phi(R^T n, R^T m) at the orientation q, with what its gradient needs: R(q), dR/dq and the partials.
+struct BodyValue {
+  double value = 0.0;
+  Mat3 R;
+  QuatRotationJacobian dR;
+  Vec3 g_n, g_m;
+
+  BodyValue(const BodyFunctional& phi, const Quat& q, const Vec3& n, const Vec3& m) {
+    rotation_matrix_derivatives(q, R, dR);
+    value = phi(R.transpose() * n, R.transpose() * m, g_n, g_m);
+  }
+  /// dphi/dq_k through R(q) alone: sum_ab (n g_n^T + m g_m^T)_ab (dR/dq_k)_ab.
+  Quat quaternion_gradient(const Vec3& n, const Vec3& m) const {
+    const Mat3 D = n * g_n.transpose() + m * g_m.transpose();
+    Quat dq;
+    for (int k = 0; k < 4; ++k) dq[k] = D.cwiseProduct(dR[k]).sum();
+    return dq;
+  }
+};
+
+/// The control points of a rod whose basis functions b_j do not vanish at u: spline values there, and
+/// gradients with respect to a value spread back onto the points.
+class ActivePoints {
+ public:
+  ActivePoints(const CollocationRod& rod, const RodVariables& v, double u)
+      : b_(basis_derivatives(rod.knots(), u, 0)),
+        size_(rod.control_point_size()),
+        first_(v.control_point_offset + b_.first * size_),
+        count_(rod.discretization().degree + 1) {}
+
+  /// sum_j b_j C_j with C_j the D components of control point j from `component` on.
+  template <int D>
+  Eigen::Matrix<double, D, 1> value(const VecX& x, int component) const {
+    Eigen::Matrix<double, D, 1> sum = Eigen::Matrix<double, D, 1>::Zero();
+    for (int j = 0; j < count_; ++j) sum += b_.values(0, j) * x.segment<D>(first_ + j * size_ + component);
+    return sum;
+  }
+  /// gradient += weight * dphi/dC_j = weight b_j g for every j (g = dphi/d value<D>(x, component)).
+  template <int D>
+  void add_gradient(VecX& gradient, int component, double weight,
+                    const Eigen::Matrix<double, D, 1>& g) const {
+    for (int j = 0; j < count_; ++j)
+      gradient.segment<D>(first_ + j * size_ + component) += (weight * b_.values(0, j)) * g;
+  }
+
+ private:
+  BasisDerivatives b_;
+  int size_, first_, count_;
+};
 
 /// phi at parameter u of a mixed rod; when gradient is given, adds weight * dphi/dx to it.
 double mixed_point_functional(const CollocationRod& rod, const RodVariables& v, const VecX& x, double u,
                               const BodyFunctional& phi, double weight, VecX* gradient) {
-  Vec3 g_n, g_m;
   // n = sum b_i N_i, m = sum b_i M_i, q = sum b_i Q_i; dphi/dn = R g_n, dphi/dm = R g_m,
   // dphi/dq_k = sum_ab (n g_n^T + m g_m^T)_ab (dR/dq_k)_ab.
-  const BasisDerivatives b = basis_derivatives(rod.knots(), u, 0);
-  const int cp = rod.control_point_size();
-  const int degree = rod.discretization().degree;
-  Quat q = Quat::Zero();
-  Vec3 n = Vec3::Zero(), m = Vec3::Zero();
-  for (int j = 0; j <= degree; ++j) {
-    const int o = v.control_point_offset + (b.first + j) * cp;
-    q += b.values(0, j) * x.segment<4>(o + kQ);
-    n += b.values(0, j) * x.segment<3>(o + kN);
-    m += b.values(0, j) * x.segment<3>(o + kM);
-  }
-  Mat3 R;
-  QuatRotationJacobian dR;
-  rotation_matrix_derivatives(q, R, dR);
-  const double value = phi(R.transpose() * n, R.transpose() * m, g_n, g_m);
+  const ActivePoints active(rod, v, u);
+  const Vec3 n = active.value<3>(x, kN), m = active.value<3>(x, kM);
+  const BodyValue phi_at(phi, active.value<4>(x, kQ), n, m);
   if (gradient) {
-    const Vec3 dn = R * g_n, dm = R * g_m;
-    const Quat dq = quaternion_gradient(n, m, g_n, g_m, dR);
-    for (int j = 0; j <= degree; ++j) {
-      const int o = v.control_point_offset + (b.first + j) * cp;
-      const double w = weight * b.values(0, j);
-      gradient->segment<4>(o + kQ) += w * dq;
-      gradient->segment<3>(o + kN) += w * dn;
-      gradient->segment<3>(o + kM) += w * dm;
-    }
+    active.add_gradient<4>(*gradient, kQ, weight, phi_at.quaternion_gradient(n, m));
+    active.add_gradient<3>(*gradient, kN, weight, phi_at.R * phi_at.g_n);
+    active.add_gradient<3>(*gradient, kM, weight, phi_at.R * phi_at.g_m);
   }
-  return value;
+  return phi_at.value;
 }
 
 /// phi at parameter u of a condensed rod; when gradient is given, adds weight * dphi/dx to it.
 double condensed_point_functional(const CollocationRod& rod, const RodVariables& v, const VecX& x, double u,
                                   const BodyFunctional& phi, double weight, VecX* gradient) {
-  Vec3 g_n, g_m;
   // n = N - f s, m = H - a x n - l s - L (I - c u) x f with s = u L, a = p - c, p = sum b_i P_i,
   // I = sum_j J_j P_j (J_j = integral_0^u N_j; f = l = 0 without distributed loads), q = sum b_i Q_i:
   // with dm = R g_m: dphi/dH = dm, dphi/dN = R g_n + a x dm, dphi/dP_i = b_i (dm x n) + L J_i (dm x f),
   // dphi/dL = R g_n . (-f u) + dm . (u a x f - l u - (I - c u) x f), dphi/dq as above.
-  const BasisDerivatives b = basis_derivatives(rod.knots(), u, 0);
   const int cp = rod.control_point_size();
-  const int degree = rod.discretization().degree;
   const bool loads = rod.condensed_with_loads();
   const VecX J = loads ? basis_integrals(rod.knots(), u) : VecX();
   const Vec3 f = loads ? rod.model().distributed_force() : Vec3::Zero();
   const Vec3 l = loads ? Vec3(rod.model().loads.moment_per_length) : Vec3::Zero();
   const Vec3 c = rod.moment_point();
   const double L = rod.length(x, v);
-  Quat q = Quat::Zero();
-  Vec3 p = Vec3::Zero(), I = Vec3::Zero();
-  for (int j = 0; j <= degree; ++j) {
-    const int o = v.control_point_offset + (b.first + j) * cp;
-    q += b.values(0, j) * x.segment<4>(o + kQ);
-    p += b.values(0, j) * x.segment<3>(o);
-  }
+  const ActivePoints active(rod, v, u);
+  const Vec3 p = active.value<3>(x, 0);
+  Vec3 I = Vec3::Zero();
   for (int j = 0; j < J.size(); ++j) I += J[j] * x.segment<3>(v.control_point_offset + j * cp);
   const Vec3 arm = p - c, n = x.segment<3>(v.wrench_offset) - f * (u * L);
   collocation::PointConstants distributed;
@@ -93,29 +108,22 @@ double condensed_point_functional(const CollocationRod& rod, const RodVariables&
   distributed.l = l;
   const Vec3 m =
       collocation::condensed_moment<double>(p, n, x.segment<3>(v.wrench_offset + 3), L, I, distributed, c, u);
-  Mat3 R;
-  QuatRotationJacobian dR;
-  rotation_matrix_derivatives(q, R, dR);
-  const double value = phi(R.transpose() * n, R.transpose() * m, g_n, g_m);
+  const BodyValue phi_at(phi, active.value<4>(x, kQ), n, m);
   if (gradient) {
-    const Vec3 dm = R * g_m, dn = R * g_n + arm.cross(dm), dp = dm.cross(n), dI = L * dm.cross(f);
-    const Quat dq = quaternion_gradient(n, m, g_n, g_m, dR);
-    for (int j = 0; j <= degree; ++j) {
-      const int o = v.control_point_offset + (b.first + j) * cp;
-      const double w = weight * b.values(0, j);
-      gradient->segment<3>(o) += w * dp;
-      gradient->segment<4>(o + kQ) += w * dq;
-    }
+    const Vec3 dm = phi_at.R * phi_at.g_m, dn = phi_at.R * phi_at.g_n + arm.cross(dm), dp = dm.cross(n),
+               dI = L * dm.cross(f);
+    active.add_gradient<3>(*gradient, 0, weight, dp);
+    active.add_gradient<4>(*gradient, kQ, weight, phi_at.quaternion_gradient(n, m));
     for (int j = 0; j < J.size(); ++j)
       if (J[j] != 0.0) gradient->segment<3>(v.control_point_offset + j * cp) += (weight * J[j]) * dI;
     gradient->segment<3>(v.wrench_offset) += weight * dn;
     gradient->segment<3>(v.wrench_offset + 3) += weight * dm;
     if (loads) {
       const Vec3 dm_dL = u * arm.cross(f) - l * u - (I - c * u).cross(f);
-      (*gradient)[v.length_offset] += weight * ((R * g_n).dot(-f * u) + dm.dot(dm_dL));
+      (*gradient)[v.length_offset] += weight * ((phi_at.R * phi_at.g_n).dot(-f * u) + dm.dot(dm_dL));
     }
   }
-  return value;
+  return phi_at.value;
 }
 
 /// phi at parameter u of a primal rod; when gradient is given, adds weight * dphi/dx to it. work: a copy

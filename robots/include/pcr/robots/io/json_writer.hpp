@@ -34,6 +34,12 @@ class JsonWriter {
   void value(std::uint64_t number);  ///< exact, as above
   void value(bool flag);
   void null();
+  /// key(name), then value(v): one member of an object.
+  template <typename T>
+  void member(const std::string& name, const T& v) {
+    key(name);
+    value(v);
+  }
   /// An array of numbers on one line, e.g. [1, 2, 3].
   void array(const VecX& numbers);
   void array(const Vec3& numbers) { array(VecX(numbers)); }
