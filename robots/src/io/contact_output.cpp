@@ -9,18 +9,12 @@ void write_gaps_member(JsonWriter& json, const std::vector<RodContactGap>& gaps)
   json.begin_array();
   for (const RodContactGap& g : gaps) {
     json.begin_object();
-    json.key("rod");
-    json.value(g.rod);
-    json.key("obstacle");
-    json.value(g.obstacle);
-    json.key("min_gap");
-    json.value(g.min_gap);
-    json.key("arc_length");
-    json.value(g.arc_length);
-    json.key("tolerance");
-    json.value(g.tolerance);
-    json.key("penetrates");
-    json.value(g.penetrates());
+    json.member("rod", g.rod);
+    json.member("obstacle", g.obstacle);
+    json.member("min_gap", g.min_gap);
+    json.member("arc_length", g.arc_length);
+    json.member("tolerance", g.tolerance);
+    json.member("penetrates", g.penetrates());
     json.end_object();
   }
   json.end_array();
@@ -35,34 +29,25 @@ void write_contacts_member(JsonWriter& json, const std::vector<ObstacleContact>&
   json.begin_array();
   for (const ObstacleContact& c : contacts) {
     json.begin_object();
-    json.key("rod");
-    json.value(c.rod);
-    json.key("obstacle");
-    json.value(c.obstacle);
+    json.member("rod", c.rod);
+    json.member("obstacle", c.obstacle);
     json.key("force");
     json.array(c.force);
-    json.key("min_gap");
-    json.value(c.min_gap);
-    json.key("min_gap_arc_length");
-    json.value(c.min_gap_arc_length);
-    json.key("concentrated");
-    json.value(c.concentrated);
+    json.member("min_gap", c.min_gap);
+    json.member("min_gap_arc_length", c.min_gap_arc_length);
+    json.member("concentrated", c.concentrated);
     if (c.adhesive) {
-      json.key("tangential_force");
-      json.value(c.tangential_force);
+      json.member("tangential_force", c.tangential_force);
     }
     json.key("intervals");
     json.begin_array();
     for (const ContactInterval& interval : c.intervals) {
       json.begin_object();
-      json.key("s_begin");
-      json.value(interval.s_begin);
-      json.key("s_end");
-      json.value(interval.s_end);
+      json.member("s_begin", interval.s_begin);
+      json.member("s_end", interval.s_end);
       json.key("force");
       json.array(interval.force);
-      json.key("centroid");
-      json.value(interval.centroid);
+      json.member("centroid", interval.centroid);
       json.end_object();
     }
     json.end_array();

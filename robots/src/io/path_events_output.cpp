@@ -24,32 +24,24 @@ void write_events_json(JsonWriter& json, const RobotModel& model, const std::vec
   json.begin_array();
   for (const PathEvent& e : events) {
     json.begin_object();
-    json.key("kind");
-    json.value(to_string(e.kind));
-    json.key("path_parameter");
-    json.value(e.path_parameter);
+    json.member("kind", to_string(e.kind));
+    json.member("path_parameter", e.path_parameter);
     json.key("inputs");
     json.begin_object();
     for (size_t i = 0; i < model.inputs().size() && static_cast<int>(i) < e.inputs.size(); ++i) {
-      json.key(model.inputs()[i].name);
-      json.value(e.inputs[static_cast<int>(i)]);
+      json.member(model.inputs()[i].name, e.inputs[static_cast<int>(i)]);
     }
     json.end_object();
-    json.key("unstable_modes_before");
-    json.value(e.unstable_modes_before);
-    json.key("unstable_modes_after");
-    json.value(e.unstable_modes_after);
+    json.member("unstable_modes_before", e.unstable_modes_before);
+    json.member("unstable_modes_after", e.unstable_modes_after);
     json.key("platforms");
     json.begin_object();
     for (size_t p = 0; p < e.platforms.size() && p < model.platforms().size(); ++p)
       write_pose_object(json, model.platforms()[p].name, e.platforms[p]);
     json.end_object();
-    json.key("jump_position");
-    json.value(e.jump_position);
-    json.key("jump_rotation");
-    json.value(e.jump_rotation);
-    json.key("description");
-    json.value(e.description);
+    json.member("jump_position", e.jump_position);
+    json.member("jump_rotation", e.jump_rotation);
+    json.member("description", e.description);
     json.end_object();
   }
   json.end_array();

@@ -69,14 +69,10 @@ int write_path_json(std::ostream& out, const RobotModel& model, const std::vecto
   for (const PathPoint& point : points) failures += point.solution.summary.converged() ? 0 : 1;
   JsonWriter json(out);
   json.begin_object();
-  json.key("model");
-  json.value(model.name());
-  json.key("command");
-  json.value("path");
-  json.key("points");
-  json.value(static_cast<int>(points.size()));
-  json.key("failures");
-  json.value(failures);
+  json.member("model", model.name());
+  json.member("command", "path");
+  json.member("points", static_cast<int>(points.size()));
+  json.member("failures", failures);
   json.key("results");
   json.begin_array();
   for (const PathPoint& point : points)
