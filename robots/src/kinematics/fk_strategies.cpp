@@ -51,7 +51,7 @@ constexpr LineSteps kThoroughSteps{0.5, 0.5};
 /// without a reachable equilibrium: at most this many orders of one leg per input).
 constexpr int kOneInputOrders = 3;
 /// Step budget of the fold-aware continuation from the default inputs (snaps included).
-constexpr int kArclengthSteps = 200;
+constexpr int kArclengthSteps = 400;
 /// Waypoints tried by strategy 6. The 7 inputs of a 1,000-input Stewart-Gough sweep that every other
 /// strategy failed on all converged through waypoint 1 or 2, to stable equilibria (docs/benchmarks.md
 /// "Random FK sweeps").
