@@ -51,14 +51,15 @@ class DampedSystem {
     }
     const double L0 = a.length_scale();
     for (int i = 0; i < static_cast<int>(a.model().platforms().size()); ++i) {
-      if (p.variable_fixed(a.platform_variable(i))) continue;
+      if (p.variable_fixed(a.platform_variable(i)) || p.row_offset(a.platform_balance(i)) < 0) continue;
       const int row = p.row_offset(a.platform_balance(i)), col = p.variable(a.platform_variable(i)).offset;
       dampers_.push_back({Damper::Kind::Position, row, col, L0});
       dampers_.push_back({Damper::Kind::Rotation, row + 3, col + 3, 1.0});
     }
     const std::vector<int>& joints = a.model().passive_joints();
     for (int i = 0; i < static_cast<int>(joints.size()); ++i) {
-      if (p.variable_fixed(a.passive_joint_variable(i))) continue;
+      if (p.variable_fixed(a.passive_joint_variable(i)) || p.row_offset(a.passive_joint_balance(i)) < 0)
+        continue;
       const bool prismatic = a.model().joints()[joints[i]].type == JointType::Prismatic;
       dampers_.push_back({Damper::Kind::Joint, p.row_offset(a.passive_joint_balance(i)),
                           p.variable(a.passive_joint_variable(i)).offset, prismatic ? L0 : 1.0});
