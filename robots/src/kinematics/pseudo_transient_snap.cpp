@@ -42,7 +42,8 @@ struct Damper {
 /// The FK system with the dampers anchored at `anchor`, on the free columns.
 class DampedSystem {
  public:
-  explicit DampedSystem(const RobotAssembly& a) : a_(a), row_lower_(a.problem().row_lower()) {
+  DampedSystem(const RobotAssembly& a, double shift)
+      : a_(a), row_lower_(a.problem().row_lower()), shift_(shift) {
     const Problem& p = a.problem();
     column_.assign(p.num_variables(), -1);
     for (int v = 0; v < p.num_variable_blocks(); ++v) {
@@ -64,8 +65,8 @@ class DampedSystem {
       dampers_.push_back({Damper::Kind::Joint, p.row_offset(a.passive_joint_balance(i)),
                           p.variable(a.passive_joint_variable(i)).offset, prismatic ? L0 : 1.0});
     }
+    if (shift_ > 0.0) list_shifted_columns();
   }
-  int free_count() const { return free_; }
 
   /// g = R(x) - (1/tau) D (q(x) - q(anchor)); with matrix: M = dg/dx on the free columns. False if not
   /// finite.
@@ -85,6 +86,11 @@ class DampedSystem {
     }
     g = c - row_lower_;
     for (const Damper& d : dampers_) add_damper(d, x, anchor, inv_tau, g, with_matrix ? &entries : nullptr);
+    for (int k : shifted_) {  // the diagonal shift (shift / tau) D, D = I on the free index
+      const int i = column_[k];
+      g[i] -= shift_ * inv_tau * (x[k] - anchor[k]);
+      if (with_matrix) entries.emplace_back(i, i, -shift_ * inv_tau);
+    }
     if (!g.allFinite()) return false;
     if (!with_matrix) return true;
     M_.resize(free_, free_);
@@ -133,9 +139,22 @@ class DampedSystem {
     }
   }
 
+  /// The free columns without a damper (the rods' unknowns, contact variables, ...).
+  void list_shifted_columns() {
+    std::vector<bool> damped(column_.size(), false);
+    for (const Damper& d : dampers_) {
+      const int n = d.kind == Damper::Kind::Position ? 3 : d.kind == Damper::Kind::Rotation ? 4 : 1;
+      for (int i = 0; i < n; ++i) damped[d.column + i] = true;
+    }
+    for (size_t k = 0; k < column_.size(); ++k)
+      if (column_[k] >= 0 && !damped[k]) shifted_.push_back(static_cast<int>(k));
+  }
+
   const RobotAssembly& a_;
   VecX row_lower_;
-  std::vector<int> column_;  // free index of each global column, -1 when fixed
+  double shift_;
+  std::vector<int> shifted_;  // global columns that get the diagonal shift
+  std::vector<int> column_;   // free index of each global column, -1 when fixed
   int free_ = 0;
   std::vector<Damper> dampers_;
   Eigen::SparseMatrix<double> M_;
@@ -187,10 +206,10 @@ bool finish(const RobotAssembly& a, double tolerance, VecX& x, PseudoTransientRe
 }  // namespace
 
 PseudoTransientResult pseudo_transient_equilibrium(const RobotAssembly& assembly, const VecX& start,
-                                                   double tolerance) {
+                                                   double tolerance, double shift) {
   PseudoTransientResult out;
   out.x = start;
-  DampedSystem system(assembly);
+  DampedSystem system(assembly, shift);
   double tau = kFirstTau;
   VecX g, next;
   for (int attempt = 0; attempt < kMaxSteps; ++attempt) {

@@ -29,8 +29,13 @@ struct PseudoTransientResult {
 };
 
 /// From `start` (inputs written in, the free variables a state near the one to relax) to an
-/// equilibrium at the same inputs; tolerance on the max-abs residual (as NewtonSolver's).
+/// equilibrium at the same inputs; tolerance on the max-abs residual (as NewtonSolver's). shift > 0 adds
+/// the classic PTC term -(shift / tau) (x_i - x_k,i) to row i of the free unknowns without a damper (row
+/// and column i of the square free system, D = I there; Kelley & Keyes): not a physical damper (a row
+/// is not the balance of its column's unknown), a regularisation that holds the rods' unknowns near
+/// their last values where their own soft modes (a rod with universal and spherical ends turning about
+/// its chord) stall the steps with the platforms damped alone; it vanishes as tau grows.
 PseudoTransientResult pseudo_transient_equilibrium(const RobotAssembly& assembly, const VecX& start,
-                                                   double tolerance);
+                                                   double tolerance, double shift = 0.0);
 
 }  // namespace pcr::kinematics
