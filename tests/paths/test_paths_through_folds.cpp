@@ -16,6 +16,7 @@
 #include "pcr/robots/branch_check.hpp"
 #include "pcr/robots/kinematics.hpp"
 #include "pcr/robots/path_through_folds.hpp"
+#include "pcr/robots/robot_stability.hpp"
 #include "pcr/robots/urdf_loader.hpp"
 #include "pcr/solve/newton_solver.hpp"
 #include "stability/robot_discrete.hpp"
@@ -350,4 +351,131 @@ BOOST_AUTO_TEST_CASE(stewart_gough_legs_buckle_without_a_fold) {
   // The last path point is the last trace point.
   BOOST_TEST_REQUIRE(r.trace.back().path_parameter == 2.0);
   BOOST_TEST(test::discrete_robot_inertia(*a, r.trace.back().state, kDiscreteSegments).negative == 3);
+}
+
+// planar_pinned from its default lengths a quarter of the way towards (0.198629, 0.366977, 0.499006) m, an
+// input of the random FK sweep (docs/benchmarks.md, "Random FK sweeps") on which FK failed: the stable
+// branch ends at a fold at 0.21471 of the line (0.85884 of this path), the branch beyond it does not
+// come back within the snap's steps, and Newton from the fold state pushed along its mode and from the
+// straight initial guess returns to the singular fold state. The damped motion of the platform
+// (pseudo_transient_snap.hpp) lands on another equilibrium, as stable as the ending branch (none
+// unstable), and the path goes on from there. Checked without the code that found it: the residual
+// recomputed, Newton from a perturbed landing state back to it (an isolated, regular equilibrium, not
+// the fold), and the verdict. The discrete energy model does not cover this robot (pinned rod ends).
+BOOST_AUTO_TEST_CASE(planar_pinned_snap_by_damped_motion) {
+  const auto a = shipped("planar_pinned");
+  const VecX u0 = a->model().default_input_values();
+  const VecX far = (VecX(3) << 0.198629, 0.366977, 0.499006).finished();
+  const std::vector<VecX> path = {u0, u0 + 0.25 * (far - u0)};
+  PathThroughFoldsOptions o;
+  o.at_fold = FoldPolicy::Snap;
+  o.count_unstable_modes = false;  // as FK's last strategy: counted at the folds and the landings only
+  o.keep_trace = true;
+  KinematicsOptions k;
+  k.stability_verdict = true;
+  const PathThroughFoldsResult r = solve_path_through_folds(a, k, path, o);
+  BOOST_TEST_MESSAGE(r.summary());
+  for (const PathEvent& e : r.events) BOOST_TEST_MESSAGE(e.description);
+  BOOST_TEST_REQUIRE(r.points[1].summary.converged(), r.points[1].summary.message);
+  BOOST_TEST_REQUIRE(r.events.size() >= 2u);
+  const PathEvent& fold = r.events[0];
+  const PathEvent& snap = r.events[1];
+  BOOST_TEST(to_string(fold.kind) == std::string("fold"));
+  // Where the continuation along the whole line located it (0.214710, printed to 6 digits: 2.3e-6
+  // relative), the fold being the same point of the same curve.
+  BOOST_TEST(fold.path_parameter == 0.214710 / 0.25, tt::tolerance(1e-5));
+  BOOST_TEST(fold.unstable_modes_before == 0);
+  BOOST_TEST(to_string(snap.kind) == std::string("snap"));
+  BOOST_TEST(snap.unstable_modes_after == 0);  // as stable as the ending branch
+  // Another equilibrium than the fold state: the snap's own threshold is 1e-4 of the length scale.
+  BOOST_TEST(snap.jump_position > 1e-4 * a->length_scale());
+
+  const TracePoint* landed = nullptr;
+  for (const TracePoint& t : r.trace)
+    if ((platform_position(*a, t.state) - snap.platforms_after[0].position).norm() < 1e-12) {
+      landed = &t;
+      break;
+    }
+  BOOST_TEST_REQUIRE(landed != nullptr);
+  const Problem& problem = a->problem();
+  VecX c;
+  problem.evaluate_residuals(landed->state, c);
+  // Converged means max-abs of the dimensionless residuals <= the FK tolerance (newton_solver.hpp).
+  BOOST_TEST((c - problem.row_lower()).cwiseAbs().maxCoeff() <= k.tolerance);
+  // Newton from the landing state with its platform moved by 1 mm (0.3 % of the rods' length, far outside
+  // the 1e-10 tolerance) comes back to it: to 1e-9 m, six orders below the perturbation and the 1.2 mm
+  // jump (two states within the tolerance of one regular equilibrium differ by its compliance times the
+  // residual; 3e-14 m measured).
+  VecX x = landed->state;
+  x.segment<3>(problem.variable(a->platform_variable(0)).offset) += Vec3(1e-3, 0.0, 0.0);
+  NewtonOptions no;
+  no.tolerance = k.tolerance;
+  NewtonSolver newton(problem, no);
+  BOOST_TEST_REQUIRE(newton.solve(x).converged());
+  const double back = (platform_position(*a, x) - platform_position(*a, landed->state)).norm();
+  BOOST_TEST_MESSAGE("Newton from the perturbed landing: back to " << back << " m");
+  BOOST_TEST(back < 1e-9);
+  const Stability v = robot_stability(*a, landed->state);
+  BOOST_TEST(to_string(v.verdict) == std::string("stable"), v.reason);
+  BOOST_TEST(v.margin > 0.0);
+  // The path's end, reached from the landing: a converged FK result with its verdict.
+  BOOST_TEST((r.points[1].stability_verdict.verdict != StabilityVerdict::NotChecked));
+}
+
+// six_rus from 0.6 to 0.7 of the line from its default crank angles to (0.245646, 0.846723, 0.685542,
+// 1.39959, 0.190363, 0.798329) rad, a cold input of the random FK sweep on which FK failed: the stable
+// branch ends at a fold at 0.683826 of the line; the branch beyond runs back past the default angles,
+// Newton from the pushed fold states returns to the fold state, and the damped platforms alone stall
+// (a soft mode of the rods, universal and spherical ends). The second pass of the damped motion, with
+// the diagonal shift on the rods' unknowns, lands on an equilibrium with 0 unstable modes. Checked as
+// the planar_pinned landing: residual, Newton from a perturbed landing back to it, verdict. Not in CI
+// (about 4 s in Release, most of it the stalled first pass, and this executable runs in the sanitizer
+// pass too): test_paths_through_folds --run_test=six_rus_snap_by_damped_motion_with_shift
+BOOST_AUTO_TEST_CASE(six_rus_snap_by_damped_motion_with_shift, *boost::unit_test::disabled()) {
+  const auto a = shipped("six_rus");
+  const VecX u0 = a->model().default_input_values();
+  VecX far(6);
+  far << 0.245646, 0.846723, 0.685542, 1.39959, 0.190363, 0.798329;
+  const std::vector<VecX> path = {u0 + 0.6 * (far - u0), u0 + 0.7 * (far - u0)};
+  PathThroughFoldsOptions o;
+  o.at_fold = FoldPolicy::Snap;
+  o.count_unstable_modes = false;
+  o.keep_trace = true;
+  const KinematicsOptions k;
+  const PathThroughFoldsResult r = solve_path_through_folds(a, k, path, o);
+  BOOST_TEST_MESSAGE(r.summary());
+  for (const PathEvent& e : r.events) BOOST_TEST_MESSAGE(e.description);
+  BOOST_TEST_REQUIRE(r.points[1].summary.converged(), r.points[1].summary.message);
+  BOOST_TEST_REQUIRE(r.events.size() >= 2u);
+  BOOST_TEST(to_string(r.events[0].kind) == std::string("fold"));
+  BOOST_TEST(r.events[0].unstable_modes_before == 0);
+  // The fold of the whole line at 0.683826 (printed to 6 digits) is at (0.683826 - 0.6) / 0.1 of this
+  // segment: 0.83826 +- 5e-6.
+  BOOST_TEST(r.events[0].path_parameter == 0.83826, tt::tolerance(1e-4));
+  const PathEvent& snap = r.events[1];
+  BOOST_TEST(to_string(snap.kind) == std::string("snap"));
+  BOOST_TEST(snap.unstable_modes_after == 0);
+  BOOST_TEST(snap.jump_position > 1e-4 * a->length_scale());
+  const TracePoint* landed = nullptr;
+  for (const TracePoint& t : r.trace)
+    if ((platform_position(*a, t.state) - snap.platforms_after[0].position).norm() < 1e-12) landed = &t;
+  BOOST_TEST_REQUIRE(landed != nullptr);
+  const Problem& problem = a->problem();
+  VecX c;
+  problem.evaluate_residuals(landed->state, c);
+  BOOST_TEST((c - problem.row_lower()).cwiseAbs().maxCoeff() <=
+             k.tolerance);  // converged (newton_solver.hpp)
+  // As for planar_pinned: 1 mm off (0.2 % of the 0.53 m rods), back to within 1e-9 m.
+  VecX x = landed->state;
+  x.segment<3>(problem.variable(a->platform_variable(0)).offset) += Vec3(1e-3, 0.0, 0.0);
+  NewtonOptions no;
+  no.tolerance = k.tolerance;
+  NewtonSolver newton(problem, no);
+  BOOST_TEST_REQUIRE(newton.solve(x).converged());
+  const double back = (platform_position(*a, x) - platform_position(*a, landed->state)).norm();
+  BOOST_TEST_MESSAGE("Newton from the perturbed landing: back to " << back << " m");
+  BOOST_TEST(back < 1e-9);
+  const Stability v = robot_stability(*a, landed->state);
+  BOOST_TEST(to_string(v.verdict) == std::string("stable"), v.reason);
+  BOOST_TEST(v.margin > 0.0);
 }

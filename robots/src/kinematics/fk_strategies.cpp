@@ -20,7 +20,9 @@
 //     equilibrium the robot snaps to at a fold (fold_continuation.hpp).
 // The later ones cost nothing where an earlier strategy converges (where they fail they take longer
 // than all the others together).
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fk_data.hpp"
@@ -51,7 +53,7 @@ constexpr LineSteps kThoroughSteps{0.5, 0.5};
 /// without a reachable equilibrium: at most this many orders of one leg per input).
 constexpr int kOneInputOrders = 3;
 /// Step budget of the fold-aware continuation from the default inputs (snaps included).
-constexpr int kArclengthSteps = 200;
+constexpr int kArclengthSteps = 400;
 /// Waypoints tried by strategy 6. The 7 inputs of a 1,000-input Stewart-Gough sweep that every other
 /// strategy failed on all converged through waypoint 1 or 2, to stable equilibria (docs/benchmarks.md
 /// "Random FK sweeps").
@@ -279,6 +281,20 @@ bool one_input_at_a_time(FkAttempt& a, const char* how) {
   return finish_continuation(a, r, xs, how);
 }
 
+/// The name of the first rod of the equilibrium x with an axial stretch v3 <= 0 at a sample point (as
+/// read_solution samples it; admissible_axial_stretch), or "" when all are admissible.
+std::string inadmissible_rod(const FkModel& m, const VecX& x) {
+  const RobotAssembly& a = *m.assembly;
+  std::vector<Vec3> centerline;
+  std::vector<double> stretches;
+  for (int i = 0; i < a.num_rods(); ++i) {
+    a.rod(i).sample_centerline(x, a.rod_variables(i), m.sample_bases[i], centerline, stretches);
+    for (double v3 : stretches)
+      if (!admissible_axial_stretch(v3)) return a.rod(i).model().name;
+  }
+  return "";
+}
+
 /// A strategy returns whether it converged; the name is what the summary's message calls it.
 struct FkStrategy {
   const char* name;
@@ -306,8 +322,27 @@ SolveSummary solve_with_fallbacks(FkData& data, const VecX& inputs, VecX& x) {
   FkAttempt a(data, inputs, x);
   const DefaultEquilibrium& start = data.model->default_equilibrium();
   a.x_default = start.converged ? &start.x : nullptr;
-  for (const FkStrategy& s : kStrategies)
-    if (s.attempt(a, s.name)) break;
+  // An equilibrium with a rod compressed to a point or inverted (not admissible: finish_solution marks
+  // it failed) does not end the chain: the later strategies may reach an admissible one. If none does,
+  // the first inadmissible one is the result (and reported failed with its reason).
+  std::optional<std::pair<VecX, SolveSummary>> inadmissible;
+  bool converged = false;
+  for (const FkStrategy& s : kStrategies) {
+    if (!s.attempt(a, s.name)) continue;
+    const std::string rod = inadmissible_rod(*data.model, a.x);
+    if (rod.empty()) {
+      converged = true;
+      break;
+    }
+    if (!inadmissible) inadmissible.emplace(a.x, a.summary);
+    a.summary.status = SolveStatus::Failed;
+    a.summary.message = inadmissible->second.message + "; rod '" + rod +
+                        "' compressed to a point or inverted there: the later strategies tried";
+  }
+  if (!converged && inadmissible) {
+    a.x = inadmissible->first;
+    a.summary.status = inadmissible->second.status;
+  }
   if (!a.x_default)
     a.summary.message += "; the default inputs did not converge from the straight initial guess";
   a.summary.iterations = a.iterations;

@@ -10,6 +10,7 @@
 #include "pcr/math/quaternion.hpp"
 #include "pcr/robots/robot_stability.hpp"
 #include "pcr/solve/newton_solver.hpp"
+#include "pseudo_transient_snap.hpp"
 
 namespace pcr::kinematics {
 
@@ -73,6 +74,10 @@ class SegmentTracer {
                          int& nu_landing);
   bool snap_by_newton(const ArcPoint& fold, double target, const Acceptable& acceptable, ArcPoint& landing,
                       int& nu_landing);
+  bool snap_by_pseudo_transient(const ArcPoint& fold, double target, const Acceptable& acceptable,
+                                ArcPoint& landing, int& nu_landing);
+  bool moved_from_fold(const ArcPoint& fold, const VecX& x) const;
+  bool land_at(const ArcPoint& fold, const VecX& x, double target, ArcPoint& landing);
   bool budget_left() const { return out_.steps < o_.max_steps; }
 
   const RobotAssembly& a_;
@@ -81,6 +86,7 @@ class SegmentTracer {
   double tolerance_;
   const PathThroughFoldsOptions& o_;
   SegmentOutcome out_;
+  int extra_jacobians_ = 0, extra_iterations_ = 0;  // of the pseudo-transient snaps (not the corrector's)
 };
 
 bool SegmentTracer::step(const ArcPoint& p, int nu, double& ds, ArcPoint& q, int& nu_q, double& used) {
@@ -198,6 +204,7 @@ bool SegmentTracer::snap(const ArcPoint& fold, int nu_fold_side, ArcPoint& landi
   };
   if (snap_along_branch(fold, target, acceptable, landing, nu_landing)) return true;
   if (snap_by_newton(fold, target, acceptable, landing, nu_landing)) return true;
+  if (snap_by_pseudo_transient(fold, target, acceptable, landing, nu_landing)) return true;
   std::ostringstream why;
   why << "no equilibrium as stable as the ending branch (" << nu_fold_side
       << " unstable modes) found to snap to at path parameter " << segment_ + fold.lambda;
@@ -236,29 +243,59 @@ bool SegmentTracer::snap_by_newton(const ArcPoint& fold, double target, const Ac
   no.tolerance = tolerance_;
   NewtonSolver newton(a_.problem(), no);
   const VecX u = arc_.inputs_at(target);
-  const Vec3 fold_position =
-      a_.model().platforms().empty() ? Vec3::Zero() : a_.platform_pose(fold.x, 0).position;
   std::vector<VecX> starts;
   for (double amplitude : {0.5, 1.0, 2.0, 4.0, -0.5, -1.0, -2.0})
     starts.push_back(arc_.predictor(fold, amplitude * o_.max_step).x);
   starts.push_back(a_.initial_guess());
   for (VecX& x : starts) {
     a_.set_inputs(x, u);
-    if (!newton.solve(x, 60).converged()) continue;
-    const double moved =
-        a_.model().platforms().empty() ? 1.0 : (a_.platform_pose(x, 0).position - fold_position).norm();
-    if (moved < 1e-4 * a_.length_scale()) continue;  // back near the fold
+    if (!newton.solve(x, 60).converged() || !moved_from_fold(fold, x)) continue;
     nu_landing = unstable_mode_count(a_, x);
-    if (!acceptable(nu_landing)) continue;
-    // The landing point with its tangent, by the corrector at the same inputs.
-    ArcPoint guess = fold;
-    guess.x = x;
-    guess.lambda = target;
-    VecX e_lambda = VecX::Zero(fold.tangent.size());
-    e_lambda[e_lambda.size() - 1] = 1.0;
-    if (arc_.at_lambda(guess, e_lambda, target, landing)) return true;
+    if (acceptable(nu_landing) && land_at(fold, x, target, landing)) return true;
   }
   return false;
+}
+
+/// Pseudo-transient continuation (pseudo_transient_snap.hpp: damped platforms and passive joints, the
+/// rods quasi-static) at the fold's inputs from the fold state pushed along the fold mode, either way:
+/// the damped motion of the robot past the fold. The first acceptable equilibrium away from the fold.
+bool SegmentTracer::snap_by_pseudo_transient(const ArcPoint& fold, double target,
+                                             const Acceptable& acceptable, ArcPoint& landing,
+                                             int& nu_landing) {
+  const VecX u = arc_.inputs_at(target);
+  // The platforms and passive joints damped alone, then with the diagonal shift on the other unknowns
+  // (pseudo_transient_snap.hpp; 1e-3 of the dampers' unit stiffness).
+  for (double shift : {0.0, 1e-3})
+    for (double amplitude : {1.0, -1.0, 4.0, -4.0}) {
+      VecX x = arc_.predictor(fold, amplitude * o_.max_step).x;
+      a_.set_inputs(x, u);
+      const PseudoTransientResult r = pseudo_transient_equilibrium(a_, x, tolerance_, shift);
+      extra_jacobians_ += r.jacobian_evaluations;
+      extra_iterations_ += r.iterations;
+      if (!r.converged || !moved_from_fold(fold, r.x)) continue;
+      nu_landing = unstable_mode_count(a_, r.x);
+      if (acceptable(nu_landing) && land_at(fold, r.x, target, landing)) return true;
+    }
+  return false;
+}
+
+/// Whether the equilibrium x is another one than the fold state (its first platform moved by more than
+/// 1e-4 of the length scale; without platforms every x counts).
+bool SegmentTracer::moved_from_fold(const ArcPoint& fold, const VecX& x) const {
+  if (a_.model().platforms().empty()) return true;
+  const double moved = (a_.platform_pose(x, 0).position - a_.platform_pose(fold.x, 0).position).norm();
+  return moved >= 1e-4 * a_.length_scale();
+}
+
+/// The landing point x (an equilibrium at the target inputs) with its tangent, by the corrector at the
+/// same inputs.
+bool SegmentTracer::land_at(const ArcPoint& fold, const VecX& x, double target, ArcPoint& landing) {
+  ArcPoint guess = fold;
+  guess.x = x;
+  guess.lambda = target;
+  VecX e_lambda = VecX::Zero(fold.tangent.size());
+  e_lambda[e_lambda.size() - 1] = 1.0;
+  return arc_.at_lambda(guess, e_lambda, target, landing);
 }
 
 /// The fold between p and q: report it; Stop ends the segment there (false), Snap lands on the stable
@@ -338,8 +375,8 @@ SegmentOutcome SegmentTracer::run(const VecX& x_start, int modes_start) {
   } else {
     out_.stopped = "the bordered Jacobian is singular at path parameter " + std::to_string(segment_);
   }
-  out_.iterations = arc_.iterations();
-  out_.jacobian_evaluations = arc_.jacobian_evaluations();
+  out_.iterations = arc_.iterations() + extra_iterations_;
+  out_.jacobian_evaluations = arc_.jacobian_evaluations() + extra_jacobians_;
   return out_;
 }
 
