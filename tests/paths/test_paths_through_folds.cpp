@@ -353,6 +353,35 @@ BOOST_AUTO_TEST_CASE(stewart_gough_legs_buckle_without_a_fold) {
   BOOST_TEST(test::discrete_robot_inertia(*a, r.trace.back().state, kDiscreteSegments).negative == 3);
 }
 
+namespace {
+
+/// Checks a snap's landing state without the code that found it: the residual recomputed (converged means
+/// max-abs of the dimensionless residuals <= the FK tolerance, newton_solver.hpp); Newton from the landing
+/// with its platform moved by 1 mm (0.2-0.3 % of the rods' length, far outside the 1e-10 tolerance) comes
+/// back to it to 1e-9 m, six orders below the perturbation and the jump (two states within the tolerance
+/// of one regular equilibrium differ by its compliance times the residual; 3e-14 m measured), so it is an
+/// isolated, regular equilibrium and not the fold; its verdict is stable.
+void check_stable_isolated_landing(const RobotAssembly& a, const VecX& landing, double tolerance) {
+  const Problem& problem = a.problem();
+  VecX c;
+  problem.evaluate_residuals(landing, c);
+  BOOST_TEST((c - problem.row_lower()).cwiseAbs().maxCoeff() <= tolerance);
+  VecX x = landing;
+  x.segment<3>(problem.variable(a.platform_variable(0)).offset) += Vec3(1e-3, 0.0, 0.0);
+  NewtonOptions no;
+  no.tolerance = tolerance;
+  NewtonSolver newton(problem, no);
+  BOOST_TEST_REQUIRE(newton.solve(x).converged());
+  const double back = (platform_position(a, x) - platform_position(a, landing)).norm();
+  BOOST_TEST_MESSAGE("Newton from the perturbed landing: back to " << back << " m");
+  BOOST_TEST(back < 1e-9);
+  const Stability v = robot_stability(a, landing);
+  BOOST_TEST(to_string(v.verdict) == std::string("stable"), v.reason);
+  BOOST_TEST(v.margin > 0.0);
+}
+
+}  // namespace
+
 // planar_pinned from its default lengths a quarter of the way towards (0.198629, 0.366977, 0.499006) m, an
 // input of the random FK sweep (docs/benchmarks.md, "Random FK sweeps") on which FK failed: the stable
 // branch ends at a fold at 0.21471 of the line (0.85884 of this path), the branch beyond it does not
@@ -397,27 +426,7 @@ BOOST_AUTO_TEST_CASE(planar_pinned_snap_by_damped_motion) {
       break;
     }
   BOOST_TEST_REQUIRE(landed != nullptr);
-  const Problem& problem = a->problem();
-  VecX c;
-  problem.evaluate_residuals(landed->state, c);
-  // Converged means max-abs of the dimensionless residuals <= the FK tolerance (newton_solver.hpp).
-  BOOST_TEST((c - problem.row_lower()).cwiseAbs().maxCoeff() <= k.tolerance);
-  // Newton from the landing state with its platform moved by 1 mm (0.3 % of the rods' length, far outside
-  // the 1e-10 tolerance) comes back to it: to 1e-9 m, six orders below the perturbation and the 1.2 mm
-  // jump (two states within the tolerance of one regular equilibrium differ by its compliance times the
-  // residual; 3e-14 m measured).
-  VecX x = landed->state;
-  x.segment<3>(problem.variable(a->platform_variable(0)).offset) += Vec3(1e-3, 0.0, 0.0);
-  NewtonOptions no;
-  no.tolerance = k.tolerance;
-  NewtonSolver newton(problem, no);
-  BOOST_TEST_REQUIRE(newton.solve(x).converged());
-  const double back = (platform_position(*a, x) - platform_position(*a, landed->state)).norm();
-  BOOST_TEST_MESSAGE("Newton from the perturbed landing: back to " << back << " m");
-  BOOST_TEST(back < 1e-9);
-  const Stability v = robot_stability(*a, landed->state);
-  BOOST_TEST(to_string(v.verdict) == std::string("stable"), v.reason);
-  BOOST_TEST(v.margin > 0.0);
+  check_stable_isolated_landing(*a, landed->state, k.tolerance);
   // The path's end, reached from the landing: a converged FK result with its verdict.
   BOOST_TEST((r.points[1].stability_verdict.verdict != StabilityVerdict::NotChecked));
 }
@@ -460,22 +469,5 @@ BOOST_AUTO_TEST_CASE(six_rus_snap_by_damped_motion_with_shift, *boost::unit_test
   for (const TracePoint& t : r.trace)
     if ((platform_position(*a, t.state) - snap.platforms_after[0].position).norm() < 1e-12) landed = &t;
   BOOST_TEST_REQUIRE(landed != nullptr);
-  const Problem& problem = a->problem();
-  VecX c;
-  problem.evaluate_residuals(landed->state, c);
-  BOOST_TEST((c - problem.row_lower()).cwiseAbs().maxCoeff() <=
-             k.tolerance);  // converged (newton_solver.hpp)
-  // As for planar_pinned: 1 mm off (0.2 % of the 0.53 m rods), back to within 1e-9 m.
-  VecX x = landed->state;
-  x.segment<3>(problem.variable(a->platform_variable(0)).offset) += Vec3(1e-3, 0.0, 0.0);
-  NewtonOptions no;
-  no.tolerance = k.tolerance;
-  NewtonSolver newton(problem, no);
-  BOOST_TEST_REQUIRE(newton.solve(x).converged());
-  const double back = (platform_position(*a, x) - platform_position(*a, landed->state)).norm();
-  BOOST_TEST_MESSAGE("Newton from the perturbed landing: back to " << back << " m");
-  BOOST_TEST(back < 1e-9);
-  const Stability v = robot_stability(*a, landed->state);
-  BOOST_TEST(to_string(v.verdict) == std::string("stable"), v.reason);
-  BOOST_TEST(v.margin > 0.0);
+  check_stable_isolated_landing(*a, landed->state, k.tolerance);
 }
