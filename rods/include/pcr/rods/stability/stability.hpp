@@ -25,9 +25,9 @@ struct Stability {
   /// Eigenvalues of the probe (or reduced) stiffness within the neutral tolerance of zero.
   int neutral_modes = 0;
   /// Smallest eigenvalue of the dimensionless probe stiffness (one rod: at its free end, or at its
-  /// middle section when both ends are clamped; robot: the platforms' reduced stiffness); goes to zero
-  /// at a fold or bifurcation. Scaling: displacements by a length L0, rotations in rad, energy by a
-  /// moment M0 (docs/design.md §4). 0 when not computed.
+  /// middle section when both ends are clamped; robot: the reduced stiffness of the platforms and passive
+  /// joints); goes to zero at a fold or bifurcation. Scaling: displacements by a length L0, rotations in rad,
+  /// energy by a moment M0 (docs/design.md §4). 0 when not computed.
   double margin = 0.0;
   /// The scales of the margin: displacements divided by length_scale [m], the second variation of the
   /// energy by energy_scale [J]; e.g. a rotational stiffness of margin x energy_scale N m / rad.
@@ -38,7 +38,8 @@ struct Stability {
   /// Unknown: which assumption fails; Critical: what the neutral mode may be.
   std::string reason;
   /// Robots: each rod's unstable modes with its couplings held in fixed link frames (rod order), and
-  /// the negative eigenvalues of the reduced stiffness of the platforms; their sum is unstable_modes.
+  /// the negative eigenvalues of the reduced stiffness of the platforms and passive joint coordinates
+  /// (the border); their sum is unstable_modes.
   std::vector<int> rod_unstable_modes;
   int border_unstable_modes = 0;
 };
