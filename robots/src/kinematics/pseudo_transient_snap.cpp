@@ -5,7 +5,9 @@
 #include <cmath>
 #include <vector>
 
+#include "pcr/math/quaternion.hpp"
 #include "pcr/math/so3.hpp"
+#include "pcr/solve/free_jacobian.hpp"
 #include "pcr/solve/newton_solver.hpp"
 #include "pcr/solve/sparse_lu.hpp"
 
@@ -72,15 +74,15 @@ class DampedSystem {
   /// finite.
   bool evaluate(const VecX& x, const VecX& anchor, double inv_tau, VecX& g, bool with_matrix) {
     VecX c;
-    std::vector<Eigen::Triplet<double>> entries;
+    std::vector<Eigen::Triplet<double>> entries;  // the dampers' and the shift's entries
+    FreeJacobian J_free;
     if (with_matrix) {
       RowJacobian J;
       a_.problem().evaluate_residuals_and_jacobian(x, c, J);
       ++jacobians_;
-      entries.reserve(J.nonZeros() + 16 * dampers_.size());
-      for (int r = 0; r < J.outerSize(); ++r)
-        for (RowJacobian::InnerIterator it(J, r); it; ++it)
-          if (column_[it.col()] >= 0) entries.emplace_back(r, column_[it.col()], it.value());
+      J_free = free_jacobian(a_.problem(), J);
+      if (J_free.matrix.rows() != free_) return false;  // not square
+      entries.reserve(16 * dampers_.size() + shifted_.size());
     } else {
       a_.problem().evaluate_residuals(x, c);
     }
@@ -93,8 +95,9 @@ class DampedSystem {
     }
     if (!g.allFinite()) return false;
     if (!with_matrix) return true;
-    M_.resize(free_, free_);
-    M_.setFromTriplets(entries.begin(), entries.end());  // duplicates (damper + R) are summed
+    Eigen::SparseMatrix<double> damping(free_, free_);
+    damping.setFromTriplets(entries.begin(), entries.end());
+    M_ = J_free.matrix + damping;
     return Eigen::Map<const VecX>(M_.valuePtr(), M_.nonZeros()).allFinite();
   }
   bool factorize() { return lu_.compute(M_); }
@@ -123,13 +126,12 @@ class DampedSystem {
       }
       return;
     }
-    const double qw = x[d.column];
-    const Vec3 qv = x.segment<3>(d.column + 1);
-    const double pw = anchor[d.column];  // conj(Q_a) = [pw, pv]
-    const Vec3 pv = -anchor.segment<3>(d.column + 1);
-    const Vec3 theta = 2.0 * (qw * pv + pw * qv + qv.cross(pv));
+    const Quat Q = x.segment<4>(d.column), conj_anchor = quat_conjugate(anchor.segment<4>(d.column));
+    const Vec3 theta = 2.0 * quat_multiply(Q, conj_anchor).tail<3>();
     g.segment<3>(d.row) -= inv_tau * theta;
     if (!entries) return;
+    const double pw = conj_anchor[0];  // conj(Q_a) = [pw, pv]
+    const Vec3 pv = conj_anchor.tail<3>();
     // d theta / d(qw, qv) = 2 [pv, pw I - hat(pv)].
     const Mat3 dv = pw * Mat3::Identity() - hat(pv);
     for (int i = 0; i < 3; ++i) {
