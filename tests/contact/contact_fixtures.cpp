@@ -1,10 +1,21 @@
 #include "contact_fixtures.hpp"
 
 #include <chrono>
+#include <cmath>
 
 #include "pcr/solve/newton_solver.hpp"
 
 namespace pcr::test {
+
+double heavy_cantilever_touchdown(double H, double q, double EI, double kGA) {
+  double l = std::pow(72.0 * EI * H / q, 0.25);
+  for (int i = 0; i < 50; ++i) {
+    const double f = q * std::pow(l, 4) / (72 * EI) + q * l * l / (6 * kGA) - H;
+    const double df = q * std::pow(l, 3) / (18 * EI) + q * l / (3 * kGA);
+    l -= f / df;
+  }
+  return l;
+}
 
 RodModel steel_cantilever(double length, const Vec3& gravity, const Vec3& tip_force) {
   RodModel m;

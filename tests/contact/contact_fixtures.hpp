@@ -16,6 +16,14 @@ inline constexpr double kYoungs = 200e9, kPoisson = 0.3, kDensity = 7850.0, kRad
 /// Clamped at the origin, tangent +x, free tip; gravity and tip force as given.
 RodModel steel_cantilever(double length, const Vec3& gravity, const Vec3& tip_force);
 
+/// Touchdown length l [m] of a heavy cantilever (weight q [N/m], bending stiffness EI, shear stiffness kGA)
+/// lying on a plane H below its clamp, Timoshenko beam: touchdown at l with w(l) = -H, w'(l) = 0,
+/// M(l) = 0, a point reaction q l / 3 there and the distributed reaction q beyond; clamp force 2 q l / 3,
+/// clamp moment q l^2 / 6 (elementary superposition with the touchdown conditions, as in pipe-laying
+/// analyses: Mattheij & Rienstra, "On an off-shore pipe laying problem", 1987). l solves
+/// q l^4 / (72 EI) + q l^2 / (6 kGA) = H, here by Newton from the Euler-Bernoulli value.
+double heavy_cantilever_touchdown(double H, double q, double EI, double kGA);
+
 /// The mixed midpoint discretisation with contact forces (degree, elements).
 RodDiscretization contact_discretization(int degree, int elements);
 

@@ -120,16 +120,10 @@ namespace {
 
 const double kWeight = test::kDensity * kArea * 9.81;  // q = rho A g [N/m]
 
-// Touchdown length l of a heavy cantilever on a plane H below its clamp (Timoshenko beam, the reference
-// of test_contact's heavy_cantilever_on_a_plane): q l^4 / (72 EI) + q l^2 / (6 kGA) = H, by Newton.
+// Touchdown length l of a heavy cantilever on a plane H below its clamp (test_contact's
+// heavy_cantilever_on_a_plane reference).
 double touchdown_length(double H) {
-  double l = std::pow(72.0 * kEI * H / kWeight, 0.25);
-  for (int i = 0; i < 50; ++i) {
-    const double f = kWeight * std::pow(l, 4) / (72 * kEI) + kWeight * l * l / (6 * kGA) - H;
-    const double df = kWeight * std::pow(l, 3) / (18 * kEI) + kWeight * l / (3 * kGA);
-    l -= f / df;
-  }
-  return l;
+  return test::heavy_cantilever_touchdown(H, kWeight, kEI, kGA);
 }
 
 }  // namespace

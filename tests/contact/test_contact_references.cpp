@@ -38,19 +38,10 @@ double largest_cell(const CollocationRod& rod) {
   return h * rod.model().length;
 }
 
-// Heavy cantilever on a plane (clamp at height H above the centerline's resting level), Timoshenko beam:
-// touchdown at l with w(l) = -H, w'(l) = 0, M(l) = 0, a point reaction q l / 3 there and the distributed
-// reaction q beyond; q l^4 / (72 EI) + q l^2 / (6 kGA) = H; clamp force 2 q l / 3, clamp moment q l^2 / 6
-// (elementary superposition with the touchdown conditions, as in pipe-laying analyses: Mattheij &
-// Rienstra, "On an off-shore pipe laying problem", 1987). Solved for l by Newton.
+// Heavy cantilever on a plane (clamp at height H above the centerline's resting level), Timoshenko beam
+// (test::heavy_cantilever_touchdown).
 double touchdown_length(double H) {
-  double l = std::pow(72.0 * kEI * H / kWeight, 0.25);
-  for (int i = 0; i < 50; ++i) {
-    const double f = kWeight * std::pow(l, 4) / (72 * kEI) + kWeight * l * l / (6 * kGA) - H;
-    const double df = kWeight * std::pow(l, 3) / (18 * kEI) + kWeight * l / (3 * kGA);
-    l -= f / df;
-  }
-  return l;
+  return test::heavy_cantilever_touchdown(H, kWeight, kEI, kGA);
 }
 
 struct PlaneCase {
