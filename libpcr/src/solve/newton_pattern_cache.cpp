@@ -1,0 +1,97 @@
+// Process-wide cache of Newton pattern analyses (newton_pattern_cache.hpp).
+#include "newton_pattern_cache.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <deque>
+#include <mutex>
+
+namespace pcr {
+namespace {
+
+// Bounds: a few structures (a program solves a handful of discretisations), and the stored index
+// arrays (about 3 ints per Jacobian nonzero in the key, 3-4 in the analysis) at most ~200 MB in all.
+constexpr size_t kMaxEntries = 32;
+constexpr long kMaxStoredNonzeros = 4L << 20;
+
+struct Entry {
+  std::uint64_t hash = 0;
+  std::vector<int> outer, inner, reduced_column, column_groups;
+  NewtonLinearSolver linear_solver{};
+  std::shared_ptr<const NewtonPatternAnalysis> analysis;
+};
+
+class Registry {
+ public:
+  std::shared_ptr<const NewtonPatternAnalysis> find(const NewtonPatternKey& key, std::uint64_t hash) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const Entry& e : entries_)
+      if (e.hash == hash && matches(e, key)) return e.analysis;
+    return nullptr;
+  }
+  void keep(Entry entry) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stored_nonzeros_ += static_cast<long>(entry.inner.size());
+    entries_.push_back(std::move(entry));
+    while (!entries_.empty() && (entries_.size() > kMaxEntries || stored_nonzeros_ > kMaxStoredNonzeros)) {
+      stored_nonzeros_ -= static_cast<long>(entries_.front().inner.size());
+      entries_.pop_front();
+    }
+  }
+
+ private:
+  static bool matches(const Entry& e, const NewtonPatternKey& key) {
+    const int rows = static_cast<int>(key.J.outerSize()), nonzeros = static_cast<int>(key.J.nonZeros());
+    return e.linear_solver == key.linear_solver && e.outer.size() == static_cast<size_t>(rows) + 1 &&
+           e.inner.size() == static_cast<size_t>(nonzeros) && e.reduced_column == key.reduced_column &&
+           e.column_groups == key.column_groups &&
+           std::equal(e.outer.begin(), e.outer.end(), key.J.outerIndexPtr()) &&
+           std::equal(e.inner.begin(), e.inner.end(), key.J.innerIndexPtr());
+  }
+  std::mutex mutex_;
+  std::deque<Entry> entries_;
+  long stored_nonzeros_ = 0;
+};
+
+Registry& registry() {
+  static Registry r;  // thread-safe initialisation (C++11)
+  return r;
+}
+
+// FNV-1a over the key's integers.
+std::uint64_t hash_of(const NewtonPatternKey& key) {
+  std::uint64_t h = 1469598103934665603ull;
+  auto mix = [&h](const int* begin, const int* end) {
+    for (const int* p = begin; p != end; ++p) h = (h ^ static_cast<std::uint32_t>(*p)) * 1099511628211ull;
+  };
+  const int* outer = key.J.outerIndexPtr();
+  mix(outer, outer + key.J.outerSize() + 1);
+  mix(key.J.innerIndexPtr(), key.J.innerIndexPtr() + key.J.nonZeros());
+  mix(key.reduced_column.data(), key.reduced_column.data() + key.reduced_column.size());
+  mix(key.column_groups.data(), key.column_groups.data() + key.column_groups.size());
+  const int solver = static_cast<int>(key.linear_solver);
+  mix(&solver, &solver + 1);
+  return h;
+}
+
+}  // namespace
+
+std::shared_ptr<const NewtonPatternAnalysis> find_newton_pattern(const NewtonPatternKey& key) {
+  if (!key.J.isCompressed()) return nullptr;
+  return registry().find(key, hash_of(key));
+}
+
+void keep_newton_pattern(const NewtonPatternKey& key, const NewtonPatternAnalysis& analysis) {
+  if (!key.J.isCompressed() || key.J.nonZeros() > kMaxStoredNonzeros / 4) return;
+  Entry e;
+  e.hash = hash_of(key);
+  e.outer.assign(key.J.outerIndexPtr(), key.J.outerIndexPtr() + key.J.outerSize() + 1);
+  e.inner.assign(key.J.innerIndexPtr(), key.J.innerIndexPtr() + key.J.nonZeros());
+  e.reduced_column = key.reduced_column;
+  e.column_groups = key.column_groups;
+  e.linear_solver = key.linear_solver;
+  e.analysis = std::make_shared<const NewtonPatternAnalysis>(analysis);
+  registry().keep(std::move(e));
+}
+
+}  // namespace pcr
