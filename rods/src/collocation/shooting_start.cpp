@@ -13,28 +13,34 @@
 namespace pcr::collocation {
 namespace {
 
-// Fixed-step RK4 with 16 steps: a few integrations cost a small part of the collocation solve, and the
-// shape (within about 1e-4 L of the equilibrium on R1, R2, R3) starts the collocation Newton in its
-// quadratic range (1-2 iterations there). At most 8 shooting iterations (R1, R2, R3 take 4-7): a model
-// whose shooting needs more (the pre-curved spring: 16) falls back to the stress-free start, which
-// serves it well (5 iterations).
+constexpr int kCoarseSteps = 6, kShapeSteps = 16;
+
+// Two fixed-step RK4 passes. The shape (within about 1e-4 L of the equilibrium on R1, R2, R3 with 16
+// steps) starts the collocation Newton in its quadratic range (1-2 iterations there); what sets that is
+// the sampled trajectory's accuracy, not the base state's: the base state of a 6-step solve, integrated
+// once more with 16 steps, starts the collocation as well as the 16-step solve did (the same collocation
+// iterations on R1, R2, R3 and the spring), and the 16-step pass from it converges in 0-1 iterations
+// (R1 0, R2 1, R3 0) where alone it took 4-7. So the iterations from rest run on 6 steps (kCoarseSteps),
+// the last on 16 (kShapeSteps). At most 8 shooting iterations (R1, R2, R3 take 4-7): a model whose
+// shooting needs more (the pre-curved spring: 16) falls back to the stress-free start, which serves it
+// well (5 iterations).
 //
 // Before the quadratic range the steps are capped (ShootingOptions::max_step), and each removes a
 // roughly constant amount d of the residual: |r| then needs about |r| / d more steps. A step that
 // removes less than 1/8 of |r| thus foretells more than the 8 allowed, and the start is given up at
 // once (the stall test with a window of one iteration). The scaled |r|_2 falls by a factor of at most
-// 0.69 (R1), 0.81 (R2) and 0.83 (R3) per iteration, all converging; on the spring by about 0.94 in the
-// first (it would need 16), so the spring's start costs one shooting iteration.
+// 0.69 (R1), 0.81 (R2) and 0.83 (R3) per iteration with 16 steps, all converging; on the spring by about
+// 0.94 in the first (it would need 16), so the spring's start costs one shooting iteration.
 ShootingOptions coarse_shooting() {
   ShootingOptions o;
   o.integrator = IntegratorMethod::RK4;
-  o.rk4_steps = 16;
+  o.rk4_steps = kCoarseSteps;
   o.tolerance = 1e-6;
   o.max_iterations = 8;
   o.stall_window = 1;
   o.stall_ratio = 1.0 - 1.0 / o.max_iterations;
   o.load_stepping = false;  // a hard problem: the collocation's own load stepping decides
-  o.store_trajectory = true;
+  o.store_trajectory = false;
   return o;
 }
 
@@ -43,7 +49,12 @@ ShootingOptions coarse_shooting() {
 std::optional<VecX> shooting_start(const CollocationRod& rod) {
   const RodModel& model = rod.model();
   if (model.drawing_speed != 0.0) return std::nullopt;  // the unknowns are the effective N, M there
-  const ShootingSolution sol = solve_rod_shooting(model, coarse_shooting());
+  ShootingOptions o = coarse_shooting();
+  const ShootingSolution coarse = solve_rod_shooting(model, o);
+  if (!coarse.summary.converged()) return std::nullopt;
+  o.rk4_steps = kShapeSteps;
+  o.store_trajectory = true;
+  const ShootingSolution sol = solve_rod_shooting(model, o, &coarse);
   if (!sol.summary.converged()) return std::nullopt;
   const std::vector<double> tau = rod.knots().greville();
   std::vector<double> s(tau.size());
