@@ -6,9 +6,10 @@
 // collocation equations at the solve's tolerance: the start changes the iteration count only.
 #include "shooting_start.hpp"
 
+#include "mesh_tables.hpp"
+
 #include "pcr/core/error.hpp"
 #include "pcr/rods/shooting/rod_shooting.hpp"
-#include "pcr/solve/sparse_lu.hpp"
 
 namespace pcr::collocation {
 namespace {
@@ -56,7 +57,9 @@ std::optional<VecX> shooting_start(const CollocationRod& rod) {
   o.store_trajectory = true;
   const ShootingSolution sol = solve_rod_shooting(model, o, &coarse);
   if (!sol.summary.converged()) return std::nullopt;
-  const std::vector<double> tau = rod.knots().greville();
+  const std::shared_ptr<const MeshTables> mesh =
+      mesh_tables(rod.discretization().degree, rod.discretization().elements);
+  const std::vector<double>& tau = mesh->greville;
   std::vector<double> s(tau.size());
   for (size_t i = 0; i < tau.size(); ++i) s[i] = tau[i] * model.length;
   const std::vector<ShootingState> states = sol.sample(s);
@@ -75,9 +78,8 @@ std::optional<VecX> shooting_start(const CollocationRod& rod) {
   }
   // Control points interpolating these values at the Greville abscissae (the running integrals T of
   // the condensed form with loads are set from P by add_to_problem).
-  SparseLu lu;
-  if (!lu.compute(collocation_matrix(rod.knots(), tau, 0))) return std::nullopt;
-  const MatX points = lu.solve(values);
+  MatX points;
+  if (!interpolate_at_greville(*mesh, values, points)) return std::nullopt;
   VecX x = VecX::Zero(rod.configuration_size());
   for (int i = 0; i < n; ++i) x.segment(i * cp, cp) = points.row(i).transpose();
   if (rod.discretization().formulation == RodFormulation::Condensed) {
