@@ -5,7 +5,6 @@
 #include <sstream>
 
 #include "form_builder.hpp"
-#include "mesh_tables.hpp"
 #include "pcr/core/error.hpp"
 #include "pcr/math/quaternion.hpp"
 #include "pcr/math/so3.hpp"
@@ -157,10 +156,10 @@ VecX CollocationRod::stress_free_configuration() const {
     values.block<1, 4>(i, point_layout().q) = q.transpose();
   }
   // Control points interpolating these values at the Greville abscissae.
-  MatX points;
-  require(
-      interpolate_at_greville(*mesh_tables(discretization_.degree, discretization_.elements), values, points),
-      "rod '", model_.name, "': Greville interpolation matrix is singular");
+  SparseLu lu;
+  require(lu.compute(collocation_matrix(*knots_, tau, 0)), "rod '", model_.name,
+          "': Greville interpolation matrix is singular");
+  const MatX points = lu.solve(values);
   VecX x = VecX::Zero(configuration_size());
   for (int i = 0; i < n; ++i) x.segment(i * cp, cp) = points.row(i).transpose();
   return x;
