@@ -16,15 +16,19 @@ namespace {
 
 constexpr int kCoarseSteps = 6, kShapeSteps = 16;
 
-// Two fixed-step RK4 passes. The shape (within about 1e-4 L of the equilibrium on R1, R2, R3 with 16
-// steps) starts the collocation Newton in its quadratic range (1-2 iterations there); what sets that is
-// the sampled trajectory's accuracy, not the base state's: the base state of a 6-step solve, integrated
+// Two fixed-step RK4 passes. A shape within about 1e-4 L of the equilibrium (16 steps on R1, R2, R3)
+// starts the collocation Newton in its quadratic range (2 iterations there); what sets that is the
+// sampled trajectory's accuracy, not the base state's: the base state of a 6-step solve, integrated
 // once more with 16 steps, starts the collocation as well as the 16-step solve did (the same collocation
 // iterations on R1, R2, R3 and the spring), and the 16-step pass from it converges in 0-1 iterations
 // (R1 0, R2 1, R3 0) where alone it took 4-7. So the iterations from rest run on 6 steps (kCoarseSteps),
-// the last on 16 (kShapeSteps). At most 8 shooting iterations (R1, R2, R3 take 4-7): a model whose
-// shooting needs more (the pre-curved spring: 16) falls back to the stress-free start, which serves it
-// well (5 iterations).
+// the last on more. How many: where the shape lies within the collocation's own discretisation error of
+// its solution, one Newton iteration reaches the tolerance, and that error falls with the element count
+// E: 16 + E steps (kShapeSteps + E) take R1 (p = 6, E = 16 and 32) and R3 (p = 5, E = 64; p = 6,
+// E = 128) to one collocation iteration instead of two (E and 32 + E steps do too on R1 E = 32 and R3;
+// 16 do not; 24 do not on R1 E = 16, 48 not on R3 E = 64), for a pass that costs a few per cent of the
+// solve. At most 8 shooting iterations (R1, R2, R3 take 4-7): a model whose shooting needs more (the
+// pre-curved spring: 16) falls back to the stress-free start, which serves it well (5 iterations).
 //
 // Before the quadratic range the steps are capped (ShootingOptions::max_step), and each removes a
 // roughly constant amount d of the residual: |r| then needs about |r| / d more steps. A step that
@@ -53,7 +57,7 @@ std::optional<VecX> shooting_start(const CollocationRod& rod) {
   ShootingOptions o = coarse_shooting();
   const ShootingSolution coarse = solve_rod_shooting(model, o);
   if (!coarse.summary.converged()) return std::nullopt;
-  o.rk4_steps = kShapeSteps;
+  o.rk4_steps = kShapeSteps + rod.discretization().elements;
   o.store_trajectory = true;
   const ShootingSolution sol = solve_rod_shooting(model, o, &coarse);
   if (!sol.summary.converged()) return std::nullopt;
