@@ -2,7 +2,6 @@
 #include "newton_pattern_cache.hpp"
 
 #include <algorithm>
-#include <cstdint>
 #include <deque>
 #include <mutex>
 
@@ -15,7 +14,6 @@ constexpr size_t kMaxEntries = 32;
 constexpr long kMaxStoredNonzeros = 4L << 20;
 
 struct Entry {
-  std::uint64_t hash = 0;
   std::vector<int> outer, inner, reduced_column, column_groups;
   NewtonLinearSolver linear_solver{};
   std::shared_ptr<const NewtonPatternAnalysis> analysis;
@@ -23,10 +21,10 @@ struct Entry {
 
 class Registry {
  public:
-  std::shared_ptr<const NewtonPatternAnalysis> find(const NewtonPatternKey& key, std::uint64_t hash) {
+  std::shared_ptr<const NewtonPatternAnalysis> find(const NewtonPatternKey& key) {
     std::lock_guard<std::mutex> lock(mutex_);
     for (const Entry& e : entries_)
-      if (e.hash == hash && matches(e, key)) return e.analysis;
+      if (matches(e, key)) return e.analysis;
     return nullptr;
   }
   void keep(Entry entry) {
@@ -40,6 +38,7 @@ class Registry {
   }
 
  private:
+  // Sizes first, then the index arrays (std::equal on ints: a memcmp, stopping at the first difference).
   static bool matches(const Entry& e, const NewtonPatternKey& key) {
     const int rows = static_cast<int>(key.J.outerSize()), nonzeros = static_cast<int>(key.J.nonZeros());
     return e.linear_solver == key.linear_solver && e.outer.size() == static_cast<size_t>(rows) + 1 &&
@@ -58,33 +57,16 @@ Registry& registry() {
   return r;
 }
 
-// FNV-1a over the key's integers.
-std::uint64_t hash_of(const NewtonPatternKey& key) {
-  std::uint64_t h = 1469598103934665603ull;
-  auto mix = [&h](const int* begin, const int* end) {
-    for (const int* p = begin; p != end; ++p) h = (h ^ static_cast<std::uint32_t>(*p)) * 1099511628211ull;
-  };
-  const int* outer = key.J.outerIndexPtr();
-  mix(outer, outer + key.J.outerSize() + 1);
-  mix(key.J.innerIndexPtr(), key.J.innerIndexPtr() + key.J.nonZeros());
-  mix(key.reduced_column.data(), key.reduced_column.data() + key.reduced_column.size());
-  mix(key.column_groups.data(), key.column_groups.data() + key.column_groups.size());
-  const int solver = static_cast<int>(key.linear_solver);
-  mix(&solver, &solver + 1);
-  return h;
-}
-
 }  // namespace
 
 std::shared_ptr<const NewtonPatternAnalysis> find_newton_pattern(const NewtonPatternKey& key) {
   if (!key.J.isCompressed()) return nullptr;
-  return registry().find(key, hash_of(key));
+  return registry().find(key);
 }
 
 void keep_newton_pattern(const NewtonPatternKey& key, const NewtonPatternAnalysis& analysis) {
   if (!key.J.isCompressed() || key.J.nonZeros() > kMaxStoredNonzeros / 4) return;
   Entry e;
-  e.hash = hash_of(key);
   e.outer.assign(key.J.outerIndexPtr(), key.J.outerIndexPtr() + key.J.outerSize() + 1);
   e.inner.assign(key.J.innerIndexPtr(), key.J.innerIndexPtr() + key.J.nonZeros());
   e.reduced_column = key.reduced_column;
