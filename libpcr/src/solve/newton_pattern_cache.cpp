@@ -8,10 +8,11 @@
 namespace pcr {
 namespace {
 
-// Bounds: a few structures (a program solves a handful of discretisations), and the stored index
-// arrays (about 3 ints per Jacobian nonzero in the key, 3-4 in the analysis) at most ~200 MB in all.
+// Bounds: a few structures (a program solves a handful of discretisations), and about 32 bytes kept per
+// Jacobian nonzero (the key's column indices, the value map, J_free's indices and values, the structured
+// LU's slots): at most 2^21 nonzeros in all, ~64 MB; a pattern above a quarter of that is not kept.
 constexpr size_t kMaxEntries = 32;
-constexpr long kMaxStoredNonzeros = 4L << 20;
+constexpr long kMaxStoredNonzeros = 2L << 20;
 
 struct Entry {
   std::vector<int> outer, inner, reduced_column, column_groups;
