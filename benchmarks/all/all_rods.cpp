@@ -120,9 +120,10 @@ void shooting_sweep(const RodScene& scene, const ErrorOf& error_of, const AllCon
     runs.push_back({"shooting-dormand_prince", "tol=1e-" + std::to_string(e), o});
   }
   for (Run& run : runs) {
-    const ShootingSolution sol = solve_rod_shooting(scene.model, run.options);  // with trajectory: the error
+    // Timed as the error's solve: with its trajectory (the default), the shape a user reads the
+    // centerline from, as collocation's timed solve includes its control points.
+    const ShootingSolution sol = solve_rod_shooting(scene.model, run.options);
     const double error = sol.summary.converged() ? error_of([&sol](double s) { return sol.at(s).p; }) : NAN;
-    run.options.store_trajectory = false;
     Repeats repeats = config.repeats();
     repeats.min_count = std::max(repeats.min_count, 5);
     repeats.max_count = 2000;  // fast solves: more repeats for a steady median

@@ -8,6 +8,7 @@
 #include <mutex>
 #include <new>
 
+#include "newton_pattern_cache.hpp"
 #include "pcr/core/error.hpp"
 #include "problem_impl.hpp"
 
@@ -103,6 +104,14 @@ void ProblemSystem::build_free_pattern() {
   // The sparse LU's analysis waits until it is needed (factorize_free).
   sparse_analyzed_ = false;
   if (take_left_analysis()) return;
+  // A structure analysed before (by any problem): its analysis (newton_pattern_cache.hpp).
+  const NewtonPatternKey key{J_, reduced_column_, column_groups_, options_.linear_solver};
+  if (const std::shared_ptr<const NewtonPatternAnalysis> cached = find_newton_pattern(key)) {
+    value_map_ = cached->value_map;
+    J_free_ = cached->J_free;
+    blocks_ = cached->blocks;
+    return;
+  }
   // J_free in CSC straight from the row-major J: count the entries per free column, then place them
   // row by row, so each column's rows come out sorted and value_map is the position written.
   const int n = static_cast<int>(J_.rows());
@@ -131,6 +140,11 @@ void ProblemSystem::build_free_pattern() {
   const bool structured = options_.linear_solver == NewtonLinearSolver::BorderedBlocks ||
                           (options_.linear_solver == NewtonLinearSolver::Auto && grouped);
   if (!structured || !blocks_.analyze_pattern(J_free_, column_groups_)) blocks_ = BorderedBlockLu();
+  NewtonPatternAnalysis analysis;
+  analysis.value_map = value_map_;
+  analysis.J_free = J_free_;
+  analysis.blocks = blocks_;
+  keep_newton_pattern(key, analysis);
 }
 
 bool ProblemSystem::factorize_free(bool sparse_only) {

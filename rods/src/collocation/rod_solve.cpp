@@ -5,6 +5,7 @@
 #include <optional>
 #include <sstream>
 
+#include "mesh_tables.hpp"
 #include "pcr/core/error.hpp"
 #include "pcr/math/quaternion.hpp"
 #include "pcr/rods/stability/rod_stability.hpp"
@@ -109,11 +110,16 @@ class MovingEnds {
 // else where it is not. Newton can reach such states from the straight rod, e.g. when the two clamped
 // ends coincide.
 std::string collapse_of(const CollocationRod& rod, const VecX& x, const RodVariables& vars) {
-  for (const RodState& st : rod.sample(x, vars, 4 * rod.num_control_points() + 1)) {
-    const double v3 = axial_stretch(st);
-    if (!admissible_axial_stretch(v3)) {
+  const std::shared_ptr<const collocation::MeshTables> mesh =
+      collocation::mesh_tables(rod.discretization().degree, rod.discretization().elements);
+  std::vector<Vec3> positions;
+  std::vector<double> stretches;
+  rod.sample_centerline(x, vars, mesh->check_basis, positions, stretches);
+  for (size_t k = 0; k < stretches.size(); ++k) {
+    if (!admissible_axial_stretch(stretches[k])) {
       std::ostringstream msg;
-      msg << "axial stretch v3 = 1 + eps3 = " << v3 << " at s = " << st.s
+      msg << "axial stretch v3 = 1 + eps3 = " << stretches[k]
+          << " at s = " << rod.length(x, vars) * k / (stretches.size() - 1)
           << " m (the rod is compressed to a point or inverted there; admissible: v3 > 0)";
       return msg.str();
     }

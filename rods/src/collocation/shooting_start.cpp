@@ -6,35 +6,46 @@
 // collocation equations at the solve's tolerance: the start changes the iteration count only.
 #include "shooting_start.hpp"
 
+#include "mesh_tables.hpp"
+
 #include "pcr/core/error.hpp"
 #include "pcr/rods/shooting/rod_shooting.hpp"
-#include "pcr/solve/sparse_lu.hpp"
 
 namespace pcr::collocation {
 namespace {
 
-// Fixed-step RK4 with 16 steps: a few integrations cost a small part of the collocation solve, and the
-// shape (within about 1e-4 L of the equilibrium on R1, R2, R3) starts the collocation Newton in its
-// quadratic range (1-2 iterations there). At most 8 shooting iterations (R1, R2, R3 take 4-7): a model
-// whose shooting needs more (the pre-curved spring: 16) falls back to the stress-free start, which
-// serves it well (5 iterations).
+constexpr int kCoarseSteps = 6, kShapeSteps = 16;
+
+// Two fixed-step RK4 passes. A shape within about 1e-4 L of the equilibrium (16 steps on R1, R2, R3)
+// starts the collocation Newton in its quadratic range (2 iterations there); what sets that is the
+// sampled trajectory's accuracy, not the base state's: the base state of a 6-step solve, integrated
+// once more with 16 steps, starts the collocation as well as the 16-step solve did (the same collocation
+// iterations on R1, R2, R3 and the spring), and the 16-step pass from it converges in 0-1 iterations
+// (R1 0, R2 1, R3 0) where alone it took 4-7. So the iterations from rest run on 6 steps (kCoarseSteps),
+// the last on more. How many: where the shape lies within the collocation's own discretisation error of
+// its solution, one Newton iteration reaches the tolerance, and that error falls with the element count
+// E: 16 + E steps (kShapeSteps + E) take R1 (p = 6, E = 16 and 32) and R3 (p = 5, E = 64; p = 6,
+// E = 128) to one collocation iteration instead of two (E and 32 + E steps do too on R1 E = 32 and R3;
+// 16 do not; 24 do not on R1 E = 16, 48 not on R3 E = 64), for a pass that costs a few per cent of the
+// solve. At most 8 shooting iterations (R1, R2, R3 take 4-7): a model whose shooting needs more (the
+// pre-curved spring: 16) falls back to the stress-free start, which serves it well (5 iterations).
 //
 // Before the quadratic range the steps are capped (ShootingOptions::max_step), and each removes a
 // roughly constant amount d of the residual: |r| then needs about |r| / d more steps. A step that
 // removes less than 1/8 of |r| thus foretells more than the 8 allowed, and the start is given up at
 // once (the stall test with a window of one iteration). The scaled |r|_2 falls by a factor of at most
-// 0.69 (R1), 0.81 (R2) and 0.83 (R3) per iteration, all converging; on the spring by about 0.94 in the
-// first (it would need 16), so the spring's start costs one shooting iteration.
+// 0.69 (R1), 0.81 (R2) and 0.83 (R3) per iteration with 16 steps, all converging; on the spring by about
+// 0.94 in the first (it would need 16), so the spring's start costs one shooting iteration.
 ShootingOptions coarse_shooting() {
   ShootingOptions o;
   o.integrator = IntegratorMethod::RK4;
-  o.rk4_steps = 16;
+  o.rk4_steps = kCoarseSteps;
   o.tolerance = 1e-6;
   o.max_iterations = 8;
   o.stall_window = 1;
   o.stall_ratio = 1.0 - 1.0 / o.max_iterations;
   o.load_stepping = false;  // a hard problem: the collocation's own load stepping decides
-  o.store_trajectory = true;
+  o.store_trajectory = false;
   return o;
 }
 
@@ -43,9 +54,16 @@ ShootingOptions coarse_shooting() {
 std::optional<VecX> shooting_start(const CollocationRod& rod) {
   const RodModel& model = rod.model();
   if (model.drawing_speed != 0.0) return std::nullopt;  // the unknowns are the effective N, M there
-  const ShootingSolution sol = solve_rod_shooting(model, coarse_shooting());
+  ShootingOptions o = coarse_shooting();
+  const ShootingSolution coarse = solve_rod_shooting(model, o);
+  if (!coarse.summary.converged()) return std::nullopt;
+  o.rk4_steps = kShapeSteps + rod.discretization().elements;
+  o.store_trajectory = true;
+  const ShootingSolution sol = solve_rod_shooting(model, o, &coarse);
   if (!sol.summary.converged()) return std::nullopt;
-  const std::vector<double> tau = rod.knots().greville();
+  const std::shared_ptr<const MeshTables> mesh =
+      mesh_tables(rod.discretization().degree, rod.discretization().elements);
+  const std::vector<double>& tau = mesh->greville;
   std::vector<double> s(tau.size());
   for (size_t i = 0; i < tau.size(); ++i) s[i] = tau[i] * model.length;
   const std::vector<ShootingState> states = sol.sample(s);
@@ -64,9 +82,8 @@ std::optional<VecX> shooting_start(const CollocationRod& rod) {
   }
   // Control points interpolating these values at the Greville abscissae (the running integrals T of
   // the condensed form with loads are set from P by add_to_problem).
-  SparseLu lu;
-  if (!lu.compute(collocation_matrix(rod.knots(), tau, 0))) return std::nullopt;
-  const MatX points = lu.solve(values);
+  MatX points;
+  if (!interpolate_at_greville(*mesh, values, points)) return std::nullopt;
   VecX x = VecX::Zero(rod.configuration_size());
   for (int i = 0; i < n; ++i) x.segment(i * cp, cp) = points.row(i).transpose();
   if (rod.discretization().formulation == RodFormulation::Condensed) {
