@@ -223,9 +223,16 @@ bool solve_and_check(const std::string& name, ForwardKinematics& fk, const VecX&
   stats.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   stats.times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   const SolveSummary& sum = out.summary;
-  if (argument("trace", 0) != 0)
-    std::printf("TRACE %s %.6f %d %d %s | %s\n", name.c_str(), stats.times.back(), sum.iterations,
-                sum.jacobian_evaluations, to_string(sum.status), sum.message.c_str());
+  if (argument("trace", 0) != 0) {
+    // time with the verdict, FK alone, iterations, fresh Jacobians, status, verdict, unstable modes,
+    // margin, the first platform's position, message.
+    const Vec3 p = out.platforms.empty() ? Vec3::Zero() : out.platforms.front().position;
+    std::printf("TRACE %s %.6f %.6f %d %d %s %s %d %.6e %.9f %.9f %.9f | %s\n", name.c_str(),
+                stats.times.back(), sum.wall_time_seconds, sum.iterations, sum.jacobian_evaluations,
+                to_string(sum.status), to_string(out.stability_verdict.verdict),
+                out.stability_verdict.unstable_modes, out.stability_verdict.margin, p.x(), p.y(), p.z(),
+                sum.message.c_str());
+  }
   ++stats.statuses[to_string(sum.status)];
   ++stats.histogram[iteration_bin(sum.iterations)];
   if (!sum.converged()) {

@@ -25,6 +25,7 @@
 #include <utility>
 #include <vector>
 
+#include "continuation_weights.hpp"
 #include "fk_data.hpp"
 #include "fold_continuation.hpp"
 #include "input_continuation.hpp"
@@ -36,15 +37,19 @@ namespace {
 /// Fresh-Jacobian budget of a direct attempt along a path and from the straight initial guess.
 constexpr int kDirectJacobianEvaluations = 10;
 /// The budget of a direct attempt from a start off a path (a jump in the inputs; the default equilibrium
-/// for a cold solve): Newton converges there in a few Jacobians or not at all.
+/// for a cold solve): Newton converges there in a few Jacobians or not at all (random planar_three_rod
+/// inputs: 3 gives other equilibria than 6 on 36 of 200 warm solves and twice the fresh Jacobians).
 constexpr int kJumpJacobianEvaluations = 6;
-/// The fast continuation: 4 fresh Jacobians per step, a first step of 0.1 of the line, cut to 0.3 when it
-/// fails. Random Stewart-Gough inputs: Newton converges from the default equilibrium only within about
-/// 0.02-0.05 m of rod length (the residual after the tangent predictor grows like 2500 t^2 there: the
-/// stiff axial and shear rows), while a random line is 0.3-0.6 m long; the thorough continuation spent
-/// about 30 fresh Jacobians on failed steps before its first converged one.
+/// The fast continuation: 4 fresh Jacobians per step, a first step of 0.03 of the line, cut to 0.3 when it
+/// fails, the next steps from the predictor's error (0.02: about 1 cm of platform or rod position on the
+/// Stewart-Gough robot, rod rotations of 0.02 rad). Random Stewart-Gough inputs: Newton converges from the
+/// default equilibrium only within about 0.02-0.05 m of rod length (the platform moves by up to 6 m per m
+/// of input there: its legs start parallel, a singular pose of the rigid mechanism, and the solution path
+/// bends where they tilt), while a random line is 0.3-0.6 m long; the predictor's error per step grows
+/// like h^2 with a constant that falls by more than 10 along the line (docs/benchmarks.md "Random FK
+/// sweeps": fewer fresh Jacobians than fixed growth factors, which the failed steps near the start cost).
 constexpr int kFastStepJacobianEvaluations = 4;
-constexpr LineSteps kFastSteps{0.1, 0.3};
+constexpr LineSteps kFastSteps{0.03, 0.3, 0.02};
 /// The thorough continuation: steps that may take 8 fresh Jacobians (a planar robot near a fold needs
 /// them), from half the line, halved on failure.
 constexpr int kThoroughStepJacobianEvaluations = 8;
@@ -91,6 +96,14 @@ struct FkAttempt {
     };
   }
   VecX default_inputs() const { return data.model->assembly->model().default_input_values(); }
+  /// The continuation's predictor error weights (continuation_weights.hpp), made on first use.
+  const ContinuationWeights& weights() {
+    if (weights_.size() == 0) weights_ = continuation_weights(*data.model->assembly);
+    return weights_;
+  }
+
+ private:
+  ContinuationWeights weights_;
 };
 
 /// A direct Newton attempt from `start` with at most `jacobians` fresh Jacobians. The summary of the
@@ -159,8 +172,8 @@ bool finish_continuation(FkAttempt& a, const ContinuationResult& r, const VecX& 
 bool continuation(FkAttempt& a, const VecX& u0, const VecX& x0, const ContinuationKind& kind,
                   const char* how) {
   VecX xs = x0;
-  const ContinuationResult r =
-      continue_along_line(a.solve_at(kind.loose), u0, a.inputs, kind.step_jacobians, xs, kind.steps);
+  const ContinuationResult r = continue_along_line(a.solve_at(kind.loose), u0, a.inputs, kind.step_jacobians,
+                                                   xs, kind.steps, a.weights());
   return finish_continuation(a, r, xs, how);
 }
 
@@ -252,13 +265,13 @@ bool via_waypoints(FkAttempt& a, const char* how) {
   for (int k = 0; k < kWaypoints; ++k) {
     const VecX w = waypoint(model, k);
     VecX xw = *a.x_default;
-    const ContinuationResult to_w =
-        continue_along_line(a.solve_at(true), a.default_inputs(), w, kFast.step_jacobians, xw, kFast.steps);
+    const ContinuationResult to_w = continue_along_line(a.solve_at(true), a.default_inputs(), w,
+                                                        kFast.step_jacobians, xw, kFast.steps, a.weights());
     a.count(to_w.iterations, to_w.jacobian_evaluations);
     if (!to_w.converged) continue;
     VecX xs = xw;
-    const ContinuationResult r =
-        continue_along_line(a.solve_at(true), w, a.inputs, kFast.step_jacobians, xs, kFast.steps);
+    const ContinuationResult r = continue_along_line(a.solve_at(true), w, a.inputs, kFast.step_jacobians, xs,
+                                                     kFast.steps, a.weights());
     a.count(r.iterations, r.jacobian_evaluations);
     if (!r.converged) continue;
     a.x = xs;

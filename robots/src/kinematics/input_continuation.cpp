@@ -2,28 +2,47 @@
 #include "input_continuation.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace pcr::kinematics {
 
+namespace {
+
+/// The step after a converged one of size `step` (LineSteps).
+double next_step(const LineSteps& steps, double step, const SolveSummary& s, const VecX& weights,
+                 const VecX& predicted, const VecX& converged, bool secant) {
+  if (!(steps.predictor_error > 0.0) || weights.size() != converged.size())
+    return step * (s.iterations <= 4 ? 2.0 : 1.25);
+  const double error = (converged - predicted).cwiseProduct(weights).cwiseAbs().maxCoeff();
+  if (!(error > 0.0)) return 4.0 * step;
+  const double ratio = steps.predictor_error / error;
+  return step * std::clamp(secant ? std::sqrt(ratio) : ratio, 0.5, 4.0);
+}
+
+}  // namespace
+
 ContinuationResult continue_along_line(const SolveAtInputs& solve_at, const VecX& u0, const VecX& u1,
-                                       int step_jacobians, VecX& x, const LineSteps& steps) {
+                                       int step_jacobians, VecX& x, const LineSteps& steps,
+                                       const ContinuationWeights& weights) {
   ContinuationResult r;
   double t = 0.0, step = steps.first, t_prev = -1.0;
-  VecX xc = x, x_prev;
+  VecX xc = x, x_prev, predicted;
   while (t < 1.0 && step > 1e-4 && r.steps < 200) {
     const double target = std::min(1.0, t + step);
     VecX trial = xc;
-    if (t_prev >= 0.0) trial += ((target - t) / (t - t_prev)) * (xc - x_prev);  // secant in t
+    const bool secant = t_prev >= 0.0;
+    if (secant) trial += ((target - t) / (t - t_prev)) * (xc - x_prev);  // secant in t
+    predicted = trial;
     r.last = solve_at(u0 + target * (u1 - u0), trial, step_jacobians, target < 1.0);
     r.iterations += r.last.iterations;
     r.jacobian_evaluations += r.last.jacobian_evaluations;
     ++r.steps;
     if (r.last.converged()) {
+      step = next_step(steps, target - t, r.last, weights, predicted, trial, secant);
       x_prev.swap(xc);
       xc.swap(trial);
       t_prev = t;
       t = target;
-      step *= r.last.iterations <= 4 ? 2.0 : 1.25;
     } else {
       step *= steps.cut;
     }
