@@ -8,8 +8,10 @@
 //
 // Short sweep by default (CI); long mode: test_random_sweeps -- --solves=N [--seed=S] [--stability=1]
 // [--trace=1] (N warm solves per model; one cold solve per 5 warm ones; --stability=1: each result with
-// its stability verdict, the stable fraction reported; --trace=1: one line per solve with its time,
-// iterations, fresh Jacobians, status and message).
+// its stability verdict, the stable fraction reported; --trace=1: one line per solve, warm and cold in
+// the order solved: time with the verdict and FK alone [s], iterations, fresh Jacobians, status, verdict,
+// unstable modes, margin, the first platform's position [m], message; for comparing runs by the
+// equilibria they reach and their verdicts).
 #define BOOST_TEST_MODULE random_sweeps
 #include <boost/test/unit_test.hpp>
 
@@ -224,8 +226,7 @@ bool solve_and_check(const std::string& name, ForwardKinematics& fk, const VecX&
   stats.times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   const SolveSummary& sum = out.summary;
   if (argument("trace", 0) != 0) {
-    // time with the verdict, FK alone, iterations, fresh Jacobians, status, verdict, unstable modes,
-    // margin, the first platform's position, message.
+    // The fields of the file comment's --trace=1.
     const Vec3 p = out.platforms.empty() ? Vec3::Zero() : out.platforms.front().position;
     std::printf("TRACE %s %.6f %.6f %d %d %s %s %d %.6e %.9f %.9f %.9f | %s\n", name.c_str(),
                 stats.times.back(), sum.wall_time_seconds, sum.iterations, sum.jacobian_evaluations,

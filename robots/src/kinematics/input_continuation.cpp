@@ -8,15 +8,16 @@ namespace pcr::kinematics {
 
 namespace {
 
-/// The step after a converged one of size `step` (LineSteps).
-double next_step(const LineSteps& steps, double step, const SolveSummary& s, const VecX& weights,
-                 const VecX& predicted, const VecX& converged, bool secant) {
+/// The step after a converged one: `step` as it was asked for, `taken` as it was taken (shorter at the end
+/// of the line) (LineSteps).
+double next_step(const LineSteps& steps, double step, double taken, const SolveSummary& s,
+                 const VecX& weights, const VecX& predicted, const VecX& converged, bool secant) {
   if (!(steps.predictor_error > 0.0) || weights.size() != converged.size())
     return step * (s.iterations <= 4 ? 2.0 : 1.25);
   const double error = (converged - predicted).cwiseProduct(weights).cwiseAbs().maxCoeff();
-  if (!(error > 0.0)) return 4.0 * step;
+  if (!(error > 0.0)) return 4.0 * taken;
   const double ratio = steps.predictor_error / error;
-  return step * std::clamp(secant ? std::sqrt(ratio) : ratio, 0.5, 4.0);
+  return taken * std::clamp(secant ? std::sqrt(ratio) : ratio, 0.5, 4.0);
 }
 
 }  // namespace
@@ -38,7 +39,7 @@ ContinuationResult continue_along_line(const SolveAtInputs& solve_at, const VecX
     r.jacobian_evaluations += r.last.jacobian_evaluations;
     ++r.steps;
     if (r.last.converged()) {
-      step = next_step(steps, target - t, r.last, weights, predicted, trial, secant);
+      step = next_step(steps, step, target - t, r.last, weights, predicted, trial, secant);
       x_prev.swap(xc);
       xc.swap(trial);
       t_prev = t;
