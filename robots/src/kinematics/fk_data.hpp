@@ -50,8 +50,9 @@ struct FkData {
   const std::shared_ptr<const FkModel> model;  // first: outlives the solvers that refer into it
   VecX x;                                      // the last converged solution (initial guess before)
   bool has_solution = false;
-  int last_jacobian_sign = 0;                         // of the last checked converged solve (check_stability)
-  PathPredictor predictor;                            // start point along a path of inputs
+  int failed_jumps = 0;        // direct attempts from the last solution off a path that failed in a row
+  int last_jacobian_sign = 0;  // of the last checked converged solve (check_stability)
+  PathPredictor predictor;     // start point along a path of inputs
   std::unique_ptr<NewtonSolver> newton;               // on model->assembly->problem(), made on first use
   std::unique_ptr<NewtonSolver> newton_intermediate;  // the same, to kIntermediateTolerance
   std::unique_ptr<IpoptSolver> ipopt;                 // SolverKind::Ipopt, made on first use

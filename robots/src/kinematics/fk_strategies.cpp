@@ -40,6 +40,13 @@ constexpr int kDirectJacobianEvaluations = 10;
 /// for a cold solve): Newton converges there in a few Jacobians or not at all (random planar_three_rod
 /// inputs: 3 gives other equilibria than 6 on 36 of 200 warm solves and twice the fresh Jacobians).
 constexpr int kJumpJacobianEvaluations = 6;
+/// After this many failed direct attempts from the last solution off a path in a row, such attempts get
+/// kProbeJacobianEvaluations only, until one converges: on random Stewart-Gough inputs 196 of 200 fail
+/// and each cost 6 fresh Jacobians, a third of a warm solve; the 4 that converge took 2, 3, 3 and 6 (the
+/// last reaches the same equilibrium by the continuation); random planar_three_rod jumps converge about
+/// every second time, which resets the count.
+constexpr int kFailedJumpsBeforeProbe = 5;
+constexpr int kProbeJacobianEvaluations = 2;
 /// The fast continuation: 4 fresh Jacobians per step, a first step of 0.03 of the line, cut to 0.3 when it
 /// fails, the next steps from the predictor's error (0.02: about 1 cm of platform or rod position on the
 /// Stewart-Gough robot, rod rotations of 0.02 rad). Random Stewart-Gough inputs: Newton converges from the
@@ -129,7 +136,12 @@ bool from_prediction(FkAttempt& a, const char* how) {
     return direct_attempt(a, a.x_default ? *a.x_default : a.data.x, kJumpJacobianEvaluations, how);
   const VecX start = a.data.predictor.predict(a.data.x, a.inputs, &a.on_path);
   if (a.on_path && a.data.newton) a.data.newton->continue_path();
-  return direct_attempt(a, start, a.on_path ? kDirectJacobianEvaluations : kJumpJacobianEvaluations, how);
+  if (a.on_path) return direct_attempt(a, start, kDirectJacobianEvaluations, how);
+  const int budget =
+      a.data.failed_jumps >= kFailedJumpsBeforeProbe ? kProbeJacobianEvaluations : kJumpJacobianEvaluations;
+  const bool converged = direct_attempt(a, start, budget, how);
+  a.data.failed_jumps = converged ? 0 : a.data.failed_jumps + 1;
+  return converged;
 }
 
 /// Newton from the last solution when the predicted start was another point (extrapolated along a path).

@@ -9,15 +9,17 @@ namespace pcr::kinematics {
 namespace {
 
 /// The step after a converged one: `step` as it was asked for, `taken` as it was taken (shorter at the end
-/// of the line) (LineSteps).
+/// of the line) (LineSteps). after_failure: the attempt before this one failed; then the error rule does
+/// not grow the step (near a fold the predictor's error stays small up to the step that fails, and
+/// growing again at once costs a failed step, 4 fresh Jacobians, every other step).
 double next_step(const LineSteps& steps, double step, double taken, const SolveSummary& s,
-                 const VecX& weights, const VecX& predicted, const VecX& converged, bool secant) {
+                 const VecX& weights, const VecX& predicted, const VecX& converged, bool secant,
+                 bool after_failure) {
   if (!(steps.predictor_error > 0.0) || weights.size() != converged.size())
     return step * (s.iterations <= 4 ? 2.0 : 1.25);
   const double error = (converged - predicted).cwiseProduct(weights).cwiseAbs().maxCoeff();
-  if (!(error > 0.0)) return 4.0 * taken;
-  const double ratio = steps.predictor_error / error;
-  return taken * std::clamp(secant ? std::sqrt(ratio) : ratio, 0.5, 4.0);
+  const double ratio = error > 0.0 ? steps.predictor_error / error : 16.0;
+  return taken * std::clamp(secant ? std::sqrt(ratio) : ratio, 0.5, after_failure ? 1.0 : 4.0);
 }
 
 }  // namespace
@@ -28,6 +30,7 @@ ContinuationResult continue_along_line(const SolveAtInputs& solve_at, const VecX
   ContinuationResult r;
   double t = 0.0, step = steps.first, t_prev = -1.0;
   VecX xc = x, x_prev, predicted;
+  bool failed = false;  // the last attempt failed
   while (t < 1.0 && step > 1e-4 && r.steps < 200) {
     const double target = std::min(1.0, t + step);
     VecX trial = xc;
@@ -39,12 +42,14 @@ ContinuationResult continue_along_line(const SolveAtInputs& solve_at, const VecX
     r.jacobian_evaluations += r.last.jacobian_evaluations;
     ++r.steps;
     if (r.last.converged()) {
-      step = next_step(steps, step, target - t, r.last, weights, predicted, trial, secant);
+      step = next_step(steps, step, target - t, r.last, weights, predicted, trial, secant, failed);
+      failed = false;
       x_prev.swap(xc);
       xc.swap(trial);
       t_prev = t;
       t = target;
     } else {
+      failed = true;
       step *= steps.cut;
     }
   }
