@@ -1,12 +1,14 @@
 // ForwardKinematics::solve's attempts, tried in order until one converges (kStrategies). Two tiers: fast
 // attempts with short budgets that solve most random inputs, then the thorough ones that converge on more
 // of the rest (random sweeps, docs/benchmarks.md "Random FK sweeps"):
-//  1. Newton from the path predictor's start (the last solution off a path), or from the default
-//     equilibrium (solved once per model, fk_data.hpp) when there is no solution yet;
+//  1. Newton from the path predictor's start (the last solution off a path; a short budget after several
+//     such attempts failed in a row), or from the default equilibrium (solved once per model,
+//     fk_data.hpp) when there is no solution yet;
 //  2. Newton from the last solution (when the start extrapolated along a path failed);
-//  3. fast continuation in the inputs (input_continuation.hpp: short first step, 4 fresh Jacobians per
-//     step, intermediate steps to a looser tolerance) from whichever of the last solution and the
-//     default equilibrium has the nearer inputs, then from the other;
+//  3. fast continuation in the inputs (input_continuation.hpp: short first step, the next ones from the
+//     predictor's error, 4 fresh Jacobians per step, intermediate steps to a looser tolerance) from
+//     whichever of the last solution and the default equilibrium has the nearer inputs, then from the
+//     other;
 //  4. Newton from the straight initial guess (it reaches equilibria of the planar robots that the
 //     continuations from the default equilibrium do not; cold solves try it before 3, with the short
 //     budget);
