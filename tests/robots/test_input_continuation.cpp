@@ -4,6 +4,7 @@
 // reachable there, like the region behind a fold). Paths that run through the region must stop, paths
 // around it must arrive at x*(u1) exactly.
 #define BOOST_TEST_MODULE input_continuation
+#include <algorithm>
 #include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <functional>
@@ -163,4 +164,76 @@ BOOST_AUTO_TEST_CASE(line_steps_set_the_first_step_and_the_cut_and_only_the_end_
   BOOST_TEST(std::abs(again.tried_at[0][0] - 1.0) < 1e-15);   // 0.5 of 2
   BOOST_TEST(std::abs(again.tried_at[1][0] - 0.3) < 1e-15);   // 0.5 * 0.3 of 2
   BOOST_TEST(std::abs(again.tried_at[2][0] - 0.09) < 1e-15);  // 0.5 * 0.3^2 of 2
+}
+
+namespace {
+
+/// A curved path: x*(u) = (u0, u1, 0.5 sqrt(u0 + 0.001)) (steep near u0 = 0, nearly straight further on);
+/// a solve converges to x*(u) when it starts within 0.02 of it (max-norm), and records how far its start
+/// was (the predictor's error) and where it was tried.
+struct CurvedPath {
+  static VecX answer(const VecX& u) {
+    VecX x(3);
+    x << u[0], u[1], 0.5 * std::sqrt(u[0] + 0.001);
+    return x;
+  }
+  std::vector<double> tried_t;  // u0 of every solve (= t on the line from (0, 0) to (1, 1))
+  std::vector<bool> converged;
+  SolveAtInputs solver() {
+    return [this](const VecX& u, VecX& x, int, bool) {
+      tried_t.push_back(u[0]);
+      SolveSummary s;
+      s.iterations = 3;
+      const VecX xs = answer(u);
+      const bool ok = (x - xs).cwiseAbs().maxCoeff() < 0.02;
+      converged.push_back(ok);
+      s.status = ok ? SolveStatus::Converged : SolveStatus::MaxIterations;
+      x = ok ? xs : VecX::Constant(3, 1e3);
+      return s;
+    };
+  }
+  int failures() const { return static_cast<int>(std::count(converged.begin(), converged.end(), false)); }
+};
+
+}  // namespace
+
+// LineSteps::predictor_error: the next step from the error of the converged step's predictor (weights 1),
+// short where the path bends (near u0 = 0) and long where it is straight; the target half the
+// contraction region's radius. Against the growth factors from the same first step: both arrive exactly,
+// the error control with fewer failed solves (each costs the step's budget of fresh Jacobians).
+BOOST_AUTO_TEST_CASE(predictor_error_sets_the_steps_where_the_path_bends) {
+  const Vec2 end(1.0, 1.0);
+  const VecX weights = VecX::Ones(3);
+  CurvedPath controlled, grown;
+  VecX x = CurvedPath::answer(kStart);
+  const ContinuationResult r =
+      continue_along_line(controlled.solver(), kStart, end, 4, x, LineSteps{0.03, 0.3, 0.01}, weights);
+  BOOST_TEST(r.converged);
+  BOOST_TEST((x - CurvedPath::answer(end)).norm() == 0.0);
+  VecX y = CurvedPath::answer(kStart);
+  const ContinuationResult g = continue_along_line(grown.solver(), kStart, end, 4, y, LineSteps{0.03, 0.3});
+  BOOST_TEST(g.converged);
+  BOOST_TEST((y - CurvedPath::answer(end)).norm() == 0.0);
+  BOOST_TEST_MESSAGE("solves " << r.steps << " (failed " << controlled.failures() << "), growth factors "
+                               << g.steps << " (failed " << grown.failures() << ")");
+  BOOST_TEST(controlled.failures() < grown.failures());
+  // The converged steps grow along the line (the path straightens): the last one is longer than the first.
+  std::vector<double> t_converged{0.0};
+  for (size_t k = 0; k < controlled.tried_t.size(); ++k)
+    if (controlled.converged[k]) t_converged.push_back(controlled.tried_t[k]);
+  const size_t n = t_converged.size();
+  BOOST_REQUIRE(n >= 4u);
+  BOOST_TEST(t_converged[n - 2] - t_converged[n - 3] > 4.0 * (t_converged[2] - t_converged[1]));
+  // Right after a failed solve the next converged step is not followed by a longer try (a fold ahead).
+  auto start_of = [&controlled](size_t i) {  // t of the last converged solve before solve i
+    double t = 0.0;
+    for (size_t k = 0; k < i; ++k)
+      if (controlled.converged[k]) t = controlled.tried_t[k];
+    return t;
+  };
+  for (size_t k = 0; k + 2 < controlled.tried_t.size(); ++k) {
+    if (controlled.converged[k] || !controlled.converged[k + 1]) continue;
+    const double taken = controlled.tried_t[k + 1] - start_of(k + 1);
+    BOOST_TEST(controlled.tried_t[k + 2] - controlled.tried_t[k + 1] <= taken * (1.0 + 1e-12), "solve " << k);
+  }
 }

@@ -341,14 +341,52 @@ BOOST_AUTO_TEST_CASE(transverse_tip_load_is_stable_and_stiff_rods_are_unknown) {
         BOOST_TEST_REQUIRE(s.summary.converged(), s.summary.brief_report());
         if (stiffness == 1e8) {
           BOOST_TEST(verdict(s.stability_verdict) == "stable", to_string(form) << " E " << elements);
-          if (elements == 16 && form == RodFormulation::Mixed)
-            BOOST_TEST(discrete_unstable_modes(m, s) == 0);
+          if (elements == 16 && form == RodFormulation::Mixed) BOOST_TEST(discrete_unstable_modes(m, s) == 0);
         } else {
           BOOST_TEST(verdict(s.stability_verdict) == "unknown", to_string(form) << " E " << elements);
           BOOST_TEST(s.stability_verdict.reason.find("inextensible") != std::string::npos,
                      s.stability_verdict.reason);
         }
       }
+    }
+  }
+}
+
+// jacobi_states takes the integrals of the basis functions up to s, which the condensed form's moment
+// m(s) reads when the rod carries distributed loads, in closed form (degree p + 1 B-splines,
+// rod_stability.cpp); CollocationRod::state_at takes them by Gauss quadrature on every span below s (itself
+// checked against closed forms in test_basis). On a loaded rod in an arbitrary configuration (not an
+// equilibrium: the moment then depends on every control point through the integral) both give the same
+// rotation, force and moment at any s. Tolerance: round-off of sums of O(1) terms (forces and moments of
+// order 1 here), 1e-12 relative.
+BOOST_AUTO_TEST_CASE(jacobi_states_take_the_rod_states_of_a_loaded_condensed_rod) {
+  RodModel m = test::cantilever(0.8, Vec3(1e5, 1e5, 2e5), Vec3(1.0, 1.5, 0.8));
+  m.mass_per_length = 0.7;
+  m.loads.gravity = Vec3(0.0, 0.0, -9.81);
+  m.loads.force_per_length = Vec3(0.3, -0.2, 0.0);
+  for (int elements : {3, 8}) {
+    const CollocationRod rod(m, RodDiscretization{RodFormulation::Condensed, 5, elements});
+    BOOST_REQUIRE(rod.condensed_with_loads());
+    Problem problem;
+    const RodVariables vars = rod.add_to_problem(problem);
+    VecX x = problem.initial_values();
+    // Bend and stretch the straight configuration, and give the wrench non-zero values.
+    for (int j = 0; j < rod.num_control_points(); ++j) {
+      const int o = vars.control_point_offset + j * rod.control_point_size();
+      const double u = static_cast<double>(j) / (rod.num_control_points() - 1);
+      x.segment<3>(o) += Vec3(0.2 * u * u, -0.1 * std::sin(3.0 * u), 0.05 * u);
+      x.segment<4>(o + 3) += Eigen::Vector4d(0.0, 0.1 * u, -0.2 * u * u, 0.05);
+    }
+    x.segment<6>(vars.wrench_offset) << 0.4, -0.3, 1.2, 0.05, 0.02, -0.1;
+    const JacobiStateAt states = jacobi_states(rod, x, vars);
+    for (double s : {0.0, 0.013, 0.1, 0.27, 0.4, 0.5, 0.61, 0.799, 0.8}) {
+      const RodState expected = rod.state_at(x, vars, s);
+      const JacobiState y = states(s);
+      BOOST_TEST((y.moment - expected.moment).norm() <= 1e-12 * (1.0 + expected.moment.norm()),
+                 "E = " << elements << ", s = " << s);
+      BOOST_TEST((y.force - expected.force).norm() <= 1e-12 * (1.0 + expected.force.norm()),
+                 "E = " << elements << ", s = " << s);
+      BOOST_TEST((y.rotation - expected.rotation).norm() <= 1e-14, "E = " << elements << ", s = " << s);
     }
   }
 }

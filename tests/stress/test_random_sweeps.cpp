@@ -8,8 +8,10 @@
 //
 // Short sweep by default (CI); long mode: test_random_sweeps -- --solves=N [--seed=S] [--stability=1]
 // [--trace=1] (N warm solves per model; one cold solve per 5 warm ones; --stability=1: each result with
-// its stability verdict, the stable fraction reported; --trace=1: one line per solve with its time,
-// iterations, fresh Jacobians, status and message).
+// its stability verdict, the stable fraction reported; --trace=1: one line per solve, warm and cold in
+// the order solved: time with the verdict and FK alone [s], iterations, fresh Jacobians, status, verdict,
+// unstable modes, margin, the first platform's position [m], message; for comparing runs by the
+// equilibria they reach and their verdicts).
 #define BOOST_TEST_MODULE random_sweeps
 #include <boost/test/unit_test.hpp>
 
@@ -223,9 +225,15 @@ bool solve_and_check(const std::string& name, ForwardKinematics& fk, const VecX&
   stats.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   stats.times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   const SolveSummary& sum = out.summary;
-  if (argument("trace", 0) != 0)
-    std::printf("TRACE %s %.6f %d %d %s | %s\n", name.c_str(), stats.times.back(), sum.iterations,
-                sum.jacobian_evaluations, to_string(sum.status), sum.message.c_str());
+  if (argument("trace", 0) != 0) {
+    // The fields of the file comment's --trace=1.
+    const Vec3 p = out.platforms.empty() ? Vec3::Zero() : out.platforms.front().position;
+    std::printf("TRACE %s %.6f %.6f %d %d %s %s %d %.6e %.9f %.9f %.9f | %s\n", name.c_str(),
+                stats.times.back(), sum.wall_time_seconds, sum.iterations, sum.jacobian_evaluations,
+                to_string(sum.status), to_string(out.stability_verdict.verdict),
+                out.stability_verdict.unstable_modes, out.stability_verdict.margin, p.x(), p.y(), p.z(),
+                sum.message.c_str());
+  }
   ++stats.statuses[to_string(sum.status)];
   ++stats.histogram[iteration_bin(sum.iterations)];
   if (!sum.converged()) {

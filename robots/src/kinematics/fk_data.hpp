@@ -15,8 +15,10 @@ namespace pcr::kinematics {
 
 /// Tolerance (max-abs of the dimensionless residuals) of the intermediate steps of a continuation in the
 /// inputs: they only carry the state along; Newton to 1e-10 there took about half of the quasi-Newton
-/// iterations of a random Stewart-Gough solve (docs/benchmarks.md "Random FK sweeps").
-constexpr double kIntermediateTolerance = 1e-6;
+/// iterations of a random Stewart-Gough solve, to 1e-6 still 40 % more than to 1e-3, with the same
+/// equilibria reached on 120 random inputs (docs/benchmarks.md "Random FK sweeps"). The state errors
+/// it leaves are far below the predictor's (input_continuation.hpp LineSteps::predictor_error).
+constexpr double kIntermediateTolerance = 1e-3;
 
 struct FkModel {
   FkModel(std::shared_ptr<const RobotAssembly> assembly, const KinematicsOptions& options);
@@ -48,8 +50,9 @@ struct FkData {
   const std::shared_ptr<const FkModel> model;  // first: outlives the solvers that refer into it
   VecX x;                                      // the last converged solution (initial guess before)
   bool has_solution = false;
-  int last_jacobian_sign = 0;                         // of the last checked converged solve (check_stability)
-  PathPredictor predictor;                            // start point along a path of inputs
+  int failed_jumps = 0;        // direct attempts from the last solution off a path that failed in a row
+  int last_jacobian_sign = 0;  // of the last checked converged solve (check_stability)
+  PathPredictor predictor;     // start point along a path of inputs
   std::unique_ptr<NewtonSolver> newton;               // on model->assembly->problem(), made on first use
   std::unique_ptr<NewtonSolver> newton_intermediate;  // the same, to kIntermediateTolerance
   std::unique_ptr<IpoptSolver> ipopt;                 // SolverKind::Ipopt, made on first use

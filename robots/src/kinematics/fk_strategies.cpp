@@ -1,12 +1,14 @@
 // ForwardKinematics::solve's attempts, tried in order until one converges (kStrategies). Two tiers: fast
 // attempts with short budgets that solve most random inputs, then the thorough ones that converge on more
 // of the rest (random sweeps, docs/benchmarks.md "Random FK sweeps"):
-//  1. Newton from the path predictor's start (the last solution off a path), or from the default
-//     equilibrium (solved once per model, fk_data.hpp) when there is no solution yet;
+//  1. Newton from the path predictor's start (the last solution off a path; a short budget after several
+//     such attempts failed in a row), or from the default equilibrium (solved once per model,
+//     fk_data.hpp) when there is no solution yet;
 //  2. Newton from the last solution (when the start extrapolated along a path failed);
-//  3. fast continuation in the inputs (input_continuation.hpp: short first step, 4 fresh Jacobians per
-//     step, intermediate steps to a looser tolerance) from whichever of the last solution and the
-//     default equilibrium has the nearer inputs, then from the other;
+//  3. fast continuation in the inputs (input_continuation.hpp: short first step, the next ones from the
+//     predictor's error, 4 fresh Jacobians per step, intermediate steps to a looser tolerance) from
+//     whichever of the last solution and the default equilibrium has the nearer inputs, then from the
+//     other;
 //  4. Newton from the straight initial guess (it reaches equilibria of the planar robots that the
 //     continuations from the default equilibrium do not; cold solves try it before 3, with the short
 //     budget);
@@ -25,6 +27,7 @@
 #include <utility>
 #include <vector>
 
+#include "continuation_weights.hpp"
 #include "fk_data.hpp"
 #include "fold_continuation.hpp"
 #include "input_continuation.hpp"
@@ -36,15 +39,26 @@ namespace {
 /// Fresh-Jacobian budget of a direct attempt along a path and from the straight initial guess.
 constexpr int kDirectJacobianEvaluations = 10;
 /// The budget of a direct attempt from a start off a path (a jump in the inputs; the default equilibrium
-/// for a cold solve): Newton converges there in a few Jacobians or not at all.
+/// for a cold solve): Newton converges there in a few Jacobians or not at all (random planar_three_rod
+/// inputs: 3 gives other equilibria than 6 on 36 of 200 warm solves and twice the fresh Jacobians).
 constexpr int kJumpJacobianEvaluations = 6;
-/// The fast continuation: 4 fresh Jacobians per step, a first step of 0.1 of the line, cut to 0.3 when it
-/// fails. Random Stewart-Gough inputs: Newton converges from the default equilibrium only within about
-/// 0.02-0.05 m of rod length (the residual after the tangent predictor grows like 2500 t^2 there: the
-/// stiff axial and shear rows), while a random line is 0.3-0.6 m long; the thorough continuation spent
-/// about 30 fresh Jacobians on failed steps before its first converged one.
+/// After this many failed direct attempts from the last solution off a path in a row, such attempts get
+/// kProbeJacobianEvaluations only, until one converges: on random Stewart-Gough inputs 196 of 200 fail
+/// and each cost 6 fresh Jacobians, a third of a warm solve; the 4 that converge took 2, 3, 3 and 6 (the
+/// last reaches the same equilibrium by the continuation); random planar_three_rod jumps converge about
+/// every second time, which resets the count.
+constexpr int kFailedJumpsBeforeProbe = 5;
+constexpr int kProbeJacobianEvaluations = 2;
+/// The fast continuation: 4 fresh Jacobians per step, a first step of 0.03 of the line, cut to 0.3 when it
+/// fails, the next steps from the predictor's error (0.02: about 1 cm of platform or rod position on the
+/// Stewart-Gough robot, rod rotations of 0.02 rad). Random Stewart-Gough inputs: Newton converges from the
+/// default equilibrium only within about 0.02-0.05 m of rod length (the platform moves by up to 6 m per m
+/// of input there: its legs start parallel, a singular pose of the rigid mechanism, and the solution path
+/// bends where they tilt), while a random line is 0.3-0.6 m long; the predictor's error per step grows
+/// like h^2 with a constant that falls by more than 10 along the line (docs/benchmarks.md "Random FK
+/// sweeps": fewer fresh Jacobians than fixed growth factors, which the failed steps near the start cost).
 constexpr int kFastStepJacobianEvaluations = 4;
-constexpr LineSteps kFastSteps{0.1, 0.3};
+constexpr LineSteps kFastSteps{0.03, 0.3, 0.02};
 /// The thorough continuation: steps that may take 8 fresh Jacobians (a planar robot near a fold needs
 /// them), from half the line, halved on failure.
 constexpr int kThoroughStepJacobianEvaluations = 8;
@@ -91,6 +105,14 @@ struct FkAttempt {
     };
   }
   VecX default_inputs() const { return data.model->assembly->model().default_input_values(); }
+  /// The continuation's predictor error weights (continuation_weights.hpp), made on first use.
+  const ContinuationWeights& weights() {
+    if (weights_.size() == 0) weights_ = continuation_weights(*data.model->assembly);
+    return weights_;
+  }
+
+ private:
+  ContinuationWeights weights_;
 };
 
 /// A direct Newton attempt from `start` with at most `jacobians` fresh Jacobians. The summary of the
@@ -116,7 +138,12 @@ bool from_prediction(FkAttempt& a, const char* how) {
     return direct_attempt(a, a.x_default ? *a.x_default : a.data.x, kJumpJacobianEvaluations, how);
   const VecX start = a.data.predictor.predict(a.data.x, a.inputs, &a.on_path);
   if (a.on_path && a.data.newton) a.data.newton->continue_path();
-  return direct_attempt(a, start, a.on_path ? kDirectJacobianEvaluations : kJumpJacobianEvaluations, how);
+  if (a.on_path) return direct_attempt(a, start, kDirectJacobianEvaluations, how);
+  const int budget =
+      a.data.failed_jumps >= kFailedJumpsBeforeProbe ? kProbeJacobianEvaluations : kJumpJacobianEvaluations;
+  const bool converged = direct_attempt(a, start, budget, how);
+  a.data.failed_jumps = converged ? 0 : a.data.failed_jumps + 1;
+  return converged;
 }
 
 /// Newton from the last solution when the predicted start was another point (extrapolated along a path).
@@ -159,8 +186,8 @@ bool finish_continuation(FkAttempt& a, const ContinuationResult& r, const VecX& 
 bool continuation(FkAttempt& a, const VecX& u0, const VecX& x0, const ContinuationKind& kind,
                   const char* how) {
   VecX xs = x0;
-  const ContinuationResult r =
-      continue_along_line(a.solve_at(kind.loose), u0, a.inputs, kind.step_jacobians, xs, kind.steps);
+  const ContinuationResult r = continue_along_line(a.solve_at(kind.loose), u0, a.inputs, kind.step_jacobians,
+                                                   xs, kind.steps, a.weights());
   return finish_continuation(a, r, xs, how);
 }
 
@@ -252,13 +279,13 @@ bool via_waypoints(FkAttempt& a, const char* how) {
   for (int k = 0; k < kWaypoints; ++k) {
     const VecX w = waypoint(model, k);
     VecX xw = *a.x_default;
-    const ContinuationResult to_w =
-        continue_along_line(a.solve_at(true), a.default_inputs(), w, kFast.step_jacobians, xw, kFast.steps);
+    const ContinuationResult to_w = continue_along_line(a.solve_at(true), a.default_inputs(), w,
+                                                        kFast.step_jacobians, xw, kFast.steps, a.weights());
     a.count(to_w.iterations, to_w.jacobian_evaluations);
     if (!to_w.converged) continue;
     VecX xs = xw;
-    const ContinuationResult r =
-        continue_along_line(a.solve_at(true), w, a.inputs, kFast.step_jacobians, xs, kFast.steps);
+    const ContinuationResult r = continue_along_line(a.solve_at(true), w, a.inputs, kFast.step_jacobians, xs,
+                                                     kFast.steps, a.weights());
     a.count(r.iterations, r.jacobian_evaluations);
     if (!r.converged) continue;
     a.x = xs;
