@@ -4,7 +4,7 @@
 //       r5b_path --formulation condensed --degree 6 --elements 8 --tolerance 1e-7
 //   callgrind_annotate --inclusive=yes callgrind.out.<pid>
 // Workloads: r5b_path / r5b_helix (warm IK along bench_all's R5b paths, the first, cold, solve outside the
-// region), r5a_fk (one cold FK, assembly included), R1 / R2 / R3 / spring (one cold solve_rod).
+// region), r5a_fk / r5a_ik (one cold FK / IK, assembly included), R1 / R2 / R3 / spring (one cold solve_rod).
 // Prints the wall time of the region, the iterations and the status.
 #include <chrono>
 #include <cstdio>
@@ -74,6 +74,19 @@ __attribute__((noinline)) Outcome measured_region(const std::shared_ptr<const Ro
   return out.stop();
 }
 
+__attribute__((noinline)) Outcome measured_region(const std::shared_ptr<const RobotModel>& model,
+                                                  const KinematicsOptions& o, const Pose& target, int solves) {
+  Outcome out;
+  for (int k = 0; k < solves; ++k) {
+    InverseKinematics ik(model, {platform_target()}, o);
+    const RobotSolution s = ik.solve({target});
+    out.iterations += s.summary.iterations;
+    out.converged = out.converged && s.summary.converged();
+    ++out.solves;
+  }
+  return out.stop();
+}
+
 __attribute__((noinline)) Outcome measured_region(const RodModel& model, const RodSolveOptions& o,
                                                   int solves) {
   Outcome out;
@@ -97,6 +110,7 @@ Outcome run(const Settings& s) {
     const std::shared_ptr<const RobotModel> model = load_r5a();
     return measured_region(model, robot_options(s), r5a_moved_inputs(*model), s.solves);
   }
+  if (s.workload == "r5a_ik") return measured_region(load_r5a(), robot_options(s), r5a_target(), s.solves);
   for (const RodScene& scene :
        {r1_full_circle(), r2_elastica(1e14), r3_helix(), helical_spring_large_load()}) {
     if (scene.name.rfind(s.workload, 0) != 0) continue;
@@ -115,7 +129,7 @@ Outcome run(const Settings& s) {
 int main(int argc, char** argv) {
   if (argc < 2) {
     std::fprintf(stderr,
-                 "usage: bench_time_split r5b_path|r5b_helix|r5a_fk|R1|R2|R3|spring [--formulation "
+                 "usage: bench_time_split r5b_path|r5b_helix|r5a_fk|r5a_ik|R1|R2|R3|spring [--formulation "
                  "mixed|condensed|primal] [--degree P] [--elements E] [--tolerance T] [--solves N]\n");
     return 2;
   }

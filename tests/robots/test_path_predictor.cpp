@@ -105,11 +105,14 @@ BOOST_AUTO_TEST_CASE(going_back_along_the_path_interpolates_the_stored_solutions
   for (double si : {0.0, 0.3, 0.45, 0.7}) predictor.accept(p.x(si), p.z(si));
   BOOST_TEST(error_at(p, predictor, 0.7, 0.45) < 1e-12);
   BOOST_TEST(error_at(p, predictor, 0.7, 0.6) < 1e-12);
-  // After the turn back the revisited point is one node (the newest solution there): the four stored
-  // points are 0.45 (new), 0.7, 0.45 (old, left out) and 0.3, so the quadratic through 0.3, 0.45 and
-  // 0.7 at 0.2, which misses c3 (s - 0.3)(s - 0.45)(s - 0.7): |c3|max * 0.1 * 0.25 * 0.5 = 0.025.
+  // After the turn back the revisited point is one node (the newest solution there; the same node twice
+  // would make the weights infinite): of the stored points 0.45 (new), 0.7, 0.45 (old, left out), 0.3
+  // and 0.0, the cubic takes 0.45, 0.7, 0.3 and 0.0 and is exact again at 0.2. With three of them the
+  // quadratic through 0.3, 0.45 and 0.7 would miss c3 (s - 0.3)(s - 0.45)(s - 0.7) at 0.2:
+  // |c3|max * 0.1 * 0.25 * 0.5 = 0.025.
   predictor.accept(p.x(0.45), p.z(0.45));
-  BOOST_TEST(std::abs(error_at(p, predictor, 0.45, 0.2) - 0.025) < 1e-12);
+  BOOST_TEST(predictor.order() >= 4);
+  BOOST_TEST(error_at(p, predictor, 0.45, 0.2) < 1e-12);
 }
 
 BOOST_AUTO_TEST_CASE(after_a_turn_higher_orders_wait_for_points_on_the_new_line) {

@@ -9,52 +9,55 @@ namespace pcr::kinematics {
 
 namespace {
 
-/// The vector e from z_k lies on the line of the last step (angle below ~25 deg, either direction),
-/// s = e . d its coordinate along it.
-bool on_line(double s, const VecX& e) {
-  return std::abs(s) >= 0.9 * e.norm();
+/// |e . d| >= cos(~25 deg) |e| (d a unit vector, s = e . d): e lies along the line of d, either
+/// direction.
+bool on_line(double s, double e_norm) {
+  return std::abs(s) >= 0.9 * e_norm;
 }
 
 /// u . v >= cos(~25 deg) |u| |v|: v goes on in the direction of u (false if either is zero).
-bool goes_on(const VecX& u, const VecX& v) {
+template <typename U, typename V>
+bool goes_on(const U& u, const V& v) {
   const double uu = u.squaredNorm(), vv = v.squaredNorm();
   return uu > 0.0 && vv > 0.0 && u.dot(v) >= 0.9 * std::sqrt(uu * vv);
 }
 
 }  // namespace
 
-void PathPredictor::Weights::set_weights(double s_new) {
+void PathPredictor::Weights::set_weights(double s) {
   // L_j(s) = prod_{i != j} (s - s_i) / (s_j - s_i).
   for (int j = 0; j < used; ++j) {
     double l = 1.0;
     for (int i = 0; i < used; ++i)
-      if (i != j) l *= (s_new - nodes[i]) / (nodes[j] - nodes[i]);
+      if (i != j) l *= (s - nodes[i]) / (nodes[j] - nodes[i]);
     weights[j] = l;
   }
 }
 
-bool PathPredictor::line_weights(const VecX& z_new, int max_points, Weights& w) const {
-  const VecX step = z(0) - z(1), dz = z_new - z(0);
-  const double a = step.norm();
-  if (!(a > 0.0) || !(dz.squaredNorm() > 0.0)) return false;
-  const VecX d = step / a;
-  const double s_new = dz.dot(d);
-  if (!on_line(s_new, dz) || !(std::abs(s_new) <= 2.0 * a)) return false;
+bool PathPredictor::line_nodes(const VecX& z_new, Weights& w) const {
+  // Eigen expressions, no temporaries: the parameter vectors are short, this runs every solve.
+  const auto step = z(0) - z(1);
+  const auto dz = z_new - z(0);
+  const double a = step.norm(), dz_norm = dz.norm();
+  if (!(a > 0.0) || !(dz_norm > 0.0)) return false;
+  const double s_new = dz.dot(step) / a;  // along d = step / a
+  if (!on_line(s_new, dz_norm) || !(std::abs(s_new) <= 2.0 * a)) return false;
   w.nodes[0] = 0.0;
   w.points[0] = 0;
   w.nodes[1] = -a;
   w.points[1] = 1;
   w.used = 2;
-  for (int j = 2; j < count_ && w.used < max_points; ++j) {
+  for (int j = 2; j < count_ && w.used < kMaxPoints; ++j) {
     // The path back to z_j must run along the same line: each stored step parallel or antiparallel
     // to the one after it (a turn ends the segment), and z_j itself near the line.
-    const VecX older = z(j - 1) - z(j), later = z(j - 2) - z(j - 1);
+    const auto older = z(j - 1) - z(j);
+    const auto later = z(j - 2) - z(j - 1);
     const double older2 = older.squaredNorm(), later2 = later.squaredNorm();
     if (older2 > 0.0 && later2 > 0.0 && !(std::abs(older.dot(later)) >= 0.9 * std::sqrt(older2 * later2)))
       break;
-    const VecX e = z(j) - z(0);
-    const double s = e.dot(d);
-    if (!on_line(s, e)) break;
+    const auto e = z(j) - z(0);
+    const double s = e.dot(step) / a;
+    if (!on_line(s, e.norm())) break;
     bool distinct = true;
     for (int i = 0; i < w.used; ++i) distinct = distinct && std::abs(s - w.nodes[i]) >= 0.1 * a;
     if (!distinct) continue;  // a revisited point: the newer solution is already a node
@@ -62,44 +65,54 @@ bool PathPredictor::line_weights(const VecX& z_new, int max_points, Weights& w) 
     w.points[w.used] = j;
     ++w.used;
   }
-  w.set_weights(s_new);
+  w.s_new = s_new;
   return true;
 }
 
-bool PathPredictor::curve_weights(const VecX& z_new, int max_points, Weights& w) const {
-  const VecX dz = z_new - z(0);
+bool PathPredictor::curve_nodes(const VecX& z_new, Weights& w) const {
+  const auto dz = z_new - z(0);
   const double a = (z(0) - z(1)).norm(), s_new = dz.norm();
   if (!goes_on(z(0) - z(1), dz) || !(s_new <= 2.0 * a)) return false;
   w.nodes[0] = 0.0;
   w.points[0] = 0;
   w.used = 1;
-  for (int j = 1; j < count_ && w.used < max_points; ++j) {
+  for (int j = 1; j < count_ && w.used < kMaxPoints; ++j) {
     // Step j (from z_j to z_{j-1}) goes on into the one after it (into dz for the last step).
-    const VecX step = z(j - 1) - z(j);
-    if (!goes_on(step, j == 1 ? dz : VecX(z(j - 2) - z(j - 1)))) break;
+    const auto step = z(j - 1) - z(j);
+    if (!(j == 1 ? goes_on(step, dz) : goes_on(step, z(j - 2) - z(j - 1)))) break;
     w.nodes[w.used] = w.nodes[w.used - 1] - step.norm();
     w.points[w.used] = j;
     ++w.used;
   }
-  w.set_weights(s_new);
+  w.s_new = s_new;
   return w.used >= 2;
 }
 
 double PathPredictor::miss(const Weights& w, const VecX& z_new) const {
-  VecX z_pred = -z_new;
-  for (int i = 0; i < w.used; ++i) z_pred += w.weights[i] * z(w.points[i]);
-  return z_pred.norm();
+  double sum = 0.0;
+  for (int k = 0; k < z_new.size(); ++k) {
+    double e = -z_new[k];
+    for (int i = 0; i < w.used; ++i) e += w.weights[i] * z(w.points[i])[k];
+    sum += e * e;
+  }
+  return std::sqrt(sum);
 }
 
-bool PathPredictor::weights_for(const VecX& z_new, int max_points, Weights& w) const {
+bool PathPredictor::candidates(const VecX& z_new, Candidates& c) const {
   if (count_ < 2 || z_new.size() != z(0).size()) return false;
-  Weights line, curve;
-  const bool by_line = line_weights(z_new, max_points, line),
-             by_curve = curve_weights(z_new, max_points, curve);
-  if (!by_line && !by_curve) return false;
+  c.by_line = line_nodes(z_new, c.line);
+  c.by_curve = curve_nodes(z_new, c.curve);
+  return c.by_line || c.by_curve;
+}
+
+PathPredictor::Weights PathPredictor::pick(const Candidates& c, int max_points, const VecX& z_new) const {
+  Weights line = c.line, curve = c.curve;  // the first max_points nodes of each
+  line.used = std::min(line.used, max_points);
+  curve.used = std::min(curve.used, max_points);
+  if (c.by_line) line.set_weights(line.s_new);
+  if (c.by_curve) curve.set_weights(curve.s_new);
   // The curve only where it reproduces z_new clearly better (on a straight path both are exact).
-  w = by_curve && (!by_line || miss(curve, z_new) < 0.5 * miss(line, z_new)) ? curve : line;
-  return true;
+  return c.by_curve && (!c.by_line || miss(curve, z_new) < 0.5 * miss(line, z_new)) ? curve : line;
 }
 
 VecX PathPredictor::combine(const Weights& w, const VecX& x_last) const {
@@ -110,32 +123,42 @@ VecX PathPredictor::combine(const Weights& w, const VecX& x_last) const {
 
 VecX PathPredictor::predict(const VecX& x_last, const VecX& z_new, bool* on_path) const {
   if (on_path) *on_path = false;
-  Weights w;
-  if (count_ < 2 || x_last.size() != x(1).size() || !weights_for(z_new, order_, w)) return x_last;
+  last_prediction_valid_ = false;
+  Candidates c;
+  if (count_ < 2 || x_last.size() != x(1).size() || !candidates(z_new, c)) return x_last;
   if (on_path) *on_path = true;
-  return combine(w, x_last);
+  const Weights w = pick(c, order_, z_new);
+  VecX out = combine(w, x_last);
+  // Kept for accept (the order's error on this step, without combining again).
+  last_prediction_ = out;
+  last_z_ = z_new;
+  last_prediction_valid_ = w.used == order_;  // x_last is x(0), the last accepted solution
+  return out;
+}
+
+double PathPredictor::prediction_error(const Weights& w, const VecX& x_new) const {
+  scratch_ = -x_new;
+  for (int i = 0; i < w.used; ++i) scratch_ += w.weights[i] * x(w.points[i]);
+  return scratch_.lpNorm<Eigen::Infinity>();
 }
 
 void PathPredictor::accept(const VecX& x_new, const VecX& z_new) {
-  // The order: of the current one and its neighbours, the one whose prediction would have come closest
-  // to x_new (max-abs; the smaller order on a tie), among those that had the points they ask for; kept
+  // The order: the current one or a neighbour (the lower and the higher in turn), whichever would have
+  // come closer to x_new (max-abs; the current one on a tie), if both had the points they ask for; kept
   // while the current order lacks them (the start of a path, after a turn).
-  Weights current;
-  if (count_ >= 2 && x_new.size() == x(0).size() && weights_for(z_new, order_, current) &&
-      current.used == order_) {
-    int best = order_;
-    double best_error = INFINITY;
-    for (int m = std::max(2, order_ - 1); m <= std::min(kMaxPoints, order_ + 1); ++m) {
-      Weights w;
-      if (!weights_for(z_new, m, w) || w.used < m) continue;
-      const double error = (combine(w, x(0)) - x_new).lpNorm<Eigen::Infinity>();
-      if (error < best_error) {
-        best_error = error;
-        best = m;
-      }
+  Candidates c;
+  if (count_ >= 2 && x_new.size() == x(0).size() && candidates(z_new, c)) {
+    const int other = std::clamp(order_ + (try_higher_ ? 1 : -1), 2, kMaxPoints);
+    try_higher_ = !try_higher_;
+    const Weights current = pick(c, order_, z_new), neighbour = pick(c, other, z_new);
+    if (other != order_ && current.used == order_ && neighbour.used == other) {
+      const bool cached = last_prediction_valid_ && last_z_.size() == z_new.size() && last_z_ == z_new;
+      const double error =
+          cached ? (last_prediction_ - x_new).lpNorm<Eigen::Infinity>() : prediction_error(current, x_new);
+      if (prediction_error(neighbour, x_new) < error) order_ = other;
     }
-    order_ = best;
   }
+  last_prediction_valid_ = false;
   newest_ = (newest_ + kMaxPoints - 1) % kMaxPoints;
   xs_[newest_] = x_new;
   zs_[newest_] = z_new;

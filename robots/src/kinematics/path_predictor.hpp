@@ -22,11 +22,11 @@
 // The order: higher orders cut the truncation error but amplify the convergence errors of the stored
 // solutions (the weights of m points on an even path sum to 2^m - 1 in magnitude: 4, -6, 4, -1 for the
 // cubic). Which wins depends on the path and the solver's tolerance, so the number of points follows
-// the last solves: each accepted solution is compared with what the current order and its two
-// neighbours would have predicted for it, and the best of them is used next (a path's smoothness
-// changes slowly along it). On the R5b teleoperation path (straight, p = 6, E = 8, tolerance 1e-7) the
-// cubic starts within a residual of about 5e-7, the stored solutions' noise; on the R5b helix the cubic
-// leaves ~4e-5 (its truncation error) and six points less (docs/benchmarks.md, "Robots").
+// the last solves: each accepted solution is compared with what the current order and one neighbour
+// (the lower and the higher in turn) would have predicted for it, and the closer of them is used next
+// (a path's smoothness changes slowly along it). On the R5b teleoperation path (straight, p = 6, E = 8,
+// tolerance 1e-7) the cubic starts within a residual of about 5e-7, the stored solutions' noise; on the R5b
+// helix the cubic leaves ~4e-5 (its truncation error) and six points less (docs/benchmarks.md, "Robots").
 #include <array>
 
 #include "pcr/core/types.hpp"
@@ -52,16 +52,26 @@ class PathPredictor {
     std::array<double, kMaxPoints> nodes{}, weights{};
     std::array<int, kMaxPoints> points{};
     int used = 0;
-    void set_weights(double s_new);
+    double s_new = 0.0;
+    void set_weights(double s);
   };
-  bool line_weights(const VecX& z_new, int max_points, Weights& w) const;
-  bool curve_weights(const VecX& z_new, int max_points, Weights& w) const;
+  /// The nodes (up to kMaxPoints) of both coordinates for z_new and whether each is usable.
+  struct Candidates {
+    Weights line, curve;
+    bool by_line = false, by_curve = false;
+  };
+  bool line_nodes(const VecX& z_new, Weights& w) const;
+  bool curve_nodes(const VecX& z_new, Weights& w) const;
+  /// Both coordinates' nodes for z_new; false: no usable history.
+  bool candidates(const VecX& z_new, Candidates& c) const;
+  /// The weights of the start for z_new over at most max_points nodes, line or curve (file comment).
+  Weights pick(const Candidates& c, int max_points, const VecX& z_new) const;
   /// |sum_j w_j z_j - z_new|: how far the weights' own parameters are from the new ones.
   double miss(const Weights& w, const VecX& z_new) const;
-  /// The weights of the start for z_new with at most max_points points; false: no usable history.
-  bool weights_for(const VecX& z_new, int max_points, Weights& w) const;
   /// sum_j w_j x_j, the newest node being x_last.
   VecX combine(const Weights& w, const VecX& x_last) const;
+  /// |sum_j w_j x_j - x_new|max over the stored x_j (before x_new is stored).
+  double prediction_error(const Weights& w, const VecX& x_new) const;
 
   /// The j-th newest stored solution and parameters (j = 0: the last accepted).
   const VecX& x(int j) const { return xs_[(newest_ + j) % kMaxPoints]; }
@@ -70,7 +80,11 @@ class PathPredictor {
   std::array<VecX, kMaxPoints> xs_, zs_;  // ring buffer, newest at index newest_
   int newest_ = 0;
   int count_ = 0;
-  int order_ = 4;  // points of the next prediction, adapted in accept
+  int order_ = 4;           // points of the next prediction, adapted in accept
+  bool try_higher_ = true;  // which neighbour of order_ the next accept compares with
+  // The last prediction at order_ (for accept), and scratch of prediction_error.
+  mutable VecX last_prediction_, last_z_, scratch_;
+  mutable bool last_prediction_valid_ = false;
 };
 
 }  // namespace pcr::kinematics
