@@ -6,8 +6,8 @@
 // Workloads: r5b_path / r5b_helix (warm IK along bench_all's R5b paths, the first, cold, solve outside the
 // region; with --shooting rk4|dormand_prince by pcr's shooting solver at bench_all's settings, for
 // load-independent instruction ratios against collocation), r5a_fk / r5a_ik (one cold FK / IK, assembly
-// included), R1 / R2 / R3 / spring (one cold solve_rod). Prints the wall time of the region, the iterations
-// and the status.
+// included; r5a_ik also --shooting), R1 / R2 / R3 / spring (one cold solve_rod). Prints the wall time of the
+// region, the iterations and the status.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -123,6 +123,20 @@ __attribute__((noinline)) Outcome measured_region(const std::shared_ptr<const Ro
   return out.stop();
 }
 
+// Cold IK by the shooting solver (a new solver per solve, as bench_all).
+__attribute__((noinline)) Outcome measured_region(const std::shared_ptr<const RobotModel>& model,
+                                                  const Settings& settings, const Pose& target) {
+  Outcome out;
+  for (int k = 0; k < settings.solves; ++k) {
+    ShootingRobotSolver solver(model, shooting_options(settings));
+    const RobotSolution s = solver.ik({target});
+    out.iterations += s.summary.iterations;
+    out.converged = out.converged && s.summary.converged();
+    ++out.solves;
+  }
+  return out.stop();
+}
+
 __attribute__((noinline)) Outcome measured_region(const RodModel& model, const RodSolveOptions& o,
                                                   int solves) {
   Outcome out;
@@ -151,6 +165,7 @@ Outcome run(const Settings& s) {
     const std::shared_ptr<const RobotModel> model = load_r5a();
     return measured_region(model, robot_options(s), r5a_moved_inputs(*model), s.solves);
   }
+  if (s.workload == "r5a_ik" && !s.shooting.empty()) return measured_region(load_r5a(), s, r5a_target());
   if (s.workload == "r5a_ik") return measured_region(load_r5a(), robot_options(s), r5a_target(), s.solves);
   for (const RodScene& scene :
        {r1_full_circle(), r2_elastica(1e14), r3_helix(), helical_spring_large_load()}) {
