@@ -25,8 +25,9 @@
 // the last solves: each accepted solution is compared with what the current order and one neighbour
 // (the lower and the higher in turn) would have predicted for it, and the closer of them is used next
 // (a path's smoothness changes slowly along it). On the R5b teleoperation path (straight, p = 6, E = 8,
-// tolerance 1e-7) the cubic starts within a residual of about 5e-7, the stored solutions' noise; on the R5b
-// helix the cubic leaves ~4e-5 (its truncation error) and six points less (docs/benchmarks.md, "Robots").
+// tolerance 1e-7) the cubic starts within a residual of about 5e-7, the stored solutions' noise; on the
+// R5b helix the cubic leaves ~4e-5 (its truncation error), six points about 1e-6 (docs/benchmarks.md,
+// "Time split of a warm R5b solve").
 #include <array>
 
 #include "pcr/core/types.hpp"
