@@ -43,7 +43,10 @@ class PathPredictor {
   VecX predict(const VecX& x_last, const VecX& z_new, bool* on_path = nullptr) const;
   /// Records a converged solution x for parameters z (and adapts the order to it).
   void accept(const VecX& x_new, const VecX& z_new);
-  void reset() { count_ = 0; }
+  void reset() {
+    count_ = 0;
+    last_prediction_valid_ = false;
+  }
   /// The most points the next prediction uses (2 .. kMaxPoints).
   int order() const { return order_; }
 
@@ -83,7 +86,8 @@ class PathPredictor {
   int count_ = 0;
   int order_ = 4;           // points of the next prediction, adapted in accept
   bool try_higher_ = true;  // which neighbour of order_ the next accept compares with
-  // The last prediction at order_ (for accept), and scratch of prediction_error.
+  // The last prediction at order_ (for accept), and scratch of prediction_error: predict writes them,
+  // so one predictor serves one solver at a time (as the kinematics object that owns it).
   mutable VecX last_prediction_, last_z_, scratch_;
   mutable bool last_prediction_valid_ = false;
 };
