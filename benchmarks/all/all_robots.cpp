@@ -255,6 +255,17 @@ void collocation_sweep(const Scenes& sc, const References& ref, const AllConfig&
       for (int t : condensed_exponents)
         collocation_setting(sc, ref, config, RodFormulation::Condensed, SolverKind::Newton, p, e, true,
                             e >= 8, out, cold_repeats(config), t);
+  // Coarse meshes (condensed, full run): on the R5b helix p = 5 with 5 elements reaches 1e-7 m and
+  // p = 7, 8 with 4-6 elements 1e-8 m with 10-14 control points per rod, where E = 8 needs p = 5
+  // (3e-7 m) and 1e-8 m p = 6, E = 16 (22 control points); also tolerance 1e-5, where the solver's
+  // share of the error (~1e-2 x tolerance in m) stays below these meshes' discretisation error.
+  if (!quick)
+    for (int p : {5, 6, 7, 8})
+      for (int e : {4, 5, 6})
+        for (int t : {5, 6, 7})
+          if (p >= 7 || e > 4)  // p <= 6 on 4 elements: in the sweep above
+            collocation_setting(sc, ref, config, RodFormulation::Condensed, SolverKind::Newton, p, e, true,
+                                true, out, cold_repeats(config), t);
   // Ipopt path: FK only (IK chooses its solver itself), fewer sizes: 10-60x slower than Newton on rods.
   for (int e : quick ? std::vector<int>{8} : std::vector<int>{4, 8, 16})
     collocation_setting(sc, ref, config, RodFormulation::Mixed, SolverKind::Ipopt, 5, e, false, false, out,

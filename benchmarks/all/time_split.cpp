@@ -4,8 +4,11 @@
 //       r5b_path --formulation condensed --degree 6 --elements 8 --tolerance 1e-7
 //   callgrind_annotate --inclusive=yes callgrind.out.<pid>
 // Workloads: r5b_path / r5b_helix (warm IK along bench_all's R5b paths, the first, cold, solve outside the
-// region), r5a_fk (one cold FK, assembly included), R1 / R2 / R3 / spring (one cold solve_rod).
-// Prints the wall time of the region, the iterations and the status.
+// region; with --shooting rk4|dormand_prince by pcr's shooting solver at bench_all's settings, for
+// load-independent instruction ratios against collocation), r5a_fk / r5a_ik (one cold FK / IK, assembly
+// included; r5a_ik also --shooting), R1 / R2 / R3 / spring (one cold solve_rod). Prints the wall time of the
+// region, the iterations and the status.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -14,6 +17,7 @@
 #include "common/robot_scenes.hpp"
 #include "common/rod_scenes.hpp"
 #include "pcr/robots/kinematics.hpp"
+#include "pcr/robots/shooting/shooting_robot_solver.hpp"
 
 using namespace pcr;
 using namespace pcr::bench;
@@ -25,6 +29,9 @@ struct Settings {
   RodFormulation formulation = RodFormulation::Condensed;
   int degree = 6, elements = 8, solves = 1;
   double tolerance = 1e-10;
+  std::string shooting;  ///< "rk4" or "dormand_prince": the path by pcr's shooting solver instead
+  int rk4_steps = 40;
+  double integration_tolerance = 1e-8;
 };
 
 struct Outcome {
@@ -60,6 +67,34 @@ __attribute__((noinline)) Outcome measured_region(InverseKinematics& ik, const s
   return out.stop();
 }
 
+// The same path by the shooting solver (pose 0 outside the region).
+__attribute__((noinline)) Outcome measured_region(ShootingRobotSolver& solver,
+                                                  const std::vector<Pose>& path) {
+  Outcome out;
+  for (size_t k = 1; k < path.size(); ++k) {
+    const RobotSolution s = solver.ik({path[k]});
+    out.iterations += s.summary.iterations;
+    out.converged = out.converged && s.summary.converged();
+    ++out.solves;
+  }
+  return out.stop();
+}
+
+/// bench_all's shooting settings: RK4 with N steps per rod, residual tolerance 1e-11, or Dormand-Prince
+/// at integration tolerance T with residual tolerance clamp(1e-2 T, 1e-12, 1e-10).
+ShootingRobotOptions shooting_options(const Settings& s) {
+  ShootingRobotOptions o;
+  if (s.shooting == "rk4") {
+    o.integrator = IntegratorMethod::RK4;
+    o.rk4_steps = s.rk4_steps;
+    o.tolerance = 1e-11;
+  } else {
+    o.integration_relative_tolerance = o.integration_absolute_tolerance = s.integration_tolerance;
+    o.tolerance = std::min(std::max(1e-2 * s.integration_tolerance, 1e-12), 1e-10);
+  }
+  return o;
+}
+
 __attribute__((noinline)) Outcome measured_region(const std::shared_ptr<const RobotModel>& model,
                                                   const KinematicsOptions& o, const VecX& inputs,
                                                   int solves) {
@@ -67,6 +102,34 @@ __attribute__((noinline)) Outcome measured_region(const std::shared_ptr<const Ro
   for (int k = 0; k < solves; ++k) {
     ForwardKinematics fk(model, o);
     const RobotSolution s = fk.solve(inputs);
+    out.iterations += s.summary.iterations;
+    out.converged = out.converged && s.summary.converged();
+    ++out.solves;
+  }
+  return out.stop();
+}
+
+__attribute__((noinline)) Outcome measured_region(const std::shared_ptr<const RobotModel>& model,
+                                                  const KinematicsOptions& o, const Pose& target,
+                                                  int solves) {
+  Outcome out;
+  for (int k = 0; k < solves; ++k) {
+    InverseKinematics ik(model, {platform_target()}, o);
+    const RobotSolution s = ik.solve({target});
+    out.iterations += s.summary.iterations;
+    out.converged = out.converged && s.summary.converged();
+    ++out.solves;
+  }
+  return out.stop();
+}
+
+// Cold IK by the shooting solver (a new solver per solve, as bench_all).
+__attribute__((noinline)) Outcome measured_region(const std::shared_ptr<const RobotModel>& model,
+                                                  const Settings& settings, const Pose& target) {
+  Outcome out;
+  for (int k = 0; k < settings.solves; ++k) {
+    ShootingRobotSolver solver(model, shooting_options(settings));
+    const RobotSolution s = solver.ik({target});
     out.iterations += s.summary.iterations;
     out.converged = out.converged && s.summary.converged();
     ++out.solves;
@@ -89,6 +152,11 @@ __attribute__((noinline)) Outcome measured_region(const RodModel& model, const R
 Outcome run(const Settings& s) {
   if (s.workload == "r5b_path" || s.workload == "r5b_helix") {
     const std::vector<Pose> path = s.workload == "r5b_path" ? r5b_path(100) : r5b_helix_path(400);
+    if (!s.shooting.empty()) {
+      ShootingRobotSolver solver(load_r5b(), shooting_options(s));
+      solver.ik({path[0]});
+      return measured_region(solver, path);
+    }
     InverseKinematics ik(load_r5b(), {platform_target()}, robot_options(s));
     ik.solve({path[0]});
     return measured_region(ik, path);
@@ -97,6 +165,8 @@ Outcome run(const Settings& s) {
     const std::shared_ptr<const RobotModel> model = load_r5a();
     return measured_region(model, robot_options(s), r5a_moved_inputs(*model), s.solves);
   }
+  if (s.workload == "r5a_ik" && !s.shooting.empty()) return measured_region(load_r5a(), s, r5a_target());
+  if (s.workload == "r5a_ik") return measured_region(load_r5a(), robot_options(s), r5a_target(), s.solves);
   for (const RodScene& scene :
        {r1_full_circle(), r2_elastica(1e14), r3_helix(), helical_spring_large_load()}) {
     if (scene.name.rfind(s.workload, 0) != 0) continue;
@@ -114,9 +184,11 @@ Outcome run(const Settings& s) {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr,
-                 "usage: bench_time_split r5b_path|r5b_helix|r5a_fk|R1|R2|R3|spring [--formulation "
-                 "mixed|condensed|primal] [--degree P] [--elements E] [--tolerance T] [--solves N]\n");
+    std::fprintf(
+        stderr,
+        "usage: bench_time_split r5b_path|r5b_helix|r5a_fk|r5a_ik|R1|R2|R3|spring [--formulation "
+        "mixed|condensed|primal] [--degree P] [--elements E] [--tolerance T] [--solves N] [--shooting "
+        "rk4|dormand_prince [--rk4-steps N] [--integration-tolerance T]]\n");
     return 2;
   }
   Settings s;
@@ -135,10 +207,21 @@ int main(int argc, char** argv) {
       s.tolerance = std::stod(value);
     else if (key == "--solves")
       s.solves = std::stoi(value);
+    else if (key == "--shooting")
+      s.shooting = value;
+    else if (key == "--rk4-steps")
+      s.rk4_steps = std::stoi(value);
+    else if (key == "--integration-tolerance")
+      s.integration_tolerance = std::stod(value);
   }
   const Outcome out = run(s);
-  std::printf("%s %s p=%d E=%d tol=%g: %d solves, %d iterations, %s, %.3f ms per solve\n", s.workload.c_str(),
-              to_string(s.formulation), s.degree, s.elements, s.tolerance, out.solves, out.iterations,
+  if (s.shooting.empty())
+    std::printf("%s %s p=%d E=%d tol=%g", s.workload.c_str(), to_string(s.formulation), s.degree, s.elements,
+                s.tolerance);
+  else
+    std::printf("%s shooting %s N=%d integration tol=%g", s.workload.c_str(), s.shooting.c_str(), s.rk4_steps,
+                s.integration_tolerance);
+  std::printf(": %d solves, %d iterations, %s, %.3f ms per solve\n", out.solves, out.iterations,
               out.converged ? "converged" : "FAILED", 1e3 * out.seconds / std::max(1, out.solves));
   return out.converged ? 0 : 1;
 }

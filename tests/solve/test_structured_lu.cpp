@@ -83,7 +83,7 @@ std::string structured_and_sparse_newton_agree(const Problem& p) {
 BOOST_AUTO_TEST_CASE(band_lu_solves_like_dense_lu_and_pivots) {
   std::mt19937 rng(7);
   for (const auto& [n, kl, ku] :
-       {std::array<int, 3>{1, 0, 0}, {12, 1, 1}, {40, 3, 5}, {60, 7, 2}, {90, 20, 30}}) {
+       {std::array<int, 3>{1, 0, 0}, {12, 1, 1}, {40, 3, 5}, {41, 4, 6}, {60, 7, 2}, {90, 20, 30}}) {
     MatX A = random_band(n, kl, ku, rng, 3);
     if (n == 1) A(0, 0) = 2.0;  // its only entry was zeroed as a "diagonal every 3rd"
     BandLu lu = band_of(A, kl, ku);

@@ -91,15 +91,37 @@ void BandLu::solve_in_place(double* b) const {
     if (bj == 0.0) continue;
     const double* col = a + j * ld_ + kv;
     const int rows = l_rows_[j];
+#pragma GCC unroll 4
     for (int k = 1; k <= rows; ++k) b[j + k] -= bj * col[k];
   }
-  for (int j = cols_ - 1; j >= 0; --j) {       // U x = g_1
-    const double* col = a + j * ld_ + kv - j;  // col[i] = U(i, j)
-    b[j] /= col[j];
-    const double bj = b[j];
-    if (bj == 0.0) continue;
-    for (int i = u_first_[j]; i < j; ++i) b[i] -= bj * col[i];
+  // U x = g_1, two columns j and k = j - 1 at a time: x_j, then x_k (after column j's entry in row k),
+  // then rows above both in one pass over b. Each b[i] takes the same operations in the same order as
+  // column by column (b[i] - x_j U(i, j) - x_k U(i, k)), so the result is the same to the bit.
+  int j = cols_ - 1;
+  for (; j >= 1; j -= 2) {
+    const int k = j - 1;
+    const double* cj = a + j * ld_ + kv - j;  // cj[i] = U(i, j)
+    const double* ck = a + k * ld_ + kv - k;  // ck[i] = U(i, k)
+    b[j] /= cj[j];
+    const double xj = b[j];
+    const int fj = u_first_[j], fk = u_first_[k];
+    if (xj != 0.0 && fj <= k) b[k] -= xj * cj[k];
+    b[k] /= ck[k];
+    const double xk = b[k];
+    const bool use_j = xj != 0.0 && fj < k, use_k = xk != 0.0 && fk < k;
+    if (use_j && use_k) {
+      const int both = std::max(fj, fk);
+      for (int i = fj; i < both; ++i) b[i] -= xj * cj[i];  // rows only column j reaches
+      for (int i = fk; i < both; ++i) b[i] -= xk * ck[i];  // rows only column k reaches
+#pragma GCC unroll 4
+      for (int i = both; i < k; ++i) b[i] = b[i] - xj * cj[i] - xk * ck[i];
+    } else if (use_j) {
+      for (int i = fj; i < k; ++i) b[i] -= xj * cj[i];
+    } else if (use_k) {
+      for (int i = fk; i < k; ++i) b[i] -= xk * ck[i];
+    }
   }
+  if (j == 0) b[0] /= a[kv];  // the first column left over (an odd count)
 }
 
 int BandLu::determinant_sign() const {

@@ -46,11 +46,12 @@ struct IkData {
 
   const std::shared_ptr<const IkModel> model;  // first: outlives the solvers that refer into it
   VecX x;                                      // the last accepted solution, square's layout
-  int last_jacobian_sign = 0;                  // of the last checked converged solve (check_stability)
-  PathPredictor predictor;                     // start point along a path of targets
-  std::unique_ptr<NewtonSolver> newton;        // on model->square, made on first use
-  std::unique_ptr<IpoptSolver> ipopt;          // on model->optimised, made on first use
-  std::unique_ptr<ReducedIk> reduced;          // on model->reduced
+  bool started = false;        // a solve has run (the first starts Newton from the default equilibrium)
+  int last_jacobian_sign = 0;  // of the last checked converged solve (check_stability)
+  PathPredictor predictor;     // start point along a path of targets
+  std::unique_ptr<NewtonSolver> newton;  // on model->square, made on first use
+  std::unique_ptr<IpoptSolver> ipopt;    // on model->optimised, made on first use
+  std::unique_ptr<ReducedIk> reduced;    // on model->reduced
 };
 
 }  // namespace pcr::kinematics

@@ -2,6 +2,7 @@
 // all variables); the problems are built once (ik_model.cpp), the solve state is per object (ik_data.hpp).
 #include <stdexcept>
 
+#include "default_equilibrium.hpp"
 #include "ik_data.hpp"
 #include "pcr/core/error.hpp"
 #include "solve_support.hpp"
@@ -71,13 +72,31 @@ struct IkAttempt {
   }
 };
 
-/// Newton on the square system from the path predictor's start, then from the last solution. True when
-/// it converged inside the input bounds.
-bool solve_square(IkData& d, const VecX& z, IkAttempt& a) {
+/// The start of the first Newton solve of the square system: the model's default equilibrium (shared with
+/// forward kinematics: solved once per model and the options that shape it, default_equilibrium.hpp), in
+/// the square system's layout (its head is the assembly's variables; the targets follow); false where it
+/// did not converge. On R5a (rods under gravity) the cold IK then takes one fresh Jacobian instead of two
+/// (docs/benchmarks.md, "Time split of a warm R5b solve"). The retry and the Ipopt solves keep the
+/// straight start.
+bool default_equilibrium_start(const IkData& d, VecX& x) {
+  const IkModel& m = *d.model;
+  const DefaultEquilibrium& e =
+      kinematics::shared_default_equilibrium(*m.assembly, m.options)->get(*m.assembly, m.options);
+  if (!e.converged || e.x.size() > d.x.size()) return false;
+  x = d.x;
+  x.head(e.x.size()) = e.x;
+  return true;
+}
+
+/// Newton on the square system from the path predictor's start (the first solve: the default equilibrium),
+/// then from the last solution. True when it converged inside the input bounds.
+bool solve_square(IkData& d, const VecX& z, IkAttempt& a, bool first) {
   const IkModel& m = *d.model;
   if (!d.newton) d.newton = std::make_unique<NewtonSolver>(m.square, kinematics::newton_options(m.options));
   bool on_path = false;
-  a.x = with_targets(m, d.predictor.predict(d.x, z, &on_path), z);
+  VecX equilibrium;
+  const bool from_equilibrium = first && default_equilibrium_start(d, equilibrium);
+  a.x = with_targets(m, from_equilibrium ? equilibrium : d.predictor.predict(d.x, z, &on_path), z);
   if (on_path) d.newton->continue_path();
   a.take(d.newton->solve(a.x));
   if (!a.summary.converged()) {  // the extrapolated start failed: retry from the last solution
@@ -172,7 +191,9 @@ RobotSolution InverseKinematics::solve(const std::vector<Pose>& target_poses, co
   a.x = d.x;
   // Input distance without stress limits and a square system: Newton (fast, warm-started along paths).
   const bool newton_first = !kinematics::uses_reduced_space(m.options.ik) && m.square_system;
-  if (!(newton_first && solve_square(d, z, a))) {
+  const bool first = !d.started;
+  d.started = true;
+  if (!(newton_first && solve_square(d, z, a, first))) {
     // Start from Newton's solution when it converged outside the input bounds, else from the last one.
     const bool from_newton = newton_first && a.summary.converged() && a.x.allFinite();
     optimise(d, with_targets(m, from_newton ? a.x : d.x, z), ref, a);
