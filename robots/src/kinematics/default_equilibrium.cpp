@@ -47,8 +47,10 @@ Registry& registry() {
 }  // namespace
 
 const DefaultEquilibrium& SharedDefaultEquilibrium::get(const RobotAssembly& assembly,
-                                                        const KinematicsOptions& options) {
+                                                        const KinematicsOptions& options, bool* solved_here) {
+  if (solved_here) *solved_here = false;
   std::call_once(solved_, [&] {
+    if (solved_here) *solved_here = true;
     VecX x = assembly.initial_guess();
     assembly.set_inputs(x, assembly.model().default_input_values());
     value_.x = x;

@@ -21,8 +21,10 @@ namespace pcr::kinematics {
 class SharedDefaultEquilibrium {
  public:
   /// Solves it on `assembly` with `options` on the first call (any assembly of the model with the
-  /// options of the registry's key: they are the same system); returns it on every call.
-  const DefaultEquilibrium& get(const RobotAssembly& assembly, const KinematicsOptions& options);
+  /// options of the registry's key: they are the same system); returns it on every call. *solved_here
+  /// (when given) tells whether this call did the solve (its work belongs to the caller's summary).
+  const DefaultEquilibrium& get(const RobotAssembly& assembly, const KinematicsOptions& options,
+                                bool* solved_here = nullptr);
 
  private:
   std::once_flag solved_;

@@ -29,7 +29,9 @@ struct FkModel {
   /// The equilibrium at the model's default inputs, solved on first use (default_equilibrium.hpp: once
   /// per model and options, shared by every FK over them and thread-safe; its own solver, so the state
   /// is the same bits whichever FK asks first).
-  const DefaultEquilibrium& default_equilibrium() const { return default_start->get(*assembly, options); }
+  const DefaultEquilibrium& default_equilibrium(bool* solved_here = nullptr) const {
+    return default_start->get(*assembly, options, solved_here);
+  }
 
  private:
   std::shared_ptr<SharedDefaultEquilibrium> default_start;

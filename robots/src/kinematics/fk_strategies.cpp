@@ -347,7 +347,8 @@ constexpr FkStrategy kStrategies[] = {
 
 SolveSummary solve_with_fallbacks(FkData& data, const VecX& inputs, VecX& x) {
   FkAttempt a(data, inputs, x);
-  const DefaultEquilibrium& start = data.model->default_equilibrium();
+  bool solved_here = false;
+  const DefaultEquilibrium& start = data.model->default_equilibrium(&solved_here);
   a.x_default = start.converged ? &start.x : nullptr;
   // An equilibrium with a rod compressed to a point or inverted (not admissible: finish_solution marks
   // it failed) does not end the chain: the later strategies may reach an admissible one. If none does,
@@ -372,6 +373,14 @@ SolveSummary solve_with_fallbacks(FkData& data, const VecX& inputs, VecX& x) {
   }
   if (!a.x_default)
     a.summary.message += "; the default inputs did not converge from the straight initial guess";
+  if (solved_here) {
+    // This call solved the shared default equilibrium first: its work is part of this solve.
+    a.iterations += start.summary.iterations;
+    a.jacobians += start.summary.jacobian_evaluations;
+    a.summary.message += "; the model's default equilibrium solved first (" +
+                         std::to_string(start.summary.iterations) +
+                         " iterations, counted here; later solves over the model share it)";
+  }
   a.summary.iterations = a.iterations;
   a.summary.jacobian_evaluations = a.jacobians;
   return a.summary;

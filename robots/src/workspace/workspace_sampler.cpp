@@ -101,6 +101,10 @@ VecX workspace_sample_inputs(const RobotModel& model, std::uint64_t seed, std::i
 WorkspaceSample solve_workspace_sample(const ForwardKinematics& prototype, std::uint64_t seed,
                                        std::int64_t index) {
   VecX inputs = workspace_sample_inputs(prototype.assembly().model(), seed, index);
+  // The model's default equilibrium, the start of every sample, is shared by all samples: solved here
+  // (once per model) outside the sample's figures, so that they do not depend on which sample or
+  // thread came first.
+  prototype.default_equilibrium();
   const auto start = Clock::now();
   try {
     ForwardKinematics fk = prototype.with_fresh_state();
