@@ -25,6 +25,13 @@ namespace {
 
 /// Steps the snap may follow the curve past a fold before it tries Newton from other starts.
 constexpr int kSnapBranchSteps = 60;
+/// Pushes of the fold state along the fold mode (pushed_along_fold_mode: the largest platform or passive
+/// joint coordinate moved by this much; 0.01 = 1 % of the length scale or ~0.02 rad) from which the snap
+/// starts Newton, and the damped motion. The random sweeps' landings lie 2-15 mm and 0.04-0.75 rad from
+/// their folds (docs/benchmarks.md); larger pushes stretch the rods along a mode that is linear only
+/// at the fold, and Newton and the damped steps diverge from there.
+constexpr double kNewtonPushes[] = {0.01, 0.03, 0.1, 0.3, -0.01, -0.03, -0.1};
+constexpr double kDampedPushes[] = {0.01, -0.01, 0.05, -0.05, 0.2, -0.2};
 
 std::vector<Pose> platform_poses(const RobotAssembly& a, const VecX& x) {
   std::vector<Pose> out;
@@ -77,6 +84,7 @@ class SegmentTracer {
   bool snap_by_pseudo_transient(const ArcPoint& fold, double target, const Acceptable& acceptable,
                                 ArcPoint& landing, int& nu_landing);
   bool moved_from_fold(const ArcPoint& fold, const VecX& x) const;
+  VecX pushed_along_fold_mode(const ArcPoint& fold, double amplitude) const;
   bool land_at(const ArcPoint& fold, const VecX& x, double target, ArcPoint& landing);
   bool budget_left() const { return out_.steps < o_.max_steps; }
 
@@ -244,8 +252,7 @@ bool SegmentTracer::snap_by_newton(const ArcPoint& fold, double target, const Ac
   NewtonSolver newton(a_.problem(), no);
   const VecX u = arc_.inputs_at(target);
   std::vector<VecX> starts;
-  for (double amplitude : {0.5, 1.0, 2.0, 4.0, -0.5, -1.0, -2.0})
-    starts.push_back(arc_.predictor(fold, amplitude * o_.max_step).x);
+  for (double amplitude : kNewtonPushes) starts.push_back(pushed_along_fold_mode(fold, amplitude));
   starts.push_back(a_.initial_guess());
   for (VecX& x : starts) {
     a_.set_inputs(x, u);
@@ -266,8 +273,8 @@ bool SegmentTracer::snap_by_pseudo_transient(const ArcPoint& fold, double target
   // The platforms and passive joints damped alone, then with the diagonal shift on the other unknowns
   // (pseudo_transient_snap.hpp; 1e-3 of the dampers' unit stiffness).
   for (double shift : {0.0, 1e-3})
-    for (double amplitude : {1.0, -1.0, 4.0, -4.0}) {
-      VecX x = arc_.predictor(fold, amplitude * o_.max_step).x;
+    for (double amplitude : kDampedPushes) {
+      VecX x = pushed_along_fold_mode(fold, amplitude);
       a_.set_inputs(x, u);
       const PseudoTransientResult r = pseudo_transient_equilibrium(a_, x, tolerance_, shift);
       extra_jacobians_ += r.jacobian_evaluations;
@@ -277,6 +284,33 @@ bool SegmentTracer::snap_by_pseudo_transient(const ArcPoint& fold, double target
       if (acceptable(nu_landing) && land_at(fold, r.x, target, landing)) return true;
     }
   return false;
+}
+
+/// The fold state moved along the fold mode (the tangent there, pointing from the ending branch to the
+/// one beyond it) so that its largest platform or passive joint coordinate moves by `amplitude` (a
+/// position over the length scale, a quaternion component, a joint angle; the fold state's own mode
+/// gives the shape of the push, the amplitude its size in the robot's terms, whatever the weights W of
+/// the continuation). Without platforms and passive joints: amplitude x max_step along the tangent.
+VecX SegmentTracer::pushed_along_fold_mode(const ArcPoint& fold, double amplitude) const {
+  const VecX direction = arc_.predictor(fold, 1.0).x - fold.x;
+  const Problem& problem = a_.problem();
+  const double L0 = a_.length_scale();
+  double largest = 0.0;
+  auto measure = [&](VariableId v, int size, double scale) {
+    const int offset = problem.variable(v).offset;
+    for (int k = 0; k < size; ++k) largest = std::max(largest, std::abs(direction[offset + k]) / scale);
+  };
+  for (int i = 0; i < static_cast<int>(a_.model().platforms().size()); ++i) {
+    measure(a_.platform_variable(i), 3, L0);
+    if (problem.variable(a_.platform_variable(i)).size >= 7) {
+      const int offset = problem.variable(a_.platform_variable(i)).offset + 3;
+      for (int k = 0; k < 4; ++k) largest = std::max(largest, std::abs(direction[offset + k]));
+    }
+  }
+  for (int i = 0; i < static_cast<int>(a_.model().passive_joints().size()); ++i)
+    measure(a_.passive_joint_variable(i), 1, 1.0);
+  const double sigma = largest > 0.0 ? amplitude / largest : amplitude * o_.max_step;
+  return arc_.predictor(fold, sigma).x;
 }
 
 /// Whether the equilibrium x is another one than the fold state (its first platform moved by more than
@@ -316,6 +350,7 @@ bool SegmentTracer::pass_fold(ArcPoint& p, int& nu, const ArcPoint& fold, int nu
   ArcPoint landing;
   int nu_landing = -1;
   if (!snap(fold, nu, landing, nu_landing)) return false;
+  arc_.rebalance(landing);  // the branch it lands on may move faster in x than the start did
   PathEvent s = event(PathEventKind::Snap, fold, nu, nu_landing);
   s.platforms_before = platform_poses(a_, fold.x);
   s.platforms_after = platform_poses(a_, landing.x);
