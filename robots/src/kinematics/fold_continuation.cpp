@@ -32,6 +32,17 @@ constexpr int kSnapBranchSteps = 60;
 /// at the fold, and Newton and the damped steps diverge from there.
 constexpr double kNewtonPushes[] = {0.01, 0.03, 0.1, 0.3, -0.01, -0.03, -0.1};
 constexpr double kDampedPushes[] = {0.01, -0.01, 0.05, -0.05, 0.2, -0.2};
+/// Steps past a corner of the curve (step_past_corner: the input moved by this fraction of the segment,
+/// the FK Newton solver at fixed inputs), and that solver's iteration budget. On planar_post's corner
+/// Newton converged in 6-8 iterations for every d from 1e-8 to 1e-3 (16 at 1e-2), the platform
+/// moving by 0.2 m per unit of lambda, as on the branch before: no jump.
+constexpr double kCornerSteps[] = {1e-6, 1e-4, 1e-3};
+/// The arclength step (a fraction of max_step) below which step() tries the step past a corner before it
+/// halves on to min_step: on a smooth curve the predictor's error falls like ds^2 and the corrector
+/// converges long before; at a corner it falls like ds (planar_post: 6.9e-7 at ds = 3.9e-6, 1.0e-9 at
+/// 1.2e-8) and the corrector fails at every length.
+constexpr double kCornerStepBelow = 2e-6;
+constexpr int kCornerIterations = 40;
 
 std::vector<Pose> platform_poses(const RobotAssembly& a, const VecX& x) {
   std::vector<Pose> out;
@@ -71,6 +82,7 @@ class SegmentTracer {
   }
   /// One accepted step from p (step length ds adapted, nu at the new point); false when it cannot go on.
   bool step(const ArcPoint& p, int nu, double& ds, ArcPoint& q, int& nu_q, double& used);
+  bool step_past_corner(const ArcPoint& p, double& ds, ArcPoint& q, int& nu_q, double& used);
   bool pass_fold(ArcPoint& p, int& nu, const ArcPoint& fold, int nu_beyond);
   ArcPoint locate_fold(const ArcPoint& p, double ds, const ArcPoint& q);
   void locate_bifurcation(const ArcPoint& p, double ds, int nu, int nu_q);
@@ -98,7 +110,12 @@ class SegmentTracer {
 };
 
 bool SegmentTracer::step(const ArcPoint& p, int nu, double& ds, ArcPoint& q, int& nu_q, double& used) {
+  bool tried_corner = false;
   while (ds >= o_.min_step) {
+    if (ds < kCornerStepBelow * o_.max_step && !tried_corner) {
+      tried_corner = true;
+      if (step_past_corner(p, ds, q, nu_q, used)) return true;
+    }
     const int before = arc_.iterations();
     if (!arc_.arclength_step(p, ds, q)) {
       ds *= 0.5;
@@ -126,6 +143,47 @@ bool SegmentTracer::step(const ArcPoint& p, int nu, double& ds, ArcPoint& q, int
   std::ostringstream why;
   why << "continuation step below " << o_.min_step << " at path parameter " << segment_ + p.lambda;
   out_.stopped = why.str();
+  return false;
+}
+
+/// The corrector failed from p however short the step (step() gave up below min_step): a corner of the
+/// curve, where a contact switches at a collocation midpoint (the complementarity row's Fischer-Burmeister
+/// function is not smooth where its gap and density both vanish). There the predictor misses the curve
+/// by O(ds) (a kink: the tangent on the other side differs) and the bordered Newton stalls on the
+/// complementarity row however short the step (planar_post, docs/benchmarks.md "Random FK sweeps").
+/// The FK Newton solver (damped, at fixed inputs) steps past it: at lambda + d from p, for d growing
+/// from kCornerSteps[0]; q gets the tangent there. A step, counted in the budget; false when none
+/// converges (the branch ends there: the caller stops with step()'s reason).
+bool SegmentTracer::step_past_corner(const ArcPoint& p, double& ds, ArcPoint& q, int& nu_q, double& used) {
+  if (!(p.tau() > 0.0)) return false;  // past a corner going backwards: not a way along the path
+  NewtonOptions no;
+  no.tolerance = tolerance_;
+  NewtonSolver newton(a_.problem(), no);
+  // q's tangent oriented forward in lambda: the corner's two sides are not aligned (the one after it,
+  // oriented by p's, pointed back towards the corner on planar_post), and Newton at fixed inputs
+  // reached q going forward.
+  VecX forward = VecX::Zero(p.tangent.size());
+  forward[forward.size() - 1] = 1.0;
+  for (double d : kCornerSteps) {
+    const double lambda = std::min(1.0, p.lambda + d);
+    VecX x = p.x;
+    a_.set_inputs(x, arc_.inputs_at(lambda));
+    const SolveSummary s = newton.solve(x, kCornerIterations);
+    extra_iterations_ += s.iterations;
+    extra_jacobians_ += s.jacobian_evaluations;
+    ArcPoint guess = p;
+    guess.x = x;
+    guess.lambda = lambda;
+    if (!s.converged() || !arc_.at_lambda(guess, forward, lambda, q)) continue;
+    nu_q = count(q.x);
+    ++out_.steps;
+    used = std::sqrt(arc_.weighted_dot(arc_.free_vector(q.x, q.lambda) - arc_.free_vector(p.x, p.lambda),
+                                       arc_.free_vector(q.x, q.lambda) - arc_.free_vector(p.x, p.lambda)));
+    if (o_.keep_trace) out_.trace.push_back({segment_ + q.lambda, q.tau(), nu_q, q.x});
+    ds = std::max(o_.min_step, std::min(o_.max_step, used));
+    out_.stopped.clear();
+    return true;
+  }
   return false;
 }
 
