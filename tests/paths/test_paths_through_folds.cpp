@@ -13,6 +13,7 @@
 #include <sstream>
 #include <string>
 
+#include "kinematics/pseudo_transient_snap.hpp"
 #include "pcr/robots/branch_check.hpp"
 #include "pcr/robots/kinematics.hpp"
 #include "pcr/robots/path_through_folds.hpp"
@@ -385,13 +386,14 @@ void check_stable_isolated_landing(const RobotAssembly& a, const VecX& landing, 
 // planar_pinned from its default lengths a quarter of the way towards (0.198629, 0.366977, 0.499006) m, an
 // input of the random FK sweep (docs/benchmarks.md, "Random FK sweeps") on which FK failed: the stable
 // branch ends at a fold at 0.21471 of the line (0.85884 of this path), the branch beyond it does not
-// come back within the snap's steps, and Newton from the fold state pushed along its mode and from the
-// straight initial guess returns to the singular fold state. The damped motion of the platform
-// (pseudo_transient_snap.hpp) lands on another equilibrium, as stable as the ending branch (none
-// unstable), and the path goes on from there. Checked without the code that found it: the residual
+// come back within the snap's steps; Newton from the fold state pushed along its mode so that the
+// platform moves by 0.01 and 0.03 of the length scale returns to the singular fold state, from 0.1 it
+// lands on another equilibrium, as stable as the ending branch (none unstable), the one the damped
+// motion of the platform reaches too (planar_pinned_damped_motion_past_the_fold below), and the path
+// goes on from there. Checked without the code that found it: the residual
 // recomputed, Newton from a perturbed landing state back to it (an isolated, regular equilibrium, not
 // the fold), and the verdict. The discrete energy model does not cover this robot (pinned rod ends).
-BOOST_AUTO_TEST_CASE(planar_pinned_snap_by_damped_motion) {
+BOOST_AUTO_TEST_CASE(planar_pinned_snap_past_a_fold) {
   const auto a = shipped("planar_pinned");
   const VecX u0 = a->model().default_input_values();
   const VecX far = (VecX(3) << 0.198629, 0.366977, 0.499006).finished();
@@ -429,6 +431,38 @@ BOOST_AUTO_TEST_CASE(planar_pinned_snap_by_damped_motion) {
   check_stable_isolated_landing(*a, landed->state, k.tolerance);
   // The path's end, reached from the landing: a converged FK result with its verdict.
   BOOST_TEST((r.points[1].stability_verdict.verdict != StabilityVerdict::NotChecked));
+}
+
+// The damped motion (pseudo_transient_snap.hpp) on its own, at planar_pinned's fold of the case above:
+// from the last continuation point before the fold, at the fold's inputs, the platform moved by 1 mm
+// along x, it lands on the equilibrium the snap above lands on (1.2 mm from the fold state), stable and
+// isolated (checked as above).
+BOOST_AUTO_TEST_CASE(planar_pinned_damped_motion_past_the_fold) {
+  const auto a = shipped("planar_pinned");
+  const VecX u0 = a->model().default_input_values();
+  const VecX far = (VecX(3) << 0.198629, 0.366977, 0.499006).finished();
+  const std::vector<VecX> path = {u0, u0 + 0.25 * (far - u0)};
+  PathThroughFoldsOptions o;
+  o.at_fold = FoldPolicy::Stop;
+  o.count_unstable_modes = false;
+  o.keep_trace = true;
+  const PathThroughFoldsResult stop = solve_path_through_folds(a, KinematicsOptions{}, path, o);
+  BOOST_TEST_REQUIRE(stop.events.size() == 1u);
+  BOOST_TEST_REQUIRE(!stop.trace.empty());
+  VecX x = stop.trace.back().state;
+  a->set_inputs(x, stop.events[0].inputs);
+  x[a->problem().variable(a->platform_variable(0)).offset] += 1e-3;
+  const double tolerance = KinematicsOptions{}.tolerance;
+  const kinematics::PseudoTransientResult damped = kinematics::pseudo_transient_equilibrium(*a, x, tolerance);
+  BOOST_TEST_MESSAGE("damped motion: " << damped.steps << " pseudo-time steps, "
+                                       << damped.jacobian_evaluations << " Jacobians " << damped.stopped);
+  BOOST_TEST_REQUIRE(damped.converged, damped.stopped);
+  check_stable_isolated_landing(*a, damped.x, tolerance);
+  o.at_fold = FoldPolicy::Snap;
+  const PathThroughFoldsResult snap = solve_path_through_folds(a, KinematicsOptions{}, path, o);
+  BOOST_TEST_REQUIRE(snap.events.size() >= 2u);
+  // The snap's landing is at the fold's inputs + 1e-12 of the path: the same equilibrium to ~1e-12 m.
+  BOOST_TEST((platform_position(*a, damped.x) - snap.events[1].platforms_after[0].position).norm() < 1e-9);
 }
 
 // six_rus from 0.6 to 0.7 of the line from its default crank angles to (0.245646, 0.846723, 0.685542,
