@@ -11,3 +11,6 @@ pcr_add_test(NAME test_paths_through_folds LABELS robots ARGS ${paths_args}
              SOURCES ${CMAKE_CURRENT_LIST_DIR}/paths/test_paths_through_folds.cpp
                      ${CMAKE_CURRENT_LIST_DIR}/stability/robot_discrete.cpp
                      ${CMAKE_CURRENT_LIST_DIR}/stability/discrete_rods.cpp)
+# The damped motion of the snap (robots/src/kinematics/pseudo_transient_snap.hpp, internal) is tested
+# directly: its internal header.
+target_include_directories(test_paths_through_folds PRIVATE ${PROJECT_SOURCE_DIR}/robots/src)

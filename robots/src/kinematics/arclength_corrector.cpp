@@ -1,6 +1,7 @@
 // Pseudo-arclength corrector on the FK system (arclength_corrector.hpp).
 #include "arclength_corrector.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -166,6 +167,18 @@ bool ArcCorrector::start(const VecX& x, ArcPoint& out) {
   out.lambda = 0.0;
   out.tangent = z / std::sqrt(weighted_dot(z, z));
   return true;
+}
+
+void ArcCorrector::rebalance(ArcPoint& p) {
+  const int n = static_cast<int>(free_.size());
+  const double tau = p.tau();
+  const double x_part = (weights_.head(n).array() * p.tangent.head(n).array().square()).sum();
+  if (!(x_part > 0.0) || !(std::abs(tau) > 0.0)) return;
+  // W_x -> c W_x with c x_part / tau^2 = 1 (the x part of the tangent scaled to dlambda = 1 equal to
+  // lambda's); not below 1e-8: a landing next to another fold (tau -> 0) keeps a usable metric.
+  const double c = std::clamp(tau * tau / x_part, 1e-8, 1.0);
+  weights_.head(n) *= c;
+  p.tangent /= std::sqrt(weighted_dot(p.tangent, p.tangent));
 }
 
 ArcPoint ArcCorrector::predictor(const ArcPoint& from, double sigma) const {

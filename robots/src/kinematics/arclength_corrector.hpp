@@ -47,6 +47,12 @@ class ArcCorrector {
   bool at_lambda(const ArcPoint& guess, const VecX& orient, double target, ArcPoint& out,
                  int max_iterations = 12);
 
+  /// Scales the unknowns' weights W down (never up) so that the tangent of p has equal parts in x and
+  /// lambda, as start() does at the segment's start, and renormalises p's tangent. At a snap's landing
+  /// the branch may move much faster in x per input than the start did (a leg buckled: its deflection
+  /// grows like sqrt(L dL)); with the start's W the steps of max_step would then advance lambda by
+  /// |tau| max_step each, a thousand times less than at the start.
+  void rebalance(ArcPoint& p);
   /// y + sigma t, not corrected.
   ArcPoint predictor(const ArcPoint& from, double sigma) const;
 

@@ -66,8 +66,11 @@ constexpr LineSteps kThoroughSteps{0.5, 0.5};
 /// Orders tried by the one-input-at-a-time continuation (the last fallback; bounds its cost on inputs
 /// without a reachable equilibrium: at most this many orders of one leg per input).
 constexpr int kOneInputOrders = 3;
-/// Step budget of the fold-aware continuation from the default inputs (snaps included).
-constexpr int kArclengthSteps = 400;
+/// Step budget of the fold-aware continuation from the default inputs (snaps included). A universal_passive
+/// input of the random sweep (0.260 0.320 0.327 0.212 0.341 0.279) needs 442: two snaps, and 0.56 of the
+/// line between them on a branch whose legs buckle one after the other (3-4 corrector iterations per
+/// step of 0.003 in the inputs).
+constexpr int kArclengthSteps = 600;
 /// Waypoints tried by strategy 6. The 7 inputs of a 1,000-input Stewart-Gough sweep that every other
 /// strategy failed on all converged through waypoint 1 or 2, to stable equilibria (docs/benchmarks.md
 /// "Random FK sweeps").

@@ -3,14 +3,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <sstream>
 
-#include "arclength_corrector.hpp"
 #include "pcr/math/quaternion.hpp"
 #include "pcr/robots/robot_stability.hpp"
 #include "pcr/solve/newton_solver.hpp"
-#include "pseudo_transient_snap.hpp"
+#include "segment_tracer.hpp"
 
 namespace pcr::kinematics {
 
@@ -23,15 +21,17 @@ int unstable_mode_count(const RobotAssembly& assembly, const VecX& x) {
 
 namespace {
 
-/// Steps the snap may follow the curve past a fold before it tries Newton from other starts.
-constexpr int kSnapBranchSteps = 60;
-
-std::vector<Pose> platform_poses(const RobotAssembly& a, const VecX& x) {
-  std::vector<Pose> out;
-  for (int p = 0; p < static_cast<int>(a.model().platforms().size()); ++p)
-    out.push_back(a.platform_pose(x, p));
-  return out;
-}
+/// Steps past a corner of the curve (step_past_corner: the input moved by this fraction of the segment,
+/// the FK Newton solver at fixed inputs), and that solver's iteration budget. On planar_post's corner
+/// Newton converged in 6-8 iterations for every d from 1e-8 to 1e-3 (16 at 1e-2), the platform
+/// moving by 0.2 m per unit of lambda, as on the branch before: no jump.
+constexpr double kCornerSteps[] = {1e-6, 1e-4, 1e-3};
+/// The arclength step (a fraction of max_step) below which step() tries the step past a corner before it
+/// halves on to min_step: on a smooth curve the predictor's error falls like ds^2 and the corrector
+/// converges long before; at a corner it falls like ds (planar_post: 6.9e-7 at ds = 3.9e-6, 1.0e-9 at
+/// 1.2e-8) and the corrector fails at every length.
+constexpr double kCornerStepBelow = 2e-6;
+constexpr int kCornerIterations = 40;
 
 /// Largest platform displacement [m] and rotation angle [rad] between two sets of poses.
 void jump_between(const std::vector<Pose>& before, const std::vector<Pose>& after, PathEvent& e) {
@@ -42,55 +42,22 @@ void jump_between(const std::vector<Pose>& before, const std::vector<Pose>& afte
   }
 }
 
-class SegmentTracer {
- public:
-  SegmentTracer(const RobotAssembly& a, const VecX& u_a, const VecX& u_b, int segment, double tolerance,
-                const PathThroughFoldsOptions& o)
-      : a_(a), arc_(a, u_a, u_b, tolerance), segment_(segment), tolerance_(tolerance), o_(o) {}
+}  // namespace
 
-  SegmentOutcome run(const VecX& x_start, int modes_start);
-
- private:
-  int count(const VecX& x) const { return o_.count_unstable_modes ? unstable_mode_count(a_, x) : -1; }
-  PathEvent event(PathEventKind kind, const ArcPoint& at, int before, int after) const {
-    PathEvent e;
-    e.kind = kind;
-    e.path_parameter = segment_ + at.lambda;
-    e.inputs = arc_.inputs_at(at.lambda);
-    e.unstable_modes_before = before;
-    e.unstable_modes_after = after;
-    e.platforms = platform_poses(a_, at.x);
-    return e;
-  }
-  /// One accepted step from p (step length ds adapted, nu at the new point); false when it cannot go on.
-  bool step(const ArcPoint& p, int nu, double& ds, ArcPoint& q, int& nu_q, double& used);
-  bool pass_fold(ArcPoint& p, int& nu, const ArcPoint& fold, int nu_beyond);
-  ArcPoint locate_fold(const ArcPoint& p, double ds, const ArcPoint& q);
-  void locate_bifurcation(const ArcPoint& p, double ds, int nu, int nu_q);
-  bool finish_at_end(const ArcPoint& p, const ArcPoint& q);
-  bool snap(const ArcPoint& fold, int nu_fold_side, ArcPoint& landing, int& nu_landing);
-  using Acceptable = std::function<bool(int)>;
-  bool snap_along_branch(const ArcPoint& fold, double target, const Acceptable& acceptable, ArcPoint& landing,
-                         int& nu_landing);
-  bool snap_by_newton(const ArcPoint& fold, double target, const Acceptable& acceptable, ArcPoint& landing,
-                      int& nu_landing);
-  bool snap_by_pseudo_transient(const ArcPoint& fold, double target, const Acceptable& acceptable,
-                                ArcPoint& landing, int& nu_landing);
-  bool moved_from_fold(const ArcPoint& fold, const VecX& x) const;
-  bool land_at(const ArcPoint& fold, const VecX& x, double target, ArcPoint& landing);
-  bool budget_left() const { return out_.steps < o_.max_steps; }
-
-  const RobotAssembly& a_;
-  ArcCorrector arc_;
-  int segment_;
-  double tolerance_;
-  const PathThroughFoldsOptions& o_;
-  SegmentOutcome out_;
-  int extra_jacobians_ = 0, extra_iterations_ = 0;  // of the pseudo-transient snaps (not the corrector's)
-};
+std::vector<Pose> platform_poses(const RobotAssembly& a, const VecX& x) {
+  std::vector<Pose> out;
+  for (int p = 0; p < static_cast<int>(a.model().platforms().size()); ++p)
+    out.push_back(a.platform_pose(x, p));
+  return out;
+}
 
 bool SegmentTracer::step(const ArcPoint& p, int nu, double& ds, ArcPoint& q, int& nu_q, double& used) {
+  bool tried_corner = false;
   while (ds >= o_.min_step) {
+    if (ds < kCornerStepBelow * o_.max_step && !tried_corner) {
+      tried_corner = true;
+      if (step_past_corner(p, ds, q, nu_q, used)) return true;
+    }
     const int before = arc_.iterations();
     if (!arc_.arclength_step(p, ds, q)) {
       ds *= 0.5;
@@ -118,6 +85,47 @@ bool SegmentTracer::step(const ArcPoint& p, int nu, double& ds, ArcPoint& q, int
   std::ostringstream why;
   why << "continuation step below " << o_.min_step << " at path parameter " << segment_ + p.lambda;
   out_.stopped = why.str();
+  return false;
+}
+
+/// The corrector failed from p down to kCornerStepBelow x max_step: a corner of the curve, where a contact
+/// switches at a collocation midpoint (the complementarity row's Fischer-Burmeister function is not smooth
+/// where its gap and density both vanish). There the predictor misses the curve by O(ds) (a kink: the tangent
+/// on the other side differs) and the bordered Newton stalls on the complementarity row however short the
+/// step (planar_post, docs/benchmarks.md "Random FK sweeps"). The FK Newton solver (damped, at fixed inputs)
+/// steps past it: at lambda + d from p, for d growing from kCornerSteps[0]; q gets the tangent there. A step,
+/// counted in the budget; false when none converges (step() then halves on to min_step and stops with its
+/// reason).
+bool SegmentTracer::step_past_corner(const ArcPoint& p, double& ds, ArcPoint& q, int& nu_q, double& used) {
+  if (!(p.tau() > 0.0)) return false;  // past a corner going backwards: not a way along the path
+  NewtonOptions no;
+  no.tolerance = tolerance_;
+  NewtonSolver newton(a_.problem(), no);
+  // q's tangent oriented forward in lambda: the corner's two sides are not aligned (the one after it,
+  // oriented by p's, pointed back towards the corner on planar_post), and Newton at fixed inputs
+  // reached q going forward.
+  VecX forward = VecX::Zero(p.tangent.size());
+  forward[forward.size() - 1] = 1.0;
+  for (double d : kCornerSteps) {
+    const double lambda = std::min(1.0, p.lambda + d);
+    VecX x = p.x;
+    a_.set_inputs(x, arc_.inputs_at(lambda));
+    const SolveSummary s = newton.solve(x, kCornerIterations);
+    extra_iterations_ += s.iterations;
+    extra_jacobians_ += s.jacobian_evaluations;
+    ArcPoint guess = p;
+    guess.x = x;
+    guess.lambda = lambda;
+    if (!s.converged() || !arc_.at_lambda(guess, forward, lambda, q)) continue;
+    nu_q = count(q.x);
+    ++out_.steps;
+    const VecX dy = arc_.free_vector(q.x, q.lambda) - arc_.free_vector(p.x, p.lambda);
+    used = std::sqrt(arc_.weighted_dot(dy, dy));
+    if (o_.keep_trace) out_.trace.push_back({segment_ + q.lambda, q.tau(), nu_q, q.x});
+    ds = std::max(o_.min_step, std::min(o_.max_step, used));
+    out_.stopped.clear();
+    return true;
+  }
   return false;
 }
 
@@ -194,110 +202,6 @@ bool SegmentTracer::finish_at_end(const ArcPoint& p, const ArcPoint& q) {
   return true;
 }
 
-bool SegmentTracer::snap(const ArcPoint& fold, int nu_fold_side, ArcPoint& landing, int& nu_landing) {
-  // The snap happens when the input passes the fold's: the landing point is at the fold's inputs.
-  const double target = fold.lambda + 1e-12;
-  // A landing point no less stable than the ending branch (stable for a robot whose branch was stable);
-  // an unknown verdict only where the ending branch's was unknown too.
-  const auto acceptable = [nu_fold_side](int nu) {
-    return nu_fold_side < 0 || (nu >= 0 && nu <= nu_fold_side);
-  };
-  if (snap_along_branch(fold, target, acceptable, landing, nu_landing)) return true;
-  if (snap_by_newton(fold, target, acceptable, landing, nu_landing)) return true;
-  if (snap_by_pseudo_transient(fold, target, acceptable, landing, nu_landing)) return true;
-  std::ostringstream why;
-  why << "no equilibrium as stable as the ending branch (" << nu_fold_side
-      << " unstable modes) found to snap to at path parameter " << segment_ + fold.lambda;
-  out_.stopped = why.str();
-  return false;
-}
-
-/// Follows the curve past the fold (the branch beyond it, lambda decreasing) until it comes back to the
-/// fold's inputs going forward at an acceptable point (an S-shaped curve: past a second fold), within
-/// kSnapBranchSteps steps.
-bool SegmentTracer::snap_along_branch(const ArcPoint& fold, double target, const Acceptable& acceptable,
-                                      ArcPoint& landing, int& nu_landing) {
-  ArcPoint p = fold, q;
-  int nu = count(fold.x), nu_q = 0;
-  double ds = 0.25 * o_.max_step, used = 0.0;
-  for (int k = 0; k < kSnapBranchSteps && budget_left() && p.lambda > -1.0; ++k) {
-    if (!step(p, nu, ds, q, nu_q, used)) return false;
-    if (p.tau() > 0.0 && q.tau() > 0.0 && p.lambda < target && q.lambda >= target &&
-        arc_.at_lambda(p, q.tangent, target, landing)) {
-      nu_landing = unstable_mode_count(a_, landing.x);
-      if (acceptable(nu_landing)) return true;
-    }
-    p = q;
-    nu = nu_q;
-  }
-  return false;
-}
-
-/// Damped Newton (NewtonSolver) on the FK system at the fold's inputs from starts away from the fold: the
-/// fold state pushed along the fold mode (the tangent there, pointing from the ending branch to the one
-/// beyond it) by growing amounts, either way, then the assembly's straight initial guess. The first
-/// acceptable equilibrium that is not the fold state itself.
-bool SegmentTracer::snap_by_newton(const ArcPoint& fold, double target, const Acceptable& acceptable,
-                                   ArcPoint& landing, int& nu_landing) {
-  NewtonOptions no;
-  no.tolerance = tolerance_;
-  NewtonSolver newton(a_.problem(), no);
-  const VecX u = arc_.inputs_at(target);
-  std::vector<VecX> starts;
-  for (double amplitude : {0.5, 1.0, 2.0, 4.0, -0.5, -1.0, -2.0})
-    starts.push_back(arc_.predictor(fold, amplitude * o_.max_step).x);
-  starts.push_back(a_.initial_guess());
-  for (VecX& x : starts) {
-    a_.set_inputs(x, u);
-    if (!newton.solve(x, 60).converged() || !moved_from_fold(fold, x)) continue;
-    nu_landing = unstable_mode_count(a_, x);
-    if (acceptable(nu_landing) && land_at(fold, x, target, landing)) return true;
-  }
-  return false;
-}
-
-/// Pseudo-transient continuation (pseudo_transient_snap.hpp: damped platforms and passive joints, the
-/// rods quasi-static) at the fold's inputs from the fold state pushed along the fold mode, either way:
-/// the damped motion of the robot past the fold. The first acceptable equilibrium away from the fold.
-bool SegmentTracer::snap_by_pseudo_transient(const ArcPoint& fold, double target,
-                                             const Acceptable& acceptable, ArcPoint& landing,
-                                             int& nu_landing) {
-  const VecX u = arc_.inputs_at(target);
-  // The platforms and passive joints damped alone, then with the diagonal shift on the other unknowns
-  // (pseudo_transient_snap.hpp; 1e-3 of the dampers' unit stiffness).
-  for (double shift : {0.0, 1e-3})
-    for (double amplitude : {1.0, -1.0, 4.0, -4.0}) {
-      VecX x = arc_.predictor(fold, amplitude * o_.max_step).x;
-      a_.set_inputs(x, u);
-      const PseudoTransientResult r = pseudo_transient_equilibrium(a_, x, tolerance_, shift);
-      extra_jacobians_ += r.jacobian_evaluations;
-      extra_iterations_ += r.iterations;
-      if (!r.converged || !moved_from_fold(fold, r.x)) continue;
-      nu_landing = unstable_mode_count(a_, r.x);
-      if (acceptable(nu_landing) && land_at(fold, r.x, target, landing)) return true;
-    }
-  return false;
-}
-
-/// Whether the equilibrium x is another one than the fold state (its first platform moved by more than
-/// 1e-4 of the length scale; without platforms every x counts).
-bool SegmentTracer::moved_from_fold(const ArcPoint& fold, const VecX& x) const {
-  if (a_.model().platforms().empty()) return true;
-  const double moved = (a_.platform_pose(x, 0).position - a_.platform_pose(fold.x, 0).position).norm();
-  return moved >= 1e-4 * a_.length_scale();
-}
-
-/// The landing point x (an equilibrium at the target inputs) with its tangent, by the corrector at the
-/// same inputs.
-bool SegmentTracer::land_at(const ArcPoint& fold, const VecX& x, double target, ArcPoint& landing) {
-  ArcPoint guess = fold;
-  guess.x = x;
-  guess.lambda = target;
-  VecX e_lambda = VecX::Zero(fold.tangent.size());
-  e_lambda[e_lambda.size() - 1] = 1.0;
-  return arc_.at_lambda(guess, e_lambda, target, landing);
-}
-
 /// The fold between p and q: report it; Stop ends the segment there (false), Snap lands on the stable
 /// equilibrium it jumps to (p, nu: the landing point, true).
 bool SegmentTracer::pass_fold(ArcPoint& p, int& nu, const ArcPoint& fold, int nu_beyond) {
@@ -316,6 +220,7 @@ bool SegmentTracer::pass_fold(ArcPoint& p, int& nu, const ArcPoint& fold, int nu
   ArcPoint landing;
   int nu_landing = -1;
   if (!snap(fold, nu, landing, nu_landing)) return false;
+  arc_.rebalance(landing);  // the branch it lands on may move faster in x than the start did
   PathEvent s = event(PathEventKind::Snap, fold, nu, nu_landing);
   s.platforms_before = platform_poses(a_, fold.x);
   s.platforms_after = platform_poses(a_, landing.x);
@@ -379,8 +284,6 @@ SegmentOutcome SegmentTracer::run(const VecX& x_start, int modes_start) {
   out_.jacobian_evaluations = arc_.jacobian_evaluations() + extra_jacobians_;
   return out_;
 }
-
-}  // namespace
 
 SegmentOutcome continue_segment(const RobotAssembly& assembly, const VecX& x_start, int modes_start,
                                 const VecX& u_a, const VecX& u_b, int segment, double tolerance,
