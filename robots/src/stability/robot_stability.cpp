@@ -12,12 +12,17 @@ namespace pcr {
 
 namespace {
 
-/// Relative asymmetry of K in its diagonal scaling (as for the rods' segment stiffnesses).
-double scaled_asymmetry(const MatX& K) {
+/// K in its diagonal scaling D K D, D = diag(|K_ii|^-1/2) (as for the rods' segment stiffnesses): a
+/// congruence, so its symmetric part has the same count of negative eigenvalues as K's (Sylvester).
+MatX diagonally_scaled(const MatX& K) {
   VecX d(K.rows());
   for (int i = 0; i < K.rows(); ++i)
     d[i] = std::abs(K(i, i)) > 0.0 ? 1.0 / std::sqrt(std::abs(K(i, i))) : 1.0;
-  const MatX Ks = d.asDiagonal() * K * d.asDiagonal();
+  return d.asDiagonal() * K * d.asDiagonal();
+}
+
+/// Relative asymmetry of K: max |Ks - Ks^T| of the diagonally scaled Ks.
+double scaled_asymmetry(const MatX& Ks) {
   return (Ks - Ks.transpose()).cwiseAbs().maxCoeff();
 }
 
@@ -25,18 +30,21 @@ double scaled_asymmetry(const MatX& K) {
 /// residual of the solve); beyond this the state is not an accurate equilibrium.
 constexpr double kMaxAsymmetry = 1e-4;
 /// Between kMaxAsymmetry and this, the count is kept where no error of the asymmetry's size can change
-/// it: every eigenvalue of the symmetrised K_hat farther than n x asymmetry from zero (Weyl: a symmetric
+/// it: every eigenvalue of the symmetrised diagonally scaled K_hat (the scaling in which the asymmetry
+/// is measured) farther than n x asymmetry from zero (Weyl: a symmetric
 /// perturbation E of an n x n matrix moves each eigenvalue by at most |E|_2 <= n max|E_ij|), the
 /// asymmetry taken as the size of the discretisation error it is the antisymmetric part of (passive_hinge,
 /// strongly compressed and bent at 8 elements per rod: 1.1e-4 - 5.1e-4; at the first such state 1.1e-4
 /// at 8 elements, 3.4e-7 at 16, 5.9e-9 at 32, docs/benchmarks.md "Random FK sweeps").
 constexpr double kMaxClearAsymmetry = 1e-3;
 
-/// The reason the count of K_hat (symmetrised, eigenvalues ascending) is not trusted, or "".
-std::string asymmetry_failure(double asymmetry, const VecX& lambda) {
+/// The reason the count of K_hat (Ks: diagonally scaled) is not trusted, or "".
+std::string asymmetry_failure(double asymmetry, const MatX& Ks) {
+  if (asymmetry <= kMaxAsymmetry) return "";
+  const VecX lambda = Eigen::SelfAdjointEigenSolver<MatX>(0.5 * (Ks + Ks.transpose())).eigenvalues();
   const double n = static_cast<double>(lambda.size());
   const bool clear = lambda.size() == 0 || lambda.cwiseAbs().minCoeff() > n * asymmetry;
-  if (asymmetry <= kMaxAsymmetry || (asymmetry <= kMaxClearAsymmetry && clear)) return "";
+  if (asymmetry <= kMaxClearAsymmetry && clear) return "";
   std::ostringstream msg;
   msg << "reduced stiffness of the platforms and passive joints not symmetric: relative asymmetry "
       << asymmetry << " > " << (asymmetry > kMaxClearAsymmetry ? kMaxClearAsymmetry : kMaxAsymmetry);
@@ -53,13 +61,14 @@ bool add_border(const RobotAssembly& assembly, const VecX& x, Stability& s) {
     s = unknown_stability(border.failure);
     return false;
   }
-  const double asymmetry = scaled_asymmetry(border.stiffness);
+  const MatX scaled = diagonally_scaled(border.stiffness);
+  const double asymmetry = scaled_asymmetry(scaled);
   s.asymmetry = std::max(s.asymmetry, asymmetry);
   // Eigenvalues in the dimensionless form (bending stiffnesses O(1)); the tolerance as for the rods.
   const double tolerance = std::max(1e-8, 10.0 * asymmetry);
   const Eigen::SelfAdjointEigenSolver<MatX> eig(0.5 * (border.stiffness + border.stiffness.transpose()));
   const VecX& lambda = eig.eigenvalues();
-  const std::string failure = asymmetry_failure(asymmetry, lambda);
+  const std::string failure = asymmetry_failure(asymmetry, scaled);
   if (!failure.empty()) {
     s = unknown_stability(failure);
     return false;
