@@ -383,6 +383,13 @@ void check_stable_isolated_landing(const RobotAssembly& a, const VecX& landing, 
 
 }  // namespace
 
+/// From the default lengths a quarter of the way towards the failing sweep input below.
+std::vector<VecX> planar_pinned_quarter_path(const RobotAssembly& a) {
+  const VecX u0 = a.model().default_input_values();
+  const VecX far = (VecX(3) << 0.198629, 0.366977, 0.499006).finished();
+  return {u0, u0 + 0.25 * (far - u0)};
+}
+
 // planar_pinned from its default lengths a quarter of the way towards (0.198629, 0.366977, 0.499006) m, an
 // input of the random FK sweep (docs/benchmarks.md, "Random FK sweeps") on which FK failed: the stable
 // branch ends at a fold at 0.21471 of the line (0.85884 of this path), the branch beyond it does not
@@ -395,9 +402,7 @@ void check_stable_isolated_landing(const RobotAssembly& a, const VecX& landing, 
 // the fold), and the verdict. The discrete energy model does not cover this robot (pinned rod ends).
 BOOST_AUTO_TEST_CASE(planar_pinned_snap_past_a_fold) {
   const auto a = shipped("planar_pinned");
-  const VecX u0 = a->model().default_input_values();
-  const VecX far = (VecX(3) << 0.198629, 0.366977, 0.499006).finished();
-  const std::vector<VecX> path = {u0, u0 + 0.25 * (far - u0)};
+  const std::vector<VecX> path = planar_pinned_quarter_path(*a);
   PathThroughFoldsOptions o;
   o.at_fold = FoldPolicy::Snap;
   o.count_unstable_modes = false;  // as FK's last strategy: counted at the folds and the landings only
@@ -439,9 +444,7 @@ BOOST_AUTO_TEST_CASE(planar_pinned_snap_past_a_fold) {
 // isolated (checked as above).
 BOOST_AUTO_TEST_CASE(planar_pinned_damped_motion_past_the_fold) {
   const auto a = shipped("planar_pinned");
-  const VecX u0 = a->model().default_input_values();
-  const VecX far = (VecX(3) << 0.198629, 0.366977, 0.499006).finished();
-  const std::vector<VecX> path = {u0, u0 + 0.25 * (far - u0)};
+  const std::vector<VecX> path = planar_pinned_quarter_path(*a);
   PathThroughFoldsOptions o;
   o.at_fold = FoldPolicy::Stop;
   o.count_unstable_modes = false;
