@@ -28,7 +28,7 @@ stage "Release tests done"
 # of its build time): studies of code the other tests cover, and unit tests of code that the sanitized
 # end-to-end tests run too (the pcr tool through test_cli/test_cli_tools - fk, ik with objectives,
 # path, workspace, --stability -, test_kinematics, test_joints, test_concurrent_solves, test_workspace,
-# test_collocation_rod, test_structured_lu, test_shooting_joints, the loader's corpus and checks).
+# test_collocation_rod, test_structured_lu, the loader's corpus and checks).
 sanitizer_skip="test_hard_rods;test_rod_convergence;test_shooting_crosscheck;test_singular_poses"
 sanitizer_skip+=";test_stability_verdict;test_shooting;test_six_rus;test_splines;test_joint_crosscheck"
 sanitizer_skip+=";test_problem;test_newton;test_ik_objectives;test_shooting_robots;test_rod_validation"
@@ -40,6 +40,7 @@ sanitizer_skip+=";test_contact_adhesion"  # adhesive rollers: Release only (as t
 sanitizer_skip+=";test_contact_ipopt;test_moving_obstacles"  # Ipopt as test_ipopt; moving obstacles: Release only
 sanitizer_skip+=";test_robot_model"  # the loader runs sanitized through test_fuzz_corpus, test_model_file_checks
 sanitizer_skip+=";test_random_sweeps"  # the FK strategies run sanitized through test_kinematics and test_cli
+sanitizer_skip+=";test_drawn_rod;test_shooting_joints"  # drawn rods, robot shooting with joints: Release only (CI time)
 bash "$root/scripts/build.sh" "$root/build/sanitize" -DPCR_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-Og -g0" -DPCR_BUILD_BENCHMARKS=OFF -DPCR_BUILD_PYTHON=OFF \
   -DPCR_SKIP_TESTS="$sanitizer_skip"
