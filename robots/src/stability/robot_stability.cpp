@@ -64,24 +64,29 @@ bool add_border(const RobotAssembly& assembly, const VecX& x, Stability& s) {
   const MatX scaled = diagonally_scaled(border.stiffness);
   const double asymmetry = scaled_asymmetry(scaled);
   s.asymmetry = std::max(s.asymmetry, asymmetry);
-  // Eigenvalues in the dimensionless form (bending stiffnesses O(1)); the tolerance as for the rods.
-  const double tolerance = std::max(1e-8, 10.0 * asymmetry);
-  const Eigen::SelfAdjointEigenSolver<MatX> eig(0.5 * (border.stiffness + border.stiffness.transpose()));
-  const VecX& lambda = eig.eigenvalues();
   const std::string failure = asymmetry_failure(asymmetry, scaled);
   if (!failure.empty()) {
     s = unknown_stability(failure);
     return false;
   }
-  s.margin = lambda[0];
-  s.length_scale = assembly.length_scale();
-  s.energy_scale = assembly.moment_scale();
-  for (int i = 0; i < lambda.size(); ++i) {
-    if (lambda[i] < -tolerance)
+  // The count on the symmetrised K_hat, in the scaling its asymmetry is measured in (the same inertia as
+  // K's symmetric part: a congruence); the tolerance as for the rods' scaled segment stiffnesses.
+  const double tolerance = std::max(1e-8, 10.0 * asymmetry);
+  const VecX scaled_lambda =
+      Eigen::SelfAdjointEigenSolver<MatX>(0.5 * (scaled + scaled.transpose()), Eigen::EigenvaluesOnly)
+          .eigenvalues();
+  for (int i = 0; i < scaled_lambda.size(); ++i) {
+    if (scaled_lambda[i] < -tolerance)
       ++s.border_unstable_modes;
-    else if (lambda[i] <= tolerance)
+    else if (scaled_lambda[i] <= tolerance)
       ++s.neutral_modes;
   }
+  // The margin: the smallest eigenvalue of the dimensionless K (bending stiffnesses O(1)).
+  const Eigen::SelfAdjointEigenSolver<MatX> eig(0.5 * (border.stiffness + border.stiffness.transpose()),
+                                                Eigen::EigenvaluesOnly);
+  s.margin = eig.eigenvalues()[0];
+  s.length_scale = assembly.length_scale();
+  s.energy_scale = assembly.moment_scale();
   return true;
 }
 
