@@ -7,8 +7,9 @@
 // not.
 //
 // Short sweep by default (CI); long mode: test_random_sweeps -- --solves=N [--seed=S] [--stability=1]
-// [--trace=1] (N warm solves per model; one cold solve per 5 warm ones; --stability=1: each result with
-// its stability verdict, the stable fraction reported; --trace=1: one line per solve, warm and cold in
+// [--cold-every=K] [--trace=1] (N warm solves per model; one cold solve per K = 5 warm ones, K = 1: every
+// input warm and cold; --stability=1: each result with its stability verdict, the stable fraction
+// reported; --trace=1: one line per solve, warm and cold in
 // the order solved: time with the verdict and FK alone [s], iterations, fresh Jacobians, status, verdict,
 // unstable modes, margin, the first platform's position [m], message; for comparing runs by the
 // equilibria they reach and their verdicts).
@@ -333,9 +334,10 @@ void report(const std::string& name, const std::string& mode, const Stats& s) {
 
 /// `ci_solves` warm solves (CI: 240 over the three models, about 50 s in Release; FK from a random jump
 /// needs continuation, about 0.7 s CPU per Stewart-Gough solve and 0.16 s per planar one), or
-/// --solves=N; one cold solve per 5 warm ones.
+/// --solves=N; one cold solve per 5 warm ones (--cold-every=K: per K warm ones; 1: every input both ways).
 void sweep(const std::string& name, unsigned seed, long ci_solves) {
   const long solves = argument("solves", ci_solves);
+  const long cold_every = std::max(1L, static_cast<long>(argument("cold-every", 5)));
   const auto model = load_model(name);
   KinematicsOptions o;  // defaults: Newton, tolerance 1e-10
   o.stability_verdict = argument("stability", 0) != 0;
@@ -349,7 +351,7 @@ void sweep(const std::string& name, unsigned seed, long ci_solves) {
     for (size_t i = 0; i < draw.size(); ++i) u[i] = draw[i](rng);
     RobotSolution sw, sc;
     const bool w_ok = solve_and_check(name, warm, u, o, ws, sw);
-    if (k % 5 == 0) {
+    if (k % cold_every == 0) {
       // A fresh state over the same model and assembly (as `pcr workspace` solves its samples): no
       // solution yet, the default equilibrium solved once per model (fk_data.hpp).
       ForwardKinematics cold = warm.with_fresh_state();
