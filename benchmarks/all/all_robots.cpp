@@ -217,8 +217,11 @@ void collocation_setting(const Scenes& sc, const References& ref, const AllConfi
     out.record("R5a_ik_cold", form + (s.summary.solver.empty() ? to_string(solver) : s.summary.solver),
                settings, error, t, s.summary.iterations, to_string(s.summary.status));
   }
+  // The path rows measure the inputs only: no centerline samples (the axial stretch check stays).
+  KinematicsOptions path_options = o;
+  path_options.read_centerline = false;
   for (const PathScene& scene : path ? path_scenes(sc, ref, config) : std::vector<PathScene>{}) {
-    InverseKinematics ik(sc.r5b, {platform_target()}, o);
+    InverseKinematics ik(sc.r5b, {platform_target()}, path_options);
     std::string used = to_string(solver);
     const PathRun run = run_path(scene.poses, scene.reference, [&](const Pose& p) {
       RobotSolution s = ik.solve({p});

@@ -157,7 +157,9 @@ Outcome run(const Settings& s) {
       solver.ik({path[0]});
       return measured_region(solver, path);
     }
-    InverseKinematics ik(load_r5b(), {platform_target()}, robot_options(s));
+    KinematicsOptions o = robot_options(s);
+    o.read_centerline = false;  // as bench_all's path rows
+    InverseKinematics ik(load_r5b(), {platform_target()}, o);
     ik.solve({path[0]});
     return measured_region(ik, path);
   }

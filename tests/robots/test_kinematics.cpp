@@ -394,6 +394,62 @@ BOOST_AUTO_TEST_CASE(a_rod_compressed_to_a_point_is_not_a_solution) {
   BOOST_CHECK_THROW(fk.input_jacobian(), InputError);  // no converged solution to differentiate
 }
 
+BOOST_AUTO_TEST_CASE(without_centerline_samples_the_compressed_rod_still_fails) {
+  // As above with KinematicsOptions::read_centerline = false: the axial stretch check does not depend
+  // on the centerline being read out.
+  const std::string xml = R"(<?xml version="1.0"?>
+<robot name="coinciding_ends"><link name="base"/><link name="anchor"/>
+  <joint name="fix" type="fixed"><parent link="base"/><child link="anchor"/><origin xyz="0 0 0" rpy="0 0 0"/></joint>
+  <pcr_rod name="loop">
+    <start link="base" xyz="0 0 0" rpy="0 0 0" coupling="clamped"/>
+    <end link="anchor" xyz="0 0 0" rpy="0 0 0" coupling="clamped"/>
+    <material youngs_modulus="200e9" shear_modulus="80e9" density="8000"/>
+    <section type="circle" radius="0.0005"/>
+    <length value="0.3"/>
+  </pcr_rod>
+</robot>)";
+  const auto model = std::make_shared<const RobotModel>(parse_robot_model(xml, "coinciding_ends"));
+  KinematicsOptions o;
+  o.tolerance = 1e-8;
+  o.read_centerline = false;
+  ForwardKinematics fk(model, o);
+  const RobotSolution s = fk.solve(model->default_input_values());
+  BOOST_TEST(!s.summary.converged(), s.summary.brief_report());
+  BOOST_TEST(s.summary.message.find("inadmissible state: rod 'loop'") != std::string::npos,
+             s.summary.message);
+  BOOST_TEST(s.rods.at(0).min_axial_stretch <= 1e-6);
+  BOOST_TEST(s.rods.at(0).centerline.empty());
+}
+
+BOOST_AUTO_TEST_CASE(read_centerline_false_leaves_out_only_the_centerline) {
+  // Two IK objects along the same steps of the R5b teleoperation path, one without centerline samples:
+  // the same solves (the read-out comes after the solve), so every other result agrees to the bit, and
+  // the smallest axial stretch is the minimum over the same sample points.
+  const auto teleop = load_model("stewart_gough_teleop");
+  KinematicsOptions with, without;
+  without.read_centerline = false;
+  LinkTarget target;
+  target.link = "platform";
+  InverseKinematics a(teleop, {target}, with), b(teleop, {target}, without);
+  for (int i = 0; i < 4; ++i) {
+    Pose pose;
+    pose.position = Vec3(0.0, 0.02 + 0.001 * i, 0.48 + 0.001 * i);
+    const RobotSolution sa = a.solve({pose}), sb = b.solve({pose});
+    BOOST_TEST_REQUIRE(sa.summary.converged(), sa.summary.brief_report());
+    BOOST_TEST_REQUIRE(sb.summary.converged(), sb.summary.brief_report());
+    BOOST_TEST((sa.inputs - sb.inputs).lpNorm<Eigen::Infinity>() == 0.0, "step " << i);
+    BOOST_TEST((sa.platforms[0].position - sb.platforms[0].position).norm() == 0.0, "step " << i);
+    BOOST_TEST_REQUIRE(sa.rods.size() == sb.rods.size());
+    for (size_t r = 0; r < sa.rods.size(); ++r) {
+      BOOST_TEST(sa.rods[r].centerline.size() == static_cast<size_t>(with.centerline_points));
+      BOOST_TEST(sb.rods[r].centerline.empty());
+      BOOST_TEST(sb.rods[r].min_axial_stretch == sa.rods[r].min_axial_stretch, "step " << i << " rod " << r);
+      BOOST_TEST((sb.rods[r].tip_force - sa.rods[r].tip_force).norm() == 0.0);
+      BOOST_TEST((sb.rods[r].base_moment - sa.rods[r].base_moment).norm() == 0.0);
+    }
+  }
+}
+
 BOOST_AUTO_TEST_CASE(admissible_solutions_report_their_smallest_axial_stretch) {
   // Steel rods under platform loads of a few N: |eps3| = |n| / EA ~ 1e-5, so v3 within 1e-3 of 1.
   const auto model = load_model("stewart_gough");

@@ -245,8 +245,10 @@ std::vector<std::pair<std::string, double>> Problem::violation_by_kind(const Vec
     const ResidualBlock& block = *m.residuals[b];
     const int offset = m.rows.row_offset[b];
     double& worst = result[m.rows.kind_of_block[b]].second;
+    const double* lower = block.row_lower().data();
+    const double* upper = block.row_upper().data();
     for (int r = 0; r < block.num_rows(); ++r)
-      worst = std::max(worst, row_violation(c[offset + r], block.row_lower()[r], block.row_upper()[r]));
+      worst = std::max(worst, row_violation(c[offset + r], lower[r], upper[r]));
   }
   return result;
 }

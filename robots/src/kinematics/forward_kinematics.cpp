@@ -127,8 +127,8 @@ RobotSolution ForwardKinematics::solve(const VecX& inputs) {
   VecX x;
   const SolveSummary summary = kinematics::solve_with_fallbacks(d, inputs, x);
   bool accepted = false;
-  RobotSolution out =
-      kinematics::finish_solution(*m.assembly, x, d.x, summary, start, m.sample_bases, accepted);
+  RobotSolution out = kinematics::finish_solution(*m.assembly, x, d.x, summary, start, m.sample_bases,
+                                                  m.options.read_centerline, accepted);
   if (accepted) {
     d.x = x;
     d.has_solution = true;

@@ -201,8 +201,8 @@ RobotSolution InverseKinematics::solve(const std::vector<Pose>& target_poses, co
   a.summary.iterations = a.iterations;
   a.summary.jacobian_evaluations = a.jacobians;
   bool accepted = false;
-  RobotSolution out =
-      kinematics::finish_solution(assembly, a.x, d.x, a.summary, start, m.sample_bases, accepted);
+  RobotSolution out = kinematics::finish_solution(assembly, a.x, d.x, a.summary, start, m.sample_bases,
+                                                  m.options.read_centerline, accepted);
   if (accepted) {
     d.x = a.x;
     d.predictor.accept(d.x, z);

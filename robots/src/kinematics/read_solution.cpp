@@ -20,10 +20,12 @@ RobotSolution read_solution(const RobotAssembly& a, const VecX& x, int centerlin
 }
 
 RobotSolution read_solution(const RobotAssembly& a, const VecX& x,
-                            const std::vector<std::vector<BasisDerivatives>>& sample_bases) {
+                            const std::vector<std::vector<BasisDerivatives>>& sample_bases,
+                            bool with_centerline) {
   require(static_cast<int>(sample_bases.size()) == a.num_rods(), "read_solution: ", sample_bases.size(),
           " sample bases for ", a.num_rods(), " rods");
   RobotSolution s;
+  s.rods.reserve(a.num_rods());
   s.inputs = a.inputs(x);
   for (size_t p = 0; p < a.model().platforms().size(); ++p)
     s.platforms.push_back(a.platform_pose(x, static_cast<int>(p)));
@@ -46,9 +48,13 @@ RobotSolution read_solution(const RobotAssembly& a, const VecX& x,
     r.tip_force = t.force;
     r.tip_moment = t.moment;
     r.axial_force = b.force.dot(b.rotation.col(2));
-    std::vector<double> stretches;
-    rod.sample_centerline(x, v, bases, r.centerline, stretches);
-    r.min_axial_stretch = *std::min_element(stretches.begin(), stretches.end());
+    if (with_centerline) {
+      std::vector<double> stretches;
+      rod.sample_centerline(x, v, bases, r.centerline, stretches);
+      r.min_axial_stretch = *std::min_element(stretches.begin(), stretches.end());
+    } else {
+      r.min_axial_stretch = rod.min_axial_stretch(x, v, bases);
+    }
     s.rods.push_back(std::move(r));
     if (const RodContactVariables* contact = a.rod_contact(i)) {
       // Obstacles on moving links at the solution's link poses (the assembly holds their initial ones).

@@ -69,10 +69,10 @@ IpoptOptions ipopt_options(const KinematicsOptions& o) {
 RobotSolution finish_solution(const RobotAssembly& assembly, const VecX& x, const VecX& x_fallback,
                               SolveSummary summary, Clock::time_point start,
                               const std::vector<std::vector<BasisDerivatives>>& sample_bases,
-                              bool& accepted) {
+                              bool with_centerline, bool& accepted) {
   summary.wall_time_seconds = seconds_since(start);
   mark_non_finite(x, summary);
-  RobotSolution out = read_solution(assembly, x.allFinite() ? x : x_fallback, sample_bases);
+  RobotSolution out = read_solution(assembly, x.allFinite() ? x : x_fallback, sample_bases, with_centerline);
   out.summary = summary;
   append_contact_warning(out);
   accepted = reject_inadmissible(out);

@@ -22,10 +22,12 @@ IpoptOptions ipopt_options(const KinematicsOptions& o);
 /// The solution read from x (x_fallback where x is not finite, with the summary marked failed: a solver
 /// never hands back NaN) with `summary` (its wall time: since start).
 /// A converged solution with a rod compressed to a point or inverted is marked failed too
-/// (admissible_axial_stretch). accepted: whether the solution stays converged.
+/// (admissible_axial_stretch). with_centerline: KinematicsOptions::read_centerline. accepted: whether the
+/// solution stays converged.
 RobotSolution finish_solution(const RobotAssembly& assembly, const VecX& x, const VecX& x_fallback,
                               SolveSummary summary, Clock::time_point start,
-                              const std::vector<std::vector<BasisDerivatives>>& sample_bases, bool& accepted);
+                              const std::vector<std::vector<BasisDerivatives>>& sample_bases,
+                              bool with_centerline, bool& accepted);
 
 /// Appends contact_penetration_warning (rod_contact.hpp) of s.contact_gaps, if any, to s.summary.message.
 void append_contact_warning(RobotSolution& s);

@@ -1,5 +1,7 @@
 // Post-processing of a collocation rod: states (p, R, n, m, strains) at arc lengths from a solution.
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "form_builder.hpp"
 #include "pcr/math/quaternion.hpp"
@@ -92,6 +94,22 @@ std::vector<RodState> CollocationRod::sample(const VecX& x, const RodVariables& 
   return out;
 }
 
+namespace {
+
+/// v3 = d3 . p_s with d3 = R(q) e3 = A(q) e3 / |q|^2 (the third column of rotation_matrix, the same
+/// operations) and p_s = p_u / L.
+double axial_stretch(const Quat& q, const Vec3& p_u, double L) {
+  const double S = q.squaredNorm();
+  require(S > 0.0 && std::isfinite(S),
+          "rotation_matrix: quaternion must be finite and non-zero, got |q|^2 = ", S);
+  const double w = q[0], qx = q[1], qy = q[2], qz = q[3];
+  const Vec3 d3 =
+      Vec3(2 * (qx * qz + w * qy), 2 * (qy * qz - w * qx), w * w - qx * qx - qy * qy + qz * qz) / S;
+  return d3.dot(p_u / L);
+}
+
+}  // namespace
+
 void CollocationRod::sample_centerline(const VecX& x, const RodVariables& vars,
                                        const std::vector<BasisDerivatives>& basis,
                                        std::vector<Vec3>& positions,
@@ -114,8 +132,33 @@ void CollocationRod::sample_centerline(const VecX& x, const RodVariables& vars,
     }
     positions[k] = p;
     // v3 = 1 + (R^T p_s - e3)_3 = d3 . p_s (state_with_basis and axial_stretch)
-    axial_stretches[k] = rotation_matrix(q).col(2).dot(p_u / L);
+    axial_stretches[k] = axial_stretch(q, p_u, L);
   }
+}
+
+double CollocationRod::min_axial_stretch(const VecX& x, const RodVariables& vars,
+                                         const std::vector<BasisDerivatives>& basis) const {
+  const double L = length(x, vars);
+  require(std::isfinite(L) && L > 0.0, "rod '", model_.name, "': length ", L, " is not positive");
+  require(!basis.empty() && basis.front().values.rows() >= 2,
+          "min_axial_stretch: no sample points with "
+          "first derivatives");
+  const int cp = control_point_size(), kP = point_layout().p, kQ = point_layout().q;
+  double least = std::numeric_limits<double>::infinity();
+  for (const BasisDerivatives& d : basis) {
+    // q and dp/du in scalars (the sums of sample_centerline in the same order): B(0, i), B(1, i) are
+    // b[2 i], b[2 i + 1] of the column-major 2 x (p + 1) values.
+    const double* b = d.values.data();
+    const double* c = x.data() + vars.control_point_offset + d.first * cp;
+    double q0 = 0.0, q1 = 0.0, q2 = 0.0, q3 = 0.0, u0 = 0.0, u1 = 0.0, u2 = 0.0;
+    for (int i = 0; i <= discretization_.degree; ++i, c += cp) {
+      const double b0 = b[2 * i], b1 = b[2 * i + 1];
+      u0 += b1 * c[kP], u1 += b1 * c[kP + 1], u2 += b1 * c[kP + 2];
+      q0 += b0 * c[kQ], q1 += b0 * c[kQ + 1], q2 += b0 * c[kQ + 2], q3 += b0 * c[kQ + 3];
+    }
+    least = std::min(least, axial_stretch(Quat(q0, q1, q2, q3), Vec3(u0, u1, u2), L));
+  }
+  return least;
 }
 
 }  // namespace pcr

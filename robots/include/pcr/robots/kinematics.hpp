@@ -81,6 +81,11 @@ struct KinematicsOptions {
   double tolerance = 1e-10;                ///< max-abs of the dimensionless residuals
   int max_iterations = 100;
   int centerline_points = 21;  ///< points per rod in the results
+  /// false: RodResult::centerline is left empty (the rest of the results as with true; the axial stretch
+  /// check still samples the centerline_points), for paths whose caller needs only inputs, poses and
+  /// wrenches: the samples are about a tenth of a warm R5b solve (docs/benchmarks.md, "Time split of a
+  /// warm R5b solve").
+  bool read_centerline = true;
   /// Newton reuses its last factorisation across warm-started solves (see NewtonOptions).
   bool reuse_factorization = true;
   /// LU of the Newton systems: Auto factors each rod's band and condenses onto the platform poses and
@@ -205,8 +210,10 @@ class InverseKinematics {
 RobotSolution read_solution(const RobotAssembly& assembly, const VecX& x, int centerline_points);
 /// The same with each rod's sample bases computed once (CollocationRod::sample_basis, one entry per
 /// rod with max(2, centerline_points) points), for many solutions of one assembly.
+/// with_centerline = false leaves RodResult::centerline empty (KinematicsOptions::read_centerline).
 RobotSolution read_solution(const RobotAssembly& assembly, const VecX& x,
-                            const std::vector<std::vector<BasisDerivatives>>& sample_bases);
+                            const std::vector<std::vector<BasisDerivatives>>& sample_bases,
+                            bool with_centerline = true);
 /// sample_bases for read_solution.
 std::vector<std::vector<BasisDerivatives>> sample_bases(const RobotAssembly& assembly, int centerline_points);
 

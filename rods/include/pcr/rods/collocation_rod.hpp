@@ -198,6 +198,10 @@ class CollocationRod {
   /// `basis` (the same values as sample() gives, without rotations, curvatures and wrenches).
   void sample_centerline(const VecX& x, const RodVariables& vars, const std::vector<BasisDerivatives>& basis,
                          std::vector<Vec3>& positions, std::vector<double>& axial_stretches) const;
+  /// The smallest axial stretch v3 = d3 . p_s at the points of `basis` (the minimum of
+  /// sample_centerline's axial_stretches, without the positions).
+  double min_axial_stretch(const VecX& x, const RodVariables& vars,
+                           const std::vector<BasisDerivatives>& basis) const;
   /// Rod length in x.
   double length(const VecX& x, const RodVariables& vars) const;
 
