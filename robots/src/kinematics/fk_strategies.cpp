@@ -381,6 +381,44 @@ bool via_waypoints(FkAttempt& a, const char* how) {
   return false;
 }
 
+/// Strategy 6 on the coarse mesh: both legs there, then Newton on the requested mesh (the fine waypoints
+/// follow where no waypoint leads there this way).
+bool coarse_via_waypoints(FkAttempt& a, const char* how) {
+  if (!a.x_default || !has_coarse_mesh(a.data)) return false;
+  const RobotModel& model = a.data.model->assembly->model();
+  const VecX& u1 = a.inputs;
+  for (int k = 0; k < kWaypoints; ++k) {
+    const VecX w = waypoint(model, k);
+    const CoarseContinuation legs = [&w, &u1](FkData& coarse, const ContinuationWeights& weights,
+                                              const VecX& from, VecX& xc) {
+      const SolveAtInputs loose = [&coarse](const VecX& u, VecX& xs, int max_jacobians, bool) {
+        return coarse.solve_at(u, xs, max_jacobians, true);
+      };
+      const ContinuationResult to_w =
+          continue_along_line(loose, from, w, kFast.step_jacobians, xc, kFast.steps, weights);
+      if (!to_w.converged) return to_w;
+      ContinuationResult r = continue_along_line(loose, w, u1, kFast.step_jacobians, xc, kFast.steps, weights);
+      r.steps += to_w.steps;
+      r.iterations += to_w.iterations;
+      r.jacobian_evaluations += to_w.jacobian_evaluations;
+      return r;
+    };
+    VecX xs;
+    const CoarseOutcome r = coarse_then_fine(a.data, a.default_inputs(), nullptr, u1, xs, legs);
+    a.count(r.iterations, r.jacobian_evaluations);
+    if (!r.converged) continue;
+    a.x = xs;
+    a.summary = r.last;
+    a.summary.message = "converged by " + std::string(how) + " (waypoint " + std::to_string(k + 1) + ", " +
+                        std::to_string(r.steps) + " steps, " + std::to_string(r.fine_jacobians) +
+                        " fresh Jacobians on the requested mesh)";
+    return true;
+  }
+  a.summary.message +=
+      "; " + std::string(how) + ": none of " + std::to_string(kWaypoints) + " waypoints led there";
+  return false;
+}
+
 bool one_input_at_a_time(FkAttempt& a, const char* how) {
   if (!a.x_default) return false;
   VecX xs = *a.x_default;
@@ -423,6 +461,7 @@ constexpr FkStrategy kStrategies[] = {
     {"the straight initial guess", warm_from_straight_guess},
     {"thorough continuation in the inputs from the last solution", thorough_from_last_solution},
     {"thorough continuation in the inputs from the default inputs", thorough_from_default_inputs},
+    {"coarse-mesh continuation from the default inputs via a waypoint", coarse_via_waypoints},
     {"continuation from the default inputs via a waypoint", via_waypoints},
     {"continuation from the default inputs one input at a time", one_input_at_a_time},
     {"fold-aware arclength continuation from the default inputs", arclength_from_default_inputs},
