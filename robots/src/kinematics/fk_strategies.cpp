@@ -397,7 +397,8 @@ bool coarse_via_waypoints(FkAttempt& a, const char* how) {
       const ContinuationResult to_w =
           continue_along_line(loose, from, w, kFast.step_jacobians, xc, kFast.steps, weights);
       if (!to_w.converged) return to_w;
-      ContinuationResult r = continue_along_line(loose, w, u1, kFast.step_jacobians, xc, kFast.steps, weights);
+      ContinuationResult r =
+          continue_along_line(loose, w, u1, kFast.step_jacobians, xc, kFast.steps, weights);
       r.steps += to_w.steps;
       r.iterations += to_w.iterations;
       r.jacobian_evaluations += to_w.jacobian_evaluations;
