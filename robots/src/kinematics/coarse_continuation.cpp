@@ -121,6 +121,8 @@ VecX coarse_start(const CoarseMesh& mesh, CoarseStage& stage, const VecX& u0, co
   }
   if (stage.data.has_solution && stage.fine_result.size() == x_from->size() && stage.fine_result == *x_from)
     return stage.data.x;
+  // The same curves on the coarse mesh are not its equilibrium (its discretisation error, a few mm of
+  // platform position): a short Newton there, with the budget of the one on the requested mesh.
   VecX xc = mesh.to_coarse.apply(*x_from);
   const SolveSummary s = stage.data.solve_at(u0, xc, kFineNewtonJacobians, true);
   out.iterations += s.iterations;
@@ -129,10 +131,6 @@ VecX coarse_start(const CoarseMesh& mesh, CoarseStage& stage, const VecX& u0, co
   out.stopped = "Newton on the coarse mesh at the start: " + s.message;
   return VecX();
 }
-
-}  // namespace
-
-namespace {
 
 /// Newton on the requested mesh at `inputs` from the coarse equilibrium xc; on success the stage keeps xc
 /// behind the result (x).
