@@ -8,15 +8,17 @@
 //  3. fast continuation in the inputs (input_continuation.hpp: short first step, the next ones from the
 //     predictor's error, 4 fresh Jacobians per step, intermediate steps to a looser tolerance) from
 //     whichever of the last solution and the default equilibrium has the nearer inputs, then from the
-//     other;
+//     other; each first on a coarse mesh of the same rods, finished by Newton on the requested mesh
+//     (coarse_continuation.hpp; a jump in 1 and 4 is probed there too), where that fails on the
+//     requested mesh;
 //  4. Newton from the straight initial guess (it reaches equilibria of the planar robots that the
 //     continuations from the default equilibrium do not; cold solves try it before 3, with the short
 //     budget);
 //  5. thorough continuation (first step half the line, 8 fresh Jacobians per step, every step to the
 //     full tolerance) from the last solution, then from the default inputs;
 //  6. fast continuations from the default inputs via a waypoint, a few waypoints spread over the input
-//     box: where the line from the default inputs meets a fold with no stable equilibrium to snap to,
-//     a bent path may pass around it;
+//     box (on the coarse mesh first, as in 3): where the line from the default inputs meets a fold with
+//     no stable equilibrium to snap to, a bent path may pass around it;
 //  7. continuation from the default inputs one input at a time;
 //  8. pseudo-arclength continuation from the default inputs along the line, through folds, following the
 //     equilibrium the robot snaps to at a fold (fold_continuation.hpp).
