@@ -8,10 +8,16 @@
 #include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <functional>
+#include <memory>
+#include <random>
+#include <string>
 #include <utility>
 #include <vector>
 
+#include "../../robots/src/kinematics/coarse_continuation.hpp"
+#include "../../robots/src/kinematics/continuation_weights.hpp"
 #include "../../robots/src/kinematics/input_continuation.hpp"
+#include "../robot_fixtures.hpp"
 
 using namespace pcr;
 using namespace pcr::kinematics;
@@ -236,4 +242,105 @@ BOOST_AUTO_TEST_CASE(predictor_error_sets_the_steps_where_the_path_bends) {
     const double taken = controlled.tried_t[k + 1] - start_of(k + 1);
     BOOST_TEST(controlled.tried_t[k + 2] - controlled.tried_t[k + 1] <= taken * (1.0 + 1e-12), "solve " << k);
   }
+}
+
+// The coarse-mesh stage (robots/src/kinematics/coarse_continuation.hpp) on the Stewart-Gough robot: the
+// continuation on the coarse mesh, carried to the requested mesh and finished there by Newton, must give
+// the equilibrium the continuation on the requested mesh reaches (the same root of the same system), and
+// where the Newton on the requested mesh fails, FK must fall back to that continuation.
+namespace {
+
+struct StewartGough {
+  StewartGough()
+      : robot(test::load_model("stewart_gough")),
+        model(std::make_shared<const FkModel>(std::make_shared<const RobotAssembly>(robot, options.assembly),
+                                              options)) {}
+  KinematicsOptions options;  // defaults: Newton, tolerance 1e-10, degree 6 with 8 elements
+  std::shared_ptr<const RobotModel> robot;
+  std::shared_ptr<const FkModel> model;
+
+  /// The first random inputs of the Stewart-Gough sweep (test_random_sweeps, seed 1).
+  std::vector<VecX> random_inputs(int count) const {
+    std::mt19937 rng(1);
+    std::vector<std::uniform_real_distribution<double>> draw;
+    for (const ActuationInput& in : robot->inputs()) draw.emplace_back(in.lower, in.upper);
+    std::vector<VecX> out;
+    for (int k = 0; k < count; ++k) {
+      VecX u(static_cast<int>(draw.size()));
+      for (int i = 0; i < u.size(); ++i) u[i] = draw[i](rng);
+      out.push_back(u);
+    }
+    return out;
+  }
+  Vec3 platform(const VecX& x) const { return model->assembly->platform_pose(x, 0).position; }
+};
+
+/// The fast continuation of fk_strategies.cpp (4 fresh Jacobians per step, its step control).
+constexpr LineSteps kFastLine{0.03, 0.3, 0.02};
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(coarse_mesh_stage_reaches_the_equilibrium_of_the_continuation_on_the_requested_mesh) {
+  const StewartGough sg;
+  FkData data(sg.model);
+  const DefaultEquilibrium& start = sg.model->default_equilibrium();
+  BOOST_TEST_REQUIRE(start.converged);
+  const VecX u0 = sg.robot->default_input_values();
+  const ContinuationWeights weights = continuation_weights(*sg.model->assembly);
+  for (const VecX& u : sg.random_inputs(3)) {
+    VecX x_coarse;
+    const CoarseOutcome coarse = coarse_then_fine(
+        data, u0, nullptr, u, x_coarse,
+        [&u](FkData& c, const ContinuationWeights& w, const VecX& from, VecX& x) {
+          return continue_along_line(
+              [&c](const VecX& v, VecX& xs, int j, bool) { return c.solve_at(v, xs, j, true); }, from, u, 4,
+              x, kFastLine, w);
+        });
+    BOOST_TEST_REQUIRE(coarse.converged);
+    // Then the continuation on the requested mesh (after the coarse stage: the Newton solver keeps its last
+    // factorisation, which must not be that of the same inputs).
+    VecX x_fine = start.x;
+    const ContinuationResult fine =
+        continue_along_line([&data](const VecX& v, VecX& x, int j,
+                                    bool intermediate) { return data.solve_at(v, x, j, intermediate); },
+                            u0, u, 4, x_fine, kFastLine, weights);
+    BOOST_TEST_REQUIRE(fine.converged);
+    BOOST_TEST(coarse.last.residual_max_abs <= sg.options.tolerance);
+    BOOST_TEST(coarse.fine_jacobians <= kFineNewtonJacobians);
+    BOOST_TEST((sg.model->assembly->inputs(x_coarse) - u).norm() == 0.0);
+    // Both states solve the same system to |r|max <= 1e-10: one root, within 1e-6 m (the sweeps' bound of
+    // "the same equilibrium"; the equilibria of other branches at these inputs are cm away).
+    BOOST_TEST((sg.platform(x_coarse) - sg.platform(x_fine)).norm() <= 1e-6);
+    BOOST_TEST_MESSAGE("coarse stage: " << coarse.steps << " coarse steps, " << coarse.fine_jacobians
+                                        << " fresh Jacobians on the requested mesh; platform "
+                                        << (sg.platform(x_coarse) - sg.platform(x_fine)).norm()
+                                        << " m from the continuation's");
+  }
+}
+
+BOOST_AUTO_TEST_CASE(fk_falls_back_to_the_continuation_on_the_requested_mesh_when_the_transfer_fails) {
+  const StewartGough sg;
+  const VecX u = sg.random_inputs(1).front();
+  const CoarseMesh* mesh = sg.model->coarse_mesh->get(*sg.model);
+  BOOST_TEST_REQUIRE(mesh != nullptr);
+  // As FK solves it: by the coarse stage.
+  FkData with_coarse(sg.model);
+  VecX x_coarse;
+  const SolveSummary s_coarse = solve_with_fallbacks(with_coarse, u, x_coarse);
+  BOOST_TEST_REQUIRE(s_coarse.converged());
+  BOOST_TEST(s_coarse.message.find("coarse-mesh continuation") != std::string::npos, s_coarse.message);
+  // The Newton on the requested mesh given no fresh Jacobian: it fails after every coarse stage, and the
+  // continuation on the requested mesh gives the result.
+  FkData forced(sg.model);
+  forced.coarse = std::make_shared<CoarseStage>(mesh->model);
+  forced.coarse->fine_jacobians = 0;
+  VecX x_fallback;
+  const SolveSummary s_fallback = solve_with_fallbacks(forced, u, x_fallback);
+  BOOST_TEST_REQUIRE(s_fallback.converged());
+  BOOST_TEST(s_fallback.message.find("converged by continuation in the inputs from the default inputs") == 0,
+             s_fallback.message);
+  BOOST_TEST(forced.coarse->fine_result.size() == 0);  // no coarse stage returned a state
+  BOOST_TEST(s_fallback.residual_max_abs <= sg.options.tolerance);
+  // The same root (bound as above).
+  BOOST_TEST((sg.platform(x_coarse) - sg.platform(x_fallback)).norm() <= 1e-6);
 }

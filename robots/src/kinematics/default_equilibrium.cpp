@@ -46,8 +46,9 @@ Registry& registry() {
 
 }  // namespace
 
-const DefaultEquilibrium& SharedDefaultEquilibrium::get(const RobotAssembly& assembly,
-                                                        const KinematicsOptions& options, bool* solved_here) {
+const DefaultEquilibrium& SharedDefaultEquilibrium::get(
+    const RobotAssembly& assembly, const KinematicsOptions& options, bool* solved_here,
+    const std::function<void(SolveSummary&)>& then_solve) {
   if (solved_here) *solved_here = false;
   std::call_once(solved_, [&] {
     if (solved_here) *solved_here = true;
@@ -66,6 +67,7 @@ const DefaultEquilibrium& SharedDefaultEquilibrium::get(const RobotAssembly& ass
     }
     value_.converged = value_.summary.converged() && x.allFinite();
     if (value_.converged) value_.x = std::move(x);
+    if (then_solve) then_solve(value_.summary);
   });
   return value_;
 }

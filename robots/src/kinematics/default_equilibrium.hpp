@@ -9,6 +9,7 @@
 // dropped at the next look-up, and its address) and by the options it depends on (AssemblyOptions'
 // operator==, equal_solver_options). It holds the state only, no assembly (an assembly owns its model),
 // so each FK object still builds or shares its own assembly.
+#include <functional>
 #include <memory>
 #include <mutex>
 
@@ -23,8 +24,11 @@ class SharedDefaultEquilibrium {
   /// Solves it on `assembly` with `options` on the first call (any assembly of the model with the
   /// options of the registry's key: they are the same system); returns it on every call. *solved_here
   /// (when given) tells whether this call did the solve (its work belongs to the caller's summary).
+  /// then_solve (when given) runs once right after the solve, with the summary to add its own work to
+  /// (the coarse mesh's default equilibrium, coarse_continuation.hpp: solved and counted with this one).
   const DefaultEquilibrium& get(const RobotAssembly& assembly, const KinematicsOptions& options,
-                                bool* solved_here = nullptr);
+                                bool* solved_here = nullptr,
+                                const std::function<void(SolveSummary&)>& then_solve = {});
 
  private:
   std::once_flag solved_;

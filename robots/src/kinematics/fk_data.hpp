@@ -20,6 +20,13 @@ namespace pcr::kinematics {
 /// it leaves are far below the predictor's (input_continuation.hpp LineSteps::predictor_error).
 constexpr double kIntermediateTolerance = 1e-3;
 
+class SharedCoarseMesh;  // coarse_continuation.hpp
+struct CoarseStage;
+std::shared_ptr<SharedCoarseMesh> new_shared_coarse_mesh();
+struct FkModel;
+/// The default equilibrium of the coarse mesh of `fine` (if it has one), its work added to `work`.
+void solve_coarse_default_equilibrium(const FkModel& fine, SolveSummary& work);
+
 struct FkModel {
   FkModel(std::shared_ptr<const RobotAssembly> assembly, const KinematicsOptions& options);
   std::shared_ptr<const RobotAssembly> assembly;  ///< its problem is the FK system (inputs fixed)
@@ -30,8 +37,12 @@ struct FkModel {
   /// per model and options, shared by every FK over them and thread-safe; its own solver, so the state
   /// is the same bits whichever FK asks first).
   const DefaultEquilibrium& default_equilibrium(bool* solved_here = nullptr) const {
-    return default_start->get(*assembly, options, solved_here);
+    return default_start->get(*assembly, options, solved_here,
+                              [this](SolveSummary& s) { solve_coarse_default_equilibrium(*this, s); });
   }
+  /// The coarse mesh of the same rods (coarse_continuation.hpp), built on first use; nullptr in the coarse
+  /// mesh's own FkModel.
+  std::shared_ptr<SharedCoarseMesh> coarse_mesh = new_shared_coarse_mesh();
 
  private:
   std::shared_ptr<SharedDefaultEquilibrium> default_start;
@@ -58,6 +69,7 @@ struct FkData {
   std::unique_ptr<NewtonSolver> newton;               // on model->assembly->problem(), made on first use
   std::unique_ptr<NewtonSolver> newton_intermediate;  // the same, to kIntermediateTolerance
   std::unique_ptr<IpoptSolver> ipopt;                 // SolverKind::Ipopt, made on first use
+  std::shared_ptr<CoarseStage> coarse;                // the coarse-mesh stage's data, made on first use
 };
 
 /// The attempts of ForwardKinematics::solve at `inputs` (fk_strategies.cpp): x out, the summary of the

@@ -8,15 +8,17 @@
 //  3. fast continuation in the inputs (input_continuation.hpp: short first step, the next ones from the
 //     predictor's error, 4 fresh Jacobians per step, intermediate steps to a looser tolerance) from
 //     whichever of the last solution and the default equilibrium has the nearer inputs, then from the
-//     other;
+//     other; each first on a coarse mesh of the same rods, finished by Newton on the requested mesh
+//     (coarse_continuation.hpp; a jump in 1 and 4 is probed there too), where that fails on the
+//     requested mesh;
 //  4. Newton from the straight initial guess (it reaches equilibria of the planar robots that the
 //     continuations from the default equilibrium do not; cold solves try it before 3, with the short
 //     budget);
 //  5. thorough continuation (first step half the line, 8 fresh Jacobians per step, every step to the
 //     full tolerance) from the last solution, then from the default inputs;
 //  6. fast continuations from the default inputs via a waypoint, a few waypoints spread over the input
-//     box: where the line from the default inputs meets a fold with no stable equilibrium to snap to,
-//     a bent path may pass around it;
+//     box (on the coarse mesh first, as in 3): where the line from the default inputs meets a fold with
+//     no stable equilibrium to snap to, a bent path may pass around it;
 //  7. continuation from the default inputs one input at a time;
 //  8. pseudo-arclength continuation from the default inputs along the line, through folds, following the
 //     equilibrium the robot snaps to at a fold (fold_continuation.hpp).
@@ -27,6 +29,7 @@
 #include <utility>
 #include <vector>
 
+#include "coarse_continuation.hpp"
 #include "continuation_weights.hpp"
 #include "fk_data.hpp"
 #include "fold_continuation.hpp"
@@ -96,6 +99,7 @@ struct FkAttempt {
   const VecX* x_default = nullptr;    // the equilibrium at the default inputs (nullptr: did not converge)
   bool on_path = false;               // the predicted start was extrapolated along a path
   bool fast_from_last = false;        // the fast continuation from the last solution was tried
+  bool coarse_from_last = false;      // the coarse-mesh continuation from the last solution was tried
   bool tried_straight = false;        // Newton from the straight initial guess was tried
 
   void count(int more_iterations, int more_jacobians) {
@@ -133,18 +137,50 @@ bool direct_attempt(FkAttempt& a, const VecX& start, int jacobians, const char* 
   return s.converged();
 }
 
+/// A direct attempt probed on the coarse mesh (coarse_continuation.hpp coarse_direct): Newton there from
+/// `start`'s image, then on the requested mesh. A jump in the inputs converges in a few Newton iterations
+/// or not at all, on either mesh; the probe costs a fraction of an attempt on the requested mesh.
+bool coarse_direct_attempt(FkAttempt& a, CoarseStart start, const VecX* x_from, int jacobians,
+                           const char* how) {
+  VecX xs;
+  const CoarseOutcome r = coarse_direct(a.data, start, x_from, a.inputs, xs, jacobians);
+  a.count(r.iterations, r.jacobian_evaluations);
+  if (r.converged) {
+    a.x = xs;
+    a.summary = r.last;
+    return true;
+  }
+  if (a.summary.message.empty()) {
+    a.x = start == CoarseStart::FineState ? *x_from : a.data.x;
+    a.summary = r.last;
+    a.summary.message = "Newton from " + std::string(how) + ": " + r.stopped;
+  } else {
+    a.summary.message += "; Newton from " + std::string(how) + ": " + r.stopped;
+  }
+  return false;
+}
+
 /// Newton from the path predictor's start (the last solution off a path), or from the default
 /// equilibrium when there is no solution yet. A start off a path (a jump in the inputs) gets the short
 /// budget: Newton converges there only from close by, and a continuation is cheaper than a long attempt.
 bool from_prediction(FkAttempt& a, const char* how) {
-  if (!a.data.has_solution)
+  if (!a.data.has_solution) {
+    if (a.x_default && has_coarse_mesh(a.data))
+      return coarse_direct_attempt(a, CoarseStart::DefaultEquilibrium, nullptr, kJumpJacobianEvaluations,
+                                   how);
     return direct_attempt(a, a.x_default ? *a.x_default : a.data.x, kJumpJacobianEvaluations, how);
+  }
   const VecX start = a.data.predictor.predict(a.data.x, a.inputs, &a.on_path);
   if (a.on_path && a.data.newton) a.data.newton->continue_path();
   if (a.on_path) return direct_attempt(a, start, kDirectJacobianEvaluations, how);
   const int budget =
       a.data.failed_jumps >= kFailedJumpsBeforeProbe ? kProbeJacobianEvaluations : kJumpJacobianEvaluations;
-  const bool converged = direct_attempt(a, start, budget, how);
+  // A jump probed on the coarse mesh; Newton from the last solution at its own inputs stays on the requested
+  // mesh (nothing to do there when it is the solution).
+  const bool jump = a.inputs != a.data.model->assembly->inputs(a.data.x);
+  const bool converged = jump && has_coarse_mesh(a.data)
+                             ? coarse_direct_attempt(a, CoarseStart::FineState, &start, budget, how)
+                             : direct_attempt(a, start, budget, how);
   a.data.failed_jumps = converged ? 0 : a.data.failed_jumps + 1;
   return converged;
 }
@@ -166,7 +202,14 @@ bool from_straight_guess(FkAttempt& a, const char* how, int jacobians) {
 /// Cold solves (no solution yet) try it early, with the short budget: the planar robots' cold solves
 /// converge there more often than by the continuations from their default equilibrium (random sweeps).
 bool cold_from_straight_guess(FkAttempt& a, const char* how) {
-  return !a.data.has_solution && from_straight_guess(a, how, kJumpJacobianEvaluations);
+  if (a.data.has_solution) return false;
+  if (!a.x_default || a.tried_straight || !has_coarse_mesh(a.data))
+    return from_straight_guess(a, how, kJumpJacobianEvaluations);
+  a.tried_straight = true;
+  if (!coarse_direct_attempt(a, CoarseStart::StraightGuess, nullptr, kJumpJacobianEvaluations, how))
+    return false;
+  a.summary.message = "converged by Newton from " + std::string(how);
+  return true;
 }
 bool warm_from_straight_guess(FkAttempt& a, const char* how) {
   return from_straight_guess(a, how, kDirectJacobianEvaluations);
@@ -219,6 +262,44 @@ bool thorough_from_last_solution(FkAttempt& a, const char* how) {
 }
 bool thorough_from_default_inputs(FkAttempt& a, const char* how) {
   return a.x_default && continuation(a, a.default_inputs(), *a.x_default, kThorough, how);
+}
+
+/// The fast continuation on the coarse mesh from (u0, x_from: an equilibrium of the requested mesh, or
+/// the default equilibrium when nullptr), then Newton on the requested mesh (coarse_continuation.hpp).
+/// Where it fails the same continuation on the requested mesh follows in kStrategies.
+bool coarse_continuation(FkAttempt& a, const VecX& u0, const VecX* x_from, const char* how) {
+  const VecX& u1 = a.inputs;
+  const CoarseContinuation steps = [&u1](FkData& coarse, const ContinuationWeights& w, const VecX& from,
+                                         VecX& xc) {
+    // Every coarse step to the intermediate tolerance: the coarse equilibrium is only a start.
+    const SolveAtInputs loose = [&coarse](const VecX& u, VecX& xs, int max_jacobians, bool) {
+      return coarse.solve_at(u, xs, max_jacobians, true);
+    };
+    return continue_along_line(loose, from, u1, kFast.step_jacobians, xc, kFast.steps, w);
+  };
+  VecX xs;
+  const CoarseOutcome r = coarse_then_fine(a.data, u0, x_from, a.inputs, xs, steps);
+  a.count(r.iterations, r.jacobian_evaluations);
+  if (!r.converged) {
+    if (!r.stopped.empty()) a.summary.message += "; " + std::string(how) + ": " + r.stopped;
+    return false;
+  }
+  a.x = xs;
+  a.summary = r.last;
+  a.summary.message = "converged by " + std::string(how) + " (" + std::to_string(r.steps) + " steps, " +
+                      std::to_string(r.fine_jacobians) + " fresh Jacobians on the requested mesh)";
+  return true;
+}
+bool coarse_from_last_solution(FkAttempt& a, const char* how) {
+  if (!a.data.has_solution || a.coarse_from_last) return false;
+  a.coarse_from_last = true;
+  return coarse_continuation(a, a.data.model->assembly->inputs(a.data.x), &a.data.x, how);
+}
+bool coarse_from_last_solution_if_nearer(FkAttempt& a, const char* how) {
+  return !default_inputs_nearer(a) && coarse_from_last_solution(a, how);
+}
+bool coarse_from_default_inputs(FkAttempt& a, const char* how) {
+  return a.x_default && coarse_continuation(a, a.default_inputs(), nullptr, how);
 }
 
 /// Pseudo-arclength continuation from the default inputs along the straight line, through folds: at a
@@ -302,6 +383,45 @@ bool via_waypoints(FkAttempt& a, const char* how) {
   return false;
 }
 
+/// Strategy 6 on the coarse mesh: both legs there, then Newton on the requested mesh (the fine waypoints
+/// follow where no waypoint leads there this way).
+bool coarse_via_waypoints(FkAttempt& a, const char* how) {
+  if (!a.x_default || !has_coarse_mesh(a.data)) return false;
+  const RobotModel& model = a.data.model->assembly->model();
+  const VecX& u1 = a.inputs;
+  for (int k = 0; k < kWaypoints; ++k) {
+    const VecX w = waypoint(model, k);
+    const CoarseContinuation legs = [&w, &u1](FkData& coarse, const ContinuationWeights& weights,
+                                              const VecX& from, VecX& xc) {
+      const SolveAtInputs loose = [&coarse](const VecX& u, VecX& xs, int max_jacobians, bool) {
+        return coarse.solve_at(u, xs, max_jacobians, true);
+      };
+      const ContinuationResult to_w =
+          continue_along_line(loose, from, w, kFast.step_jacobians, xc, kFast.steps, weights);
+      if (!to_w.converged) return to_w;
+      ContinuationResult r =
+          continue_along_line(loose, w, u1, kFast.step_jacobians, xc, kFast.steps, weights);
+      r.steps += to_w.steps;
+      r.iterations += to_w.iterations;
+      r.jacobian_evaluations += to_w.jacobian_evaluations;
+      return r;
+    };
+    VecX xs;
+    const CoarseOutcome r = coarse_then_fine(a.data, a.default_inputs(), nullptr, u1, xs, legs);
+    a.count(r.iterations, r.jacobian_evaluations);
+    if (!r.converged) continue;
+    a.x = xs;
+    a.summary = r.last;
+    a.summary.message = "converged by " + std::string(how) + " (waypoint " + std::to_string(k + 1) + ", " +
+                        std::to_string(r.steps) + " steps, " + std::to_string(r.fine_jacobians) +
+                        " fresh Jacobians on the requested mesh)";
+    return true;
+  }
+  a.summary.message +=
+      "; " + std::string(how) + ": none of " + std::to_string(kWaypoints) + " waypoints led there";
+  return false;
+}
+
 bool one_input_at_a_time(FkAttempt& a, const char* how) {
   if (!a.x_default) return false;
   VecX xs = *a.x_default;
@@ -335,12 +455,16 @@ constexpr FkStrategy kStrategies[] = {
     {"the predicted start", from_prediction},
     {"the last solution", from_last_solution},
     {"the straight initial guess", cold_from_straight_guess},
+    {"coarse-mesh continuation in the inputs from the last solution", coarse_from_last_solution_if_nearer},
     {"continuation in the inputs from the last solution", fast_from_last_solution_if_nearer},
+    {"coarse-mesh continuation in the inputs from the default inputs", coarse_from_default_inputs},
     {"continuation in the inputs from the default inputs", fast_from_default_inputs},
+    {"coarse-mesh continuation in the inputs from the last solution", coarse_from_last_solution},
     {"continuation in the inputs from the last solution", fast_from_last_solution},
     {"the straight initial guess", warm_from_straight_guess},
     {"thorough continuation in the inputs from the last solution", thorough_from_last_solution},
     {"thorough continuation in the inputs from the default inputs", thorough_from_default_inputs},
+    {"coarse-mesh continuation from the default inputs via a waypoint", coarse_via_waypoints},
     {"continuation from the default inputs via a waypoint", via_waypoints},
     {"continuation from the default inputs one input at a time", one_input_at_a_time},
     {"fold-aware arclength continuation from the default inputs", arclength_from_default_inputs},
