@@ -6,6 +6,7 @@
 
 #include "energy_model.hpp"
 #include "pcr/robots/robot_stability.hpp"
+#include "solve_support.hpp"
 
 namespace pcr::kinematics {
 
@@ -41,6 +42,7 @@ std::string format(const char* fmt, double value) {
 bool from_start(FkData& data, const VecX& inputs, const EnergyStart& start, VecX& xs, EnergyFallback& out,
                 std::string& note) {
   const RobotAssembly& assembly = *data.model->assembly;
+  const Clock::time_point t0 = Clock::now();
   xs = *start.x;
   assembly.set_inputs(xs, inputs);
   const EnergyModel energy(assembly, xs);
@@ -77,7 +79,8 @@ bool from_start(FkData& data, const VecX& inputs, const EnergyStart& start, VecX
                                       : " (" + verdict.reason + ")");
     return false;
   }
-  note += "; stable, margin " + format("%.3g", verdict.margin);
+  note +=
+      "; stable, margin " + format("%.3g", verdict.margin) + ", " + format("%.2f", seconds_since(t0)) + " s";
   out.summary = newton;
   return true;
 }
