@@ -2,6 +2,7 @@
 // The total potential energy of a robot at fixed inputs as an optimisation problem (the last FK strategy,
 // energy_fallback.hpp; docs/stability.md "Energy minimisation"), internal header of pcr::robots:
 //   min  V = sum_rods int_0^L [1/2 (v - v*)^T K_SE (v - v*) + 1/2 (u - u*)^T K_BT (u - u*) - f . p] ds
+//          - sum_free_rod_ends F . p
 //          - sum_platforms (m g + F) . (weights' and dead forces' points)
 //          + sum_passive 1/2 k (q - rest)^2 - (weights and dead forces on links moved by passive joints)
 //   s.t. each attached rod end in its link frame (the kinematic part of its coupling), unit quaternions.

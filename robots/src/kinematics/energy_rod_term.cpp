@@ -95,6 +95,13 @@ double RodEnergyTerm::evaluate(const double* const* values, double* const* gradi
       Eigen::Map<Quat>(g + 3) += w * (n.basis(0, j) * e.v.segment<4>(3) + n.basis(1, j) * e.v.tail<4>());
     }
   }
+  // Dead forces on free ends: -F . p(0), -F . p(L) (open knots: the end control points).
+  const int last = count - 1;
+  for (const auto& [end, point] : {std::pair<const RodEnd*, int>{&m.base, 0}, {&m.tip, last}}) {
+    if (end->kind != RodEndKind::Free) continue;
+    energy -= end->force.dot(Eigen::Map<const Vec3>(values[point]));
+    if (gradients && gradients[point]) Eigen::Map<Vec3>(gradients[point]) -= end->force / scale_;
+  }
   return energy / scale_;
 }
 

@@ -14,7 +14,8 @@ namespace pcr::kinematics {
 
 /// The energy of one rod over its control points [P, Q] (Ritz form on its knots), divided by
 /// energy_scale: int_0^L 1/2 (v - v*)^T K_SE (v - v*) + 1/2 (u - u*)^T K_BT (u - u*) - f . p ds with
-/// s = L u, v = R^T p_s, u = 2 vec(conj(q) q_s) / |q|^2, f the distributed dead force (gravity included).
+/// s = L u, v = R^T p_s, u = 2 vec(conj(q) q_s) / |q|^2, f the distributed dead force (gravity included),
+/// minus the work F . p of the dead forces on free ends.
 class RodEnergyTerm : public ObjectiveTerm {
  public:
   RodEnergyTerm(const CollocationRod& rod, double length, std::vector<VariableId> points,
