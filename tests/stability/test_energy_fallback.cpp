@@ -85,6 +85,33 @@ BOOST_AUTO_TEST_CASE(gradient_and_jacobians_against_finite_differences) {
   BOOST_TEST((exact - differences).cwiseAbs().maxCoeff() <= 1e-5 * exact.cwiseAbs().maxCoeff());
 }
 
+// The coupling rows of the other kinds (revolute: planar_pinned, universal on links moved by actuated
+// joints: six_rus, collar: slider_actuated) against finite differences, as above, at the straight initial
+// guess moved by 1e-3.
+BOOST_AUTO_TEST_CASE(coupling_rows_of_every_kind_against_finite_differences) {
+  for (const char* name : {"planar_pinned", "six_rus", "slider_actuated"}) {
+    const auto model = load_model(name);
+    const RobotAssembly assembly(model);
+    const VecX x = assembly.initial_guess();
+    const EnergyModel energy(assembly, x);
+    const Problem& p = energy.problem();
+    const VecX e = energy.perturbed(energy.from_state(x), 1e-3);
+    int couplings = 0;
+    for (int b = 0; b < p.num_residual_blocks(); ++b) {
+      const ResidualBlock& block = p.residual(b);
+      if (block.kind() != "energy.coupling") continue;
+      ++couplings;
+      const std::vector<VecX> values = block_values(p, block.variables(), e);
+      const JacobianCheckResult j = check_block_jacobian(block, values);
+      BOOST_TEST(j.passed, name << ": " << j.to_string());
+      const JacobianCheckResult h =
+          check_block_hessian(block, values, VecX::LinSpaced(block.num_rows(), -1.0, 2.0));
+      BOOST_TEST(h.passed, name << ": " << h.to_string());
+    }
+    BOOST_TEST(couplings == 2 * model->rods().size());
+  }
+}
+
 // stewart_gough at its default inputs: the ordinary FK result is stable (test_robot_verdict). From the
 // straight initial guess (not an equilibrium) the strategy reaches the same equilibrium: the platform within
 // 1e-9 m and 1e-9 rad (both are Newton solutions of the same equations to the tolerance 1e-10 (scaled):
