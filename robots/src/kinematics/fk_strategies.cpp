@@ -21,7 +21,9 @@
 //     no stable equilibrium to snap to, a bent path may pass around it;
 //  7. continuation from the default inputs one input at a time;
 //  8. pseudo-arclength continuation from the default inputs along the line, through folds, following the
-//     equilibrium the robot snaps to at a fold (fold_continuation.hpp).
+//     equilibrium the robot snaps to at a fold (fold_continuation.hpp);
+//  9. minimisation of the total potential energy at the inputs (Ipopt), then Newton from the minimiser,
+//     accepted only at a stable equilibrium (energy_fallback.hpp).
 // The later ones cost nothing where an earlier strategy converges (where they fail they take longer
 // than all the others together).
 #include <optional>
@@ -31,6 +33,7 @@
 
 #include "coarse_continuation.hpp"
 #include "continuation_weights.hpp"
+#include "energy_fallback.hpp"
 #include "fk_data.hpp"
 #include "fold_continuation.hpp"
 #include "input_continuation.hpp"
@@ -445,6 +448,24 @@ std::string inadmissible_rod(const FkModel& m, const VecX& x) {
   return "";
 }
 
+/// The last resort (energy_fallback.hpp): minimise the total potential energy at the inputs, then Newton
+/// from the minimiser; accepted only at a stable equilibrium.
+bool energy_minimisation(FkAttempt& a, const char* how) {
+  const std::vector<EnergyStart> starts{{&a.x, "the last failed attempt's state"},
+                                        {a.x_default, "the default equilibrium"},
+                                        {a.data.has_solution ? &a.data.x : nullptr, "the last solution"}};
+  const EnergyFallback r = minimise_energy_then_newton(a.data, a.inputs, starts);
+  a.count(r.iterations, r.jacobians);
+  if (!r.converged) {
+    a.summary.message += "; " + std::string(how) + ": " + r.message;
+    return false;
+  }
+  a.x = r.x;
+  a.summary = r.summary;
+  a.summary.message = "converged by " + std::string(how) + " (" + r.message + ")";
+  return true;
+}
+
 /// A strategy returns whether it converged; the name is what the summary's message calls it.
 struct FkStrategy {
   const char* name;
@@ -468,6 +489,7 @@ constexpr FkStrategy kStrategies[] = {
     {"continuation from the default inputs via a waypoint", via_waypoints},
     {"continuation from the default inputs one input at a time", one_input_at_a_time},
     {"fold-aware arclength continuation from the default inputs", arclength_from_default_inputs},
+    {"energy minimisation (Ipopt) then Newton", energy_minimisation},
 };
 
 }  // namespace

@@ -1,0 +1,114 @@
+// Energy minimisation, then Newton, then the stability verdict (energy_fallback.hpp).
+#include "energy_fallback.hpp"
+
+#include <cstdio>
+#include <mutex>
+
+#include "energy_model.hpp"
+#include "pcr/robots/robot_stability.hpp"
+#include "solve_support.hpp"
+
+namespace pcr::kinematics {
+
+namespace {
+
+/// Ipopt 3.11's MUMPS keeps global state (ipopt_solver.hpp): FK objects in several threads that reach
+/// this fallback at once take turns.
+std::mutex& ipopt_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+/// Ipopt on the energy: exact gradient, Hessian by differences of it (energy_hessian.hpp). tol 1e-8 on the
+/// scaled problem: the minimiser need only be inside Newton's basin of the equilibrium (Newton then reaches
+/// the full tolerance); constraint rows to 1e-10 (L0 units, as the collocation tolerance). 3,000 iterations:
+/// the passive_hinge input of docs/stability.md "Energy minimisation" takes a few hundred.
+IpoptOptions energy_ipopt_options() {
+  IpoptOptions o;
+  o.tol = 1e-8;
+  o.constraint_tolerance = 1e-10;
+  o.max_iterations = 3000;
+  o.warm_start = false;
+  return o;
+}
+
+std::string format(const char* fmt, double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, fmt, value);
+  return buffer;
+}
+
+/// One start: Ipopt from it, then Newton; true when Newton converged to a stable equilibrium (in xs).
+bool from_start(FkData& data, const VecX& inputs, const EnergyStart& start, VecX& xs, EnergyFallback& out,
+                std::string& note) {
+  const RobotAssembly& assembly = *data.model->assembly;
+  const Clock::time_point t0 = Clock::now();
+  xs = *start.x;
+  assembly.set_inputs(xs, inputs);
+  const EnergyModel energy(assembly, xs);
+  // Started off symmetry planes by 1e-3 (L0 for positions): an in-plane state of a planar robot is often
+  // a saddle of the full energy (passive_hinge's default equilibrium has 1 unstable mode).
+  VecX e = energy.perturbed(energy.from_state(xs), 1e-3);
+  SolveSummary minimised;
+  {
+    const std::lock_guard<std::mutex> lock(ipopt_mutex());
+    IpoptSolver ipopt(energy.problem(), energy_ipopt_options());
+    minimised = ipopt.solve(e);
+  }
+  out.iterations += minimised.iterations;
+  out.jacobians += minimised.jacobian_evaluations;
+  note = std::string("from ") + start.name + ": Ipopt " + to_string(minimised.status) + " in " +
+         std::to_string(minimised.iterations) + " iterations, energy " + format("%.6g", energy.energy(e)) +
+         " J";
+  if (!e.allFinite()) return false;
+  energy.to_state(e, xs);
+  const SolveSummary newton = data.solve_at(inputs, xs);
+  out.iterations += newton.iterations;
+  out.jacobians += newton.jacobian_evaluations;
+  if (!newton.converged() || !xs.allFinite()) {
+    note += "; Newton from the minimiser: " + newton.message;
+    return false;
+  }
+  note += "; Newton " + std::to_string(newton.iterations) + " iterations";
+  const Stability verdict = robot_stability(assembly, xs);
+  if (verdict.verdict != StabilityVerdict::Stable) {
+    note += std::string("; the equilibrium is ") + to_string(verdict.verdict) +
+            (verdict.verdict == StabilityVerdict::Unstable
+                 ? " (" + std::to_string(verdict.unstable_modes) + " unstable modes)"
+             : verdict.reason.empty() ? ""
+                                      : " (" + verdict.reason + ")");
+    return false;
+  }
+  note +=
+      "; stable, margin " + format("%.3g", verdict.margin) + ", " + format("%.2f", seconds_since(t0)) + " s";
+  out.summary = newton;
+  return true;
+}
+
+}  // namespace
+
+EnergyFallback minimise_energy_then_newton(FkData& data, const VecX& inputs,
+                                           const std::vector<EnergyStart>& starts) {
+  EnergyFallback out;
+  const std::string refusal = energy_model_refusal(data.model->assembly->model());
+  if (!refusal.empty()) {
+    out.message = "skipped: " + refusal;
+    return out;
+  }
+  const int n = data.model->assembly->problem().num_variables();
+  for (const EnergyStart& start : starts) {
+    if (!start.x || start.x->size() != n || !start.x->allFinite()) continue;
+    VecX xs;
+    std::string note;
+    const bool stable = from_start(data, inputs, start, xs, out, note);
+    out.message += (out.message.empty() ? "" : "; ") + note;
+    if (!stable) continue;
+    out.converged = true;
+    out.x = xs;
+    return out;
+  }
+  if (out.message.empty()) out.message = "no finite start state";
+  return out;
+}
+
+}  // namespace pcr::kinematics

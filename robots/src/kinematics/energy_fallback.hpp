@@ -1,0 +1,31 @@
+#pragma once
+// The last FK strategy (fk_strategies.cpp): minimise the total potential energy at the requested inputs
+// (energy_model.hpp) with Ipopt, then Newton on the collocation equations from the minimiser; accepted
+// only when Newton converges to the full tolerance and the stability verdict (robot_stability.hpp) is
+// `stable` (docs/stability.md "Energy minimisation"). Internal header of pcr::robots.
+#include <string>
+#include <vector>
+
+#include "fk_data.hpp"
+
+namespace pcr::kinematics {
+
+struct EnergyFallback {
+  bool converged = false;             ///< Newton converged from a minimiser and the verdict is stable
+  VecX x;                             ///< the equilibrium (converged only)
+  SolveSummary summary;               ///< Newton's from the accepted minimiser
+  std::string message;                ///< what each start reached, or why the model was skipped
+  int iterations = 0, jacobians = 0;  ///< Newton's and Ipopt's, over all starts
+};
+
+/// A start: a collocation state (its inputs are overwritten by the requested ones) and what it is.
+struct EnergyStart {
+  const VecX* x;
+  const char* name;
+};
+
+/// Tries the starts in order until one gives a stable equilibrium at the inputs.
+EnergyFallback minimise_energy_then_newton(FkData& data, const VecX& inputs,
+                                           const std::vector<EnergyStart>& starts);
+
+}  // namespace pcr::kinematics

@@ -1,0 +1,173 @@
+// The rod's energy in the Ritz form (energy_terms.hpp RodEnergyTerm).
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "energy_kinematics.hpp"
+#include "energy_terms.hpp"
+#include "pcr/math/gauss_legendre.hpp"
+#include "pcr/splines/basis.hpp"
+
+namespace pcr::kinematics {
+
+namespace {
+
+/// The local quantities at a quadrature node: z = [p_s (3), q (4), q_s (4)].
+constexpr int kLocal = 11;
+using D = Dual<kLocal>;
+
+/// Strain energy density 1/2 (v - v*)^T K_SE (v - v*) + 1/2 (u - u*)^T K_BT (u - u*) [J/m].
+template <class T>
+T strain_energy_density(const V3<T>& ps, const V4<T>& q, const V4<T>& qs, const Vec3& eps0,
+                        const Vec3& kappa0, const Vec3& k_se, const Vec3& k_bt) {
+  const V3<T> shear = rotation_of(q).transpose() * ps - (Vec3::UnitZ() + eps0).cast<T>();
+  const V3<T> bend = curvature_of(q, qs) - kappa0.cast<T>();
+  T e(0.0);
+  for (int i = 0; i < 3; ++i) e += 0.5 * (k_se[i] * shear[i] * shear[i] + k_bt[i] * bend[i] * bend[i]);
+  return e;
+}
+
+}  // namespace
+
+RodEnergyTerm::RodEnergyTerm(const CollocationRod& rod, double length, std::vector<VariableId> points,
+                             double energy_scale)
+    : ObjectiveTerm("energy.rod." + rod.model().name, std::move(points)),
+      rod_(rod),
+      length_(length),
+      scale_(energy_scale) {
+  // Gauss-Legendre with degree + 1 nodes per knot span: the strains are polynomials of degree <= p - 1
+  // (positions) and rational (rotations), integrated well beyond the collocation's own accuracy.
+  const int degree = rod.knots().degree();
+  std::vector<double> xi, w;
+  gauss_legendre(degree + 1, xi, w);
+  const std::vector<double> breaks = rod.knots().breakpoints();
+  for (std::size_t e = 0; e + 1 < breaks.size(); ++e) {
+    const double a = breaks[e], b = breaks[e + 1];
+    for (std::size_t k = 0; k < xi.size(); ++k)
+      nodes_.push_back(node_at(0.5 * (a + b) + 0.5 * (b - a) * xi[k], 0.5 * (b - a) * w[k] * length));
+  }
+}
+
+RodEnergyTerm::Node RodEnergyTerm::node_at(double u, double weight) const {
+  Node n;
+  n.u = u;
+  n.weight = weight;
+  const BasisDerivatives d = basis_derivatives(rod_.knots(), u, 1);
+  n.first = d.first;
+  n.basis = d.values.topRows(2);
+  n.basis.row(1) /= length_;  // d/ds = (1 / L) d/du
+  rod_.model().intrinsic.at(u * length_, n.eps0, n.kappa0);
+  return n;
+}
+
+double RodEnergyTerm::evaluate(const double* const* values, double* const* gradients) const {
+  const RodModel& m = rod_.model();
+  const Vec3 f = m.distributed_force();
+  const int count = static_cast<int>(variables().size());
+  if (gradients)
+    for (int i = 0; i < count; ++i)
+      if (gradients[i]) std::fill(gradients[i], gradients[i] + 7, 0.0);
+  double energy = 0.0;
+  for (const Node& n : nodes_) {
+    Vec3 p = Vec3::Zero(), ps = Vec3::Zero();
+    Quat q = Quat::Zero(), qs = Quat::Zero();
+    for (int j = 0; j < n.basis.cols(); ++j) {
+      const double* c = values[n.first + j];
+      p += n.basis(0, j) * Eigen::Map<const Vec3>(c);
+      ps += n.basis(1, j) * Eigen::Map<const Vec3>(c);
+      q += n.basis(0, j) * Eigen::Map<const Quat>(c + 3);
+      qs += n.basis(1, j) * Eigen::Map<const Quat>(c + 3);
+    }
+    V3<D> dps;
+    V4<D> dq, dqs;
+    for (int i = 0; i < 3; ++i) dps[i] = D::variable(ps[i], i);
+    for (int i = 0; i < 4; ++i) dq[i] = D::variable(q[i], 3 + i), dqs[i] = D::variable(qs[i], 7 + i);
+    const D e = strain_energy_density(dps, dq, dqs, n.eps0, n.kappa0, m.shear_extension_stiffness,
+                                      m.bending_torsion_stiffness);
+    energy += n.weight * (e.a - f.dot(p));
+    if (!gradients) continue;
+    // Chain rule: p_s = sum_j N_j' P_j, q = sum_j N_j Q_j, q_s = sum_j N_j' Q_j, p = sum_j N_j P_j.
+    for (int j = 0; j < n.basis.cols(); ++j) {
+      double* g = gradients[n.first + j];
+      if (!g) continue;
+      const double w = n.weight / scale_;
+      Eigen::Map<Vec3>(g) += w * (n.basis(1, j) * e.v.head<3>() - n.basis(0, j) * f);
+      Eigen::Map<Quat>(g + 3) += w * (n.basis(0, j) * e.v.segment<4>(3) + n.basis(1, j) * e.v.tail<4>());
+    }
+  }
+  // Dead forces on free ends: -F . p(0), -F . p(L) (open knots: the end control points).
+  const int last = count - 1;
+  for (const auto& [end, point] : {std::pair<const RodEnd*, int>{&m.base, 0}, {&m.tip, last}}) {
+    if (end->kind != RodEndKind::Free) continue;
+    energy -= end->force.dot(Eigen::Map<const Vec3>(values[point]));
+    if (gradients && gradients[point]) Eigen::Map<Vec3>(gradients[point]) -= end->force / scale_;
+  }
+  return energy / scale_;
+}
+
+void RodEnergyTerm::evaluate_hessian(const double* const* values, double* hessian) const {
+  const RodModel& m = rod_.model();
+  const int n = 7 * static_cast<int>(variables().size());
+  Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> H(hessian, n, n);
+  H.setZero();
+  for (const Node& node : nodes_) {
+    Eigen::Matrix<double, kLocal, 1> z = Eigen::Matrix<double, kLocal, 1>::Zero();
+    for (int j = 0; j < node.basis.cols(); ++j) {
+      const double* c = values[node.first + j];
+      z.head<3>() += node.basis(1, j) * Eigen::Map<const Vec3>(c);
+      z.segment<4>(3) += node.basis(0, j) * Eigen::Map<const Quat>(c + 3);
+      z.tail<4>() += node.basis(1, j) * Eigen::Map<const Quat>(c + 3);
+    }
+    // Hz(:, k) = (g(z + h e_k) - g(z - h e_k)) / 2h, h as energy_hessian.hpp.
+    const auto gradient = [&](const Eigen::Matrix<double, kLocal, 1>& at) {
+      V3<D> ps;
+      V4<D> q, qs;
+      for (int i = 0; i < 3; ++i) ps[i] = D::variable(at[i], i);
+      for (int i = 0; i < 4; ++i) q[i] = D::variable(at[3 + i], 3 + i), qs[i] = D::variable(at[7 + i], 7 + i);
+      return strain_energy_density(ps, q, qs, node.eps0, node.kappa0, m.shear_extension_stiffness,
+                                   m.bending_torsion_stiffness)
+          .v;
+    };
+    Eigen::Matrix<double, kLocal, kLocal> Hz;
+    for (int k = 0; k < kLocal; ++k) {
+      const double h = 1e-6 * std::max(1.0, std::abs(z[k]));
+      Eigen::Matrix<double, kLocal, 1> plus = z, minus = z;
+      plus[k] += h;
+      minus[k] -= h;
+      Hz.col(k) = (gradient(plus) - gradient(minus)) / (2.0 * h);
+    }
+    Hz = (0.5 * (Hz + Hz.transpose())).eval();
+    // z = sum_j G_j c_j with G_j = [N_j' I3, 0; 0, N_j I4; 0, N_j' I4] (11 x 7).
+    const int count = static_cast<int>(node.basis.cols());
+    Eigen::Matrix<double, kLocal, Eigen::Dynamic> G =
+        Eigen::Matrix<double, kLocal, Eigen::Dynamic>::Zero(kLocal, 7 * count);
+    for (int j = 0; j < count; ++j) {
+      G.block<3, 3>(0, 7 * j).diagonal().setConstant(node.basis(1, j));
+      G.block<4, 4>(3, 7 * j + 3).diagonal().setConstant(node.basis(0, j));
+      G.block<4, 4>(7, 7 * j + 3).diagonal().setConstant(node.basis(1, j));
+    }
+    H.block(7 * node.first, 7 * node.first, 7 * count, 7 * count) +=
+        (node.weight / scale_) * G.transpose() * Hz * G;
+  }
+}
+
+void RodEnergyTerm::section(const double* const* values, double u, Vec3& p, Vec3& n, Vec3& m) const {
+  const Node node = node_at(u, 0.0);
+  const RodModel& rod = rod_.model();
+  p.setZero();
+  Vec3 ps = Vec3::Zero();
+  Quat q = Quat::Zero(), qs = Quat::Zero();
+  for (int j = 0; j < node.basis.cols(); ++j) {
+    const double* c = values[node.first + j];
+    p += node.basis(0, j) * Eigen::Map<const Vec3>(c);
+    ps += node.basis(1, j) * Eigen::Map<const Vec3>(c);
+    q += node.basis(0, j) * Eigen::Map<const Quat>(c + 3);
+    qs += node.basis(1, j) * Eigen::Map<const Quat>(c + 3);
+  }
+  const Mat3 R = rotation_of<double>(q);
+  // n = R K_SE (v - v*), m = R K_BT (u - u*) (the constitutive law, docs/design.md §1).
+  n = R * rod.shear_extension_stiffness.cwiseProduct(R.transpose() * ps - Vec3::UnitZ() - node.eps0);
+  m = R * rod.bending_torsion_stiffness.cwiseProduct(curvature_of<double>(q, qs) - node.kappa0);
+}
+
+}  // namespace pcr::kinematics
