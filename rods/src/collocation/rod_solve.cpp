@@ -137,6 +137,7 @@ SolveSummary solve_at(const CollocationRod& rod, const RodSolveOptions& options,
     NewtonOptions o;
     o.tolerance = options.tolerance;
     o.max_iterations = options.max_iterations;
+    o.reuse_factorization = options.reuse_factorization;
     return NewtonSolver(problem, o).solve(x);
   }
   IpoptOptions o;

@@ -30,6 +30,10 @@ struct RodSolveOptions {
   /// either way.
   bool shooting_start = true;
   int max_load_steps = 400;
+  /// Newton reuses its last LU factorisation with Broyden updates while the steps contract
+  /// (NewtonOptions::reuse_factorization): fewer factorisations and Jacobians in a cold solve. The result
+  /// satisfies the same tolerance; false takes a fresh Jacobian every iteration.
+  bool reuse_factorization = true;
   /// Stability indicator of the result (RodSolution::stability); costs two sparse LU factorisations.
   bool check_stability = false;
   /// Stability verdict of a converged result (RodSolution::stability_verdict, rod_stability.hpp): the
