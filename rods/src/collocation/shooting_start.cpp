@@ -15,25 +15,27 @@
 namespace pcr::collocation {
 namespace {
 
-constexpr int kCoarseSteps = 6, kShapeSteps = 16;
+constexpr int kCoarseSteps = 4, kShapeSteps = 16;
 
 // Two fixed-step RK4 passes. A shape within about 1e-4 L of the equilibrium (16 steps on R1, R2, R3)
 // starts the collocation Newton in its quadratic range (2 iterations there); what sets that is the
 // sampled trajectory's accuracy, not the base state's: the base state of a 6-step solve, integrated
 // once more with 16 steps, starts the collocation as well as the 16-step solve did (the same collocation
-// iterations on R1, R2, R3 and the spring). So the iterations from rest run on 6 steps (kCoarseSteps),
-// and the shape is one integration of their base state on more (shape_pass), with no shooting iteration
-// of its own: a shooting solve on the finer steps from that base state took 0 iterations on R1 and R3
-// and 1 on R2, whose one (13 x 7 variational integrations) cost more than the collocation Newton's
-// extra iterations from the unconverged shape (R2, p = 4, E = 2 and p = 5, E = 8: 3 iterations, 20 %
-// fewer instructions per cold solve; R1, R3 and the spring 2-5 % fewer: no solver set-up). How many
-// steps: where the shape lies within the collocation's own discretisation error of its solution, one
-// Newton iteration reaches the tolerance, and that error falls with the element count E: 16 + E steps
-// (kShapeSteps + E) take R1 (p = 6, E = 16 and 32) and R3 (p = 5, E = 64; p = 6, E = 128) to one
-// collocation iteration instead of two (E and 32 + E steps do too on R1 E = 32 and R3; 16 do not; 24 do
-// not on R1 E = 16, 48 not on R3 E = 64), for a pass that costs a few per cent of the solve. At most 8
-// shooting iterations (R1, R2, R3 take 4-7): a model whose shooting needs more (the pre-curved spring:
-// 16) falls back to the stress-free start, which serves it well (5 iterations).
+// iterations on R1, R2, R3 and the spring). So the iterations from rest run on few steps (kCoarseSteps:
+// 4, each iteration's 13 x 7 variational integration the dearest part of the start; against 6 steps
+// 5-8 % fewer instructions per cold solve on R1, R2 and R3, where R2 takes 5 collocation iterations
+// instead of 3; 3 steps would save 3-4 % more but leave the two coils of R3 to 3 steps), and the shape is one
+// integration of their base state on more (shape_pass), with no shooting iteration of its own: a shooting
+// solve on the finer steps from that base state took 0 iterations on R1 and R3 and 1 on R2, whose one (13 x 7
+// variational integrations) cost more than the collocation Newton's extra iterations from the unconverged
+// shape (R2, p = 4, E = 2 and p = 5, E = 8: 3 iterations, 20 % fewer instructions per cold solve; R1, R3 and
+// the spring 2-5 % fewer: no solver set-up). How many steps: where the shape lies within the collocation's
+// own discretisation error of its solution, one Newton iteration reaches the tolerance, and that error falls
+// with the element count E: 16 + E steps (kShapeSteps + E) take R1 (p = 6, E = 16 and 32) and R3 (p = 5, E =
+// 64; p = 6, E = 128) to one collocation iteration instead of two (E and 32 + E steps do too on R1 E = 32 and
+// R3; 16 do not; 24 do not on R1 E = 16, 48 not on R3 E = 64), for a pass that costs a few per cent of the
+// solve. At most 8 shooting iterations (R1, R2, R3 take 4-7): a model whose shooting needs more (the
+// pre-curved spring: 16) falls back to the stress-free start, which serves it well (5 iterations).
 //
 // Before the quadratic range the steps are capped (ShootingOptions::max_step), and each removes a
 // roughly constant amount d of the residual: |r| then needs about |r| / d more steps. A step that

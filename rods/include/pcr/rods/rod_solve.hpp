@@ -25,7 +25,7 @@ struct RodSolveOptions {
   int max_iterations = 50;    ///< per solve
   bool load_stepping = true;  ///< automatic when the direct solve fails
   /// Without an initial guess: start the direct solve from a coarse shooting solve (shooting_start.cpp:
-  /// RK4 with 6 steps, at most 8 iterations, then one integration of its base state on 16 + E steps,
+  /// RK4 with 4 steps, at most 8 iterations, then one integration of its base state on 16 + E steps,
   /// interpolated at the Greville abscissae) where it converges, else (and when false) from the stress-free
   /// shape. The result is the collocation solution either way.
   bool shooting_start = true;
