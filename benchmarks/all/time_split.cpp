@@ -6,7 +6,8 @@
 // Workloads: r5b_path / r5b_helix (warm IK along bench_all's R5b paths, the first, cold, solve outside the
 // region; with --shooting rk4|dormand_prince by pcr's shooting solver at bench_all's settings, for
 // load-independent instruction ratios against collocation), r5a_fk / r5a_ik (one cold FK / IK, assembly
-// included; r5a_ik also --shooting), R1 / R2 / R3 / spring (one cold solve_rod). Prints the wall time of the
+// included; r5a_ik also --shooting), R1 / R2 / R3 / spring (one cold solve_rod; --start stress_free for
+// RodSolveOptions::shooting_start = false). Prints the wall time of the
 // region, the iterations and the status.
 #include <algorithm>
 #include <chrono>
@@ -31,6 +32,7 @@ struct Settings {
   double tolerance = 1e-10;
   std::string shooting;  ///< "rk4" or "dormand_prince": the path by pcr's shooting solver instead
   int rk4_steps = 40;
+  bool shooting_start = true;  ///< single rods: RodSolveOptions::shooting_start (--start stress_free: false)
   double integration_tolerance = 1e-8;
 };
 
@@ -176,6 +178,7 @@ Outcome run(const Settings& s) {
     o.discretization = {s.formulation, s.degree, s.elements};
     o.tolerance = s.tolerance;
     o.max_load_steps = 40;  // as bench_all
+    o.shooting_start = s.shooting_start;
     return measured_region(scene.model, o, s.solves);
   }
   std::fprintf(stderr, "bench_time_split: unknown workload '%s'\n", s.workload.c_str());
@@ -190,7 +193,7 @@ int main(int argc, char** argv) {
         stderr,
         "usage: bench_time_split r5b_path|r5b_helix|r5a_fk|r5a_ik|R1|R2|R3|spring [--formulation "
         "mixed|condensed|primal] [--degree P] [--elements E] [--tolerance T] [--solves N] [--shooting "
-        "rk4|dormand_prince [--rk4-steps N] [--integration-tolerance T]]\n");
+        "rk4|dormand_prince [--rk4-steps N] [--integration-tolerance T]] [--start shooting|stress_free]\n");
     return 2;
   }
   Settings s;
@@ -215,6 +218,8 @@ int main(int argc, char** argv) {
       s.rk4_steps = std::stoi(value);
     else if (key == "--integration-tolerance")
       s.integration_tolerance = std::stod(value);
+    else if (key == "--start")
+      s.shooting_start = value != "stress_free";
   }
   const Outcome out = run(s);
   if (s.shooting.empty())

@@ -172,13 +172,16 @@ class CondensedForm final : public RodForm {
 
   void add_blocks(const FormBuilder& b) const override {
     const Vec3 c_point = b.rod().moment_point();
-    std::optional<KernelPattern<CondensedZ::layout.size(), 6>> pattern;
     for (int j = 0; j + 1 < b.num_control_points(); ++j) {
       const double u = b.midpoint(j);
       const PointConstants c = b.constants_at(u);
-      b.add_detected<CondensedZ, 6>("rod.condensed_field", u, b.basis_at(u, 1),
-                                    {b.vars().wrench, b.vars().length}, CondensedFieldKernel{c, c_point},
-                                    pattern);
+      const CondensedFieldKernel kernel{c, c_point};
+      // Its constants (stiffnesses > 0 as factors, intrinsic strains and the moment point as addends)
+      // cannot hide a dependency (point_block.hpp): one detection serves every rod of the process.
+      static const KernelPattern<CondensedZ::layout.size(), 6> pattern =
+          detect_kernel_pattern<CondensedZ::layout.size(), 6>(kernel);
+      b.add<CondensedZ, 6>("rod.condensed_field", u, b.basis_at(u, 1), {b.vars().wrench, b.vars().length},
+                           kernel, pattern);
     }
     b.add_unit_quaternion_rows(kCondensedPoint);
     add_condensed_end(b, false);

@@ -127,16 +127,19 @@ std::string collapse_of(const CollocationRod& rod, const VecX& x, const RodVaria
   return {};
 }
 
+// x: the problem's values, or empty to start from `configuration` (CollocationRod::configuration_size()
+// values; the straight rod when null).
 SolveSummary solve_at(const CollocationRod& rod, const RodSolveOptions& options, double load_factor, VecX& x,
-                      RodVariables& vars) {
+                      RodVariables& vars, const VecX* configuration = nullptr) {
   Problem problem;
   // One variable group: Newton factors the rod's band directly (NewtonLinearSolver::Auto).
-  vars = rod.add_to_problem(problem, {}, load_factor, false, 0);
+  vars = rod.add_to_problem(problem, {}, load_factor, false, 0, configuration);
   if (x.size() != problem.num_variables()) x = problem.initial_values();
   if (options.solver == SolverKind::Newton) {
     NewtonOptions o;
     o.tolerance = options.tolerance;
     o.max_iterations = options.max_iterations;
+    o.reuse_factorization = options.reuse_factorization;
     return NewtonSolver(problem, o).solve(x);
   }
   IpoptOptions o;
@@ -170,14 +173,14 @@ VecX problem_values(const CollocationRod& rod, const VecX* configuration) {
   return probe.initial_values();
 }
 
-// The direct solve's start: `initial`, else a coarse shooting solution (RodSolveOptions::shooting_start)
-// or the stress-free shape (the straight rod without intrinsic strains).
+// The direct solve's start configuration: `initial`, else a coarse shooting solution
+// (RodSolveOptions::shooting_start) or the stress-free shape (the straight rod without intrinsic strains).
 VecX direct_start(const CollocationRod& rod, const RodSolveOptions& options, const VecX* initial) {
-  if (initial) return problem_values(rod, initial);
+  if (initial) return *initial;
   std::optional<VecX> start;
   if (options.shooting_start) start = collocation::shooting_start(rod);
   if (!start) start = rod.stress_free_configuration();
-  return problem_values(rod, &*start);
+  return std::move(*start);
 }
 
 // Where load stepping ended: the last converged state x at load factor lambda, the last solve's summary.
@@ -266,8 +269,8 @@ RodSolution solve_rod(const RodModel& model, const RodSolveOptions& options, con
   RodSolution sol;
   sol.rod = std::make_shared<const CollocationRod>(model, options.discretization);
   const CollocationRod& rod = *sol.rod;
-  sol.x = direct_start(rod, options, initial);
-  sol.summary = solve_at(rod, options, 1.0, sol.x, sol.variables);
+  const VecX start_configuration = direct_start(rod, options, initial);
+  sol.summary = solve_at(rod, options, 1.0, sol.x, sol.variables, &start_configuration);
   int iterations = sol.summary.iterations;
   const std::string direct_collapse = sol.summary.converged() ? collapse_of(rod, sol.x, sol.variables) : "";
   if (!direct_collapse.empty()) {

@@ -25,11 +25,15 @@ struct RodSolveOptions {
   int max_iterations = 50;    ///< per solve
   bool load_stepping = true;  ///< automatic when the direct solve fails
   /// Without an initial guess: start the direct solve from a coarse shooting solve (shooting_start.cpp:
-  /// RK4 with 6 steps, at most 8 iterations, then 16 + E steps, interpolated at the Greville abscissae) where
-  /// it converges, else (and when false) from the stress-free shape. The result is the collocation solution
-  /// either way.
+  /// RK4 with 4 steps, at most 8 iterations, then one integration of its base state on 16 + E steps,
+  /// interpolated at the Greville abscissae) where it converges, else (and when false) from the stress-free
+  /// shape. The result is the collocation solution either way.
   bool shooting_start = true;
   int max_load_steps = 400;
+  /// Newton reuses its last LU factorisation with Broyden updates while the steps contract
+  /// (NewtonOptions::reuse_factorization): fewer factorisations and Jacobians in a cold solve. The result
+  /// satisfies the same tolerance; false takes a fresh Jacobian every iteration.
+  bool reuse_factorization = true;
   /// Stability indicator of the result (RodSolution::stability); costs two sparse LU factorisations.
   bool check_stability = false;
   /// Stability verdict of a converged result (RodSolution::stability_verdict, rod_stability.hpp): the
