@@ -245,6 +245,9 @@ bool solve_and_check(const std::string& name, ForwardKinematics& fk, const VecX&
                             << sum.message);
     const Consistency c = check_solution(model, out);
     BOOST_TEST(c.finite, name << ": non-finite values returned with status " << to_string(sum.status));
+    // ... at the requested inputs (not those of the start the last attempt came from).
+    BOOST_TEST((out.inputs - u).cwiseAbs().maxCoeff() == 0.0,
+               name << ": failed result at other inputs " << out.inputs.transpose());
     return false;
   }
   ++stats.converged;

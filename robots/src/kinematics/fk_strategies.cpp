@@ -520,6 +520,9 @@ SolveSummary solve_with_fallbacks(FkData& data, const VecX& inputs, VecX& x) {
     a.x = inadmissible->first;
     a.summary.status = inadmissible->second.status;
   }
+  // A failed result is reported at the requested inputs, whatever start its state came from (a failed
+  // coarse probe leaves the start of the attempt, at the inputs of the last or default solution).
+  if (!converged) data.model->assembly->set_inputs(a.x, inputs);
   if (!a.x_default)
     a.summary.message += "; the default inputs did not converge from the straight initial guess";
   if (solved_here) {
