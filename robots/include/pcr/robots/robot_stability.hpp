@@ -14,8 +14,9 @@
 // the pairing in which it is a Hessian (symmetric at an equilibrium; the collocation makes it so up to
 // its discretisation error, reported as the asymmetry).
 // Assumptions (else the verdict is `unknown` with the reason): conservative loads (dead forces and
-// gravity; no dead couple on a platform or at a rod end that can turn, no distributed couple), no
-// passive joints (not yet covered), no rod at a conjugate point with its links held (A singular).
+// gravity; no dead couple on a platform or at a rod end that can turn, no distributed couple, no dead
+// torque on a link), no contact with obstacles, no rod at a conjugate point with its links held (A
+// singular). Passive joints are border coordinates beside the platform poses (docs/design.md §4).
 #include <string>
 
 #include "pcr/robots/robot_assembly.hpp"
