@@ -91,7 +91,7 @@ void CouplingRows::evaluate(const double* const* values, double* residual, doubl
     V4<D> Q;
     for (int i = 0; i < 3; ++i) x[i] = D::variable(values[1][i], 7 + i);
     for (int i = 0; i < 4; ++i) Q[i] = D::variable(values[1][3 + i], 10 + i);
-    const M3<D> RQ = rotation_of(Q);
+    const M3<D> RQ = collocation::rotation(Q);
     X = x + RQ * platform_from_attachment_.position.cast<D>();
     Ra = RQ * platform_from_attachment_.rotation().cast<D>();
   } else {
@@ -117,7 +117,7 @@ void CouplingRows::evaluate(const double* const* values, double* residual, doubl
     }
   }
   D rows[6];
-  coupling_rows(attachment_, p, rotation_of(q), X, Ra, length_scale_, rows);
+  coupling_rows(attachment_, p, collocation::rotation(q), X, Ra, length_scale_, rows);
   for (int r = 0; r < num_rows(); ++r) residual[r] = rows[r].a;
   if (!jacobians) return;
   for (int r = 0; r < num_rows(); ++r) {

@@ -20,7 +20,7 @@ double PlatformLoadTerm::evaluate(const double* const* values, double* const* gr
   V4<D> Q;
   for (int i = 0; i < 3; ++i) x[i] = D::variable(values[0][i], i);
   for (int i = 0; i < 4; ++i) Q[i] = D::variable(values[0][3 + i], 3 + i);
-  const M3<D> R = rotation_of(Q);
+  const M3<D> R = collocation::rotation(Q);
   D work(0.0);  // of the dead forces at the world points x + R r
   for (std::size_t k = 0; k < forces_.size(); ++k) {
     const V3<D> at = x + R * points_[k].cast<D>();

@@ -20,8 +20,8 @@ using D = Dual<kLocal>;
 template <class T>
 T strain_energy_density(const V3<T>& ps, const V4<T>& q, const V4<T>& qs, const Vec3& eps0,
                         const Vec3& kappa0, const Vec3& k_se, const Vec3& k_bt) {
-  const V3<T> shear = rotation_of(q).transpose() * ps - (Vec3::UnitZ() + eps0).cast<T>();
-  const V3<T> bend = curvature_of(q, qs) - kappa0.cast<T>();
+  const V3<T> shear = collocation::rotation(q).transpose() * ps - (Vec3::UnitZ() + eps0).cast<T>();
+  const V3<T> bend = collocation::body_curvature(q, qs) - kappa0.cast<T>();
   T e(0.0);
   for (int i = 0; i < 3; ++i) e += 0.5 * (k_se[i] * shear[i] * shear[i] + k_bt[i] * bend[i] * bend[i]);
   return e;
@@ -164,10 +164,11 @@ void RodEnergyTerm::section(const double* const* values, double u, Vec3& p, Vec3
     q += node.basis(0, j) * Eigen::Map<const Quat>(c + 3);
     qs += node.basis(1, j) * Eigen::Map<const Quat>(c + 3);
   }
-  const Mat3 R = rotation_of<double>(q);
+  const Mat3 R = collocation::rotation<double>(q);
   // n = R K_SE (v - v*), m = R K_BT (u - u*) (the constitutive law, docs/design.md §1).
   n = R * rod.shear_extension_stiffness.cwiseProduct(R.transpose() * ps - Vec3::UnitZ() - node.eps0);
-  m = R * rod.bending_torsion_stiffness.cwiseProduct(curvature_of<double>(q, qs) - node.kappa0);
+  m = R *
+      rod.bending_torsion_stiffness.cwiseProduct(collocation::body_curvature<double>(q, qs) - node.kappa0);
 }
 
 }  // namespace pcr::kinematics
