@@ -41,13 +41,16 @@ struct Scaled {
 ///   A = [0 A_pth Cse 0; 0 Cbt [m]x 0 Cbt; 0 0 0 0; 0 [n]x A_pth [n]x Cse - [p']x 0].
 struct JacobiMatrix {
   Mat3 p_th, p_n, th_th, th_m, m_th, m_n;
-  /// A~ Z for a 12 x 12 Z, using the zero blocks (about a third of the dense product's work).
-  Mat12 times(const Mat12& Z) const {
+  /// A~ Z for a 12 x 12 Z whose dn rows are [0 0 I 0] (those of the transfer matrix Phi and of its RK4
+  /// stages: dn' = 0), using that and the zero blocks (about a third of the dense product's work).
+  Mat12 times_transfer(const Mat12& Z) const {
     Mat12 out;
-    out.middleRows<3>(0).noalias() = p_th * Z.middleRows<3>(3) + p_n * Z.middleRows<3>(6);
+    out.middleRows<3>(0).noalias() = p_th * Z.middleRows<3>(3);
+    out.block<3, 3>(0, 6) += p_n;
     out.middleRows<3>(3).noalias() = th_th * Z.middleRows<3>(3) + th_m * Z.middleRows<3>(9);
     out.middleRows<3>(6).setZero();
-    out.middleRows<3>(9).noalias() = m_th * Z.middleRows<3>(3) + m_n * Z.middleRows<3>(6);
+    out.middleRows<3>(9).noalias() = m_th * Z.middleRows<3>(3);
+    out.block<3, 3>(9, 6) += m_n;
     return out;
   }
 };
@@ -67,11 +70,10 @@ JacobiMatrix jacobi_matrix(const JacobiState& y, const Scaled& c) {
   return A;
 }
 
-/// T(s) = [[I6, 0], [Mm, I6]], Mm = 1/2 [m~]x in the (pi_th, dth) block: z_canonical = T z.
-Mat12 canonical_map(const JacobiState& y, const Scaled& c, double sign) {
-  Mat12 T = Mat12::Identity();
-  T.block<3, 3>(9, 3) = sign * 0.5 * hat(y.moment / c.moment);
-  return T;
+/// T(s) = [[I6, 0], [Mm, I6]], Mm = 1/2 [m~]x in the (pi_th, dth) block: z_canonical = T z. This returns
+/// the block 1/2 [m~]x (T^-1 has -1/2 [m~]x there).
+Mat3 canonical_block(const JacobiState& y, const Scaled& c) {
+  return 0.5 * hat(y.moment / c.moment);
 }
 
 /// Relative asymmetry of K in its diagonal scaling: max |K~_ij - K~_ji| with K~ = D K D,
@@ -98,21 +100,23 @@ bool segment_stiffness(const HeldRod& rod, const JacobiStateAt& state, double s_
     const JacobiMatrix A1 = jacobi_matrix(state(s + 0.5 * h), c);
     y_b = state(k + 1 == substeps ? s_b : s + h);
     const JacobiMatrix A2 = jacobi_matrix(y_b, c);
-    const Mat12 k1 = A0.times(Phi);
-    const Mat12 k2 = A1.times(Phi + 0.5 * dt * k1);
-    const Mat12 k3 = A1.times(Phi + 0.5 * dt * k2);
-    const Mat12 k4 = A2.times(Phi + dt * k3);
+    const Mat12 k1 = A0.times_transfer(Phi);
+    const Mat12 k2 = A1.times_transfer(Phi + 0.5 * dt * k1);
+    const Mat12 k3 = A1.times_transfer(Phi + 0.5 * dt * k2);
+    const Mat12 k4 = A2.times_transfer(Phi + dt * k3);
     Phi += dt / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
     A0 = A2;
     // X(s) = dx(s) / dpi(s_a) starts as (s - s_a) diag(C_se, C_bt) (det > 0) and is singular exactly at
     // a conjugate point of s_a: the segment must not reach one.
     if (!(Phi.block<6, 6>(0, 6).determinant() > 0.0)) return false;
   }
-  // Canonical transfer matrix T(s_b) Phi T(s_a)^-1; its dx/dpi block is Phi's.
-  const Mat12 P = canonical_map(y_b, c, 1.0) * Phi * canonical_map(y_a, c, -1.0);
-  const Eigen::PartialPivLU<Mat6> X(P.block<6, 6>(0, 6));
-  const Mat6 Xi_xx = X.solve(P.block<6, 6>(0, 0));  // X^-1 P_xx
-  const Mat6 Xi = X.inverse();
+  // Canonical transfer matrix P = T(s_b) Phi T(s_a)^-1 by its two non-identity blocks (canonical_block);
+  // its dx/dpi block is Phi's.
+  Mat12 P = Phi;
+  P.middleRows<3>(9).noalias() += canonical_block(y_b, c) * Phi.middleRows<3>(3);
+  P.middleCols<3>(3).noalias() -= P.middleCols<3>(9) * canonical_block(y_a, c);
+  const Mat6 Xi = P.block<6, 6>(0, 6).inverse();  // by partial-pivoting LU (fixed size 6)
+  const Mat6 Xi_xx = Xi * P.block<6, 6>(0, 0);    // X^-1 P_xx
   // (-pi_a, pi_b) = K (x_a, x_b): pi_a = X^-1 (x_b - P_xx x_a), pi_b = P_pix x_a + P_pipi pi_a.
   Mat12 K;
   K.block<6, 6>(0, 0) = Xi_xx;
