@@ -205,6 +205,10 @@ BOOST_AUTO_TEST_CASE(passive_hinge_input_that_all_other_strategies_fail_on) {
     BOOST_TEST(fk.assembly->rod(i).length(r.x, fk.assembly->rod_variables(i)) == inputs[i]);
   const Stability verdict = robot_stability(*fk.assembly, r.x);
   BOOST_TEST(to_string(verdict.verdict) == std::string("stable"), verdict.reason);
+  // The verdict the result carries (FK reports it instead of computing it again) is that of r.x.
+  BOOST_TEST(to_string(r.verdict.verdict) == std::string("stable"));
+  BOOST_TEST(r.verdict.margin == verdict.margin);
+  BOOST_TEST(r.verdict.rod_unstable_modes == verdict.rod_unstable_modes);
   const test::DiscreteRods::Inertia d = test::discrete_robot_inertia(*fk.assembly, r.x, 16);
   BOOST_TEST(d.negative == 0);
   BOOST_TEST(d.zero == 0);

@@ -82,6 +82,7 @@ bool from_start(FkData& data, const VecX& inputs, const EnergyStart& start, VecX
   note +=
       "; stable, margin " + format("%.3g", verdict.margin) + ", " + format("%.2f", seconds_since(t0)) + " s";
   out.summary = newton;
+  out.verdict = verdict;
   return true;
 }
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "fk_data.hpp"
+#include "pcr/rods/stability/stability.hpp"
 
 namespace pcr::kinematics {
 
@@ -14,6 +15,7 @@ struct EnergyFallback {
   bool converged = false;             ///< Newton converged from a minimiser and the verdict is stable
   VecX x;                             ///< the equilibrium (converged only)
   SolveSummary summary;               ///< Newton's from the accepted minimiser
+  Stability verdict;                  ///< of x (converged only): stable
   std::string message;                ///< what each start reached, or why the model was skipped
   int iterations = 0, jacobians = 0;  ///< Newton's and Ipopt's, over all starts
 };

@@ -3,10 +3,12 @@
 // FkModel is what an FK object solves on, immutable and shared; FkData is one object's per-solve state.
 #include <limits>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "default_equilibrium.hpp"
 #include "path_predictor.hpp"
+#include "pcr/rods/stability/stability.hpp"
 #include "pcr/robots/kinematics.hpp"
 #include "pcr/solve/ipopt_solver.hpp"
 #include "pcr/solve/newton_solver.hpp"
@@ -73,7 +75,10 @@ struct FkData {
 };
 
 /// The attempts of ForwardKinematics::solve at `inputs` (fk_strategies.cpp): x out, the summary of the
-/// attempt that converged (or of the last direct attempt, with what the fallbacks reached appended).
-SolveSummary solve_with_fallbacks(FkData& data, const VecX& inputs, VecX& x);
+/// attempt that converged (or of the last direct attempt, with what the fallbacks reached appended);
+/// `verdict` (if given): the stability verdict of x when the attempt that converged computed it (the
+/// energy minimisation accepts only stable equilibria), else empty.
+SolveSummary solve_with_fallbacks(FkData& data, const VecX& inputs, VecX& x,
+                                  std::optional<Stability>* verdict = nullptr);
 
 }  // namespace pcr::kinematics

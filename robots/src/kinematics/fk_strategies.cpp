@@ -1,6 +1,6 @@
-// ForwardKinematics::solve's attempts, tried in order until one converges (kStrategies). Two tiers: fast
-// attempts with short budgets that solve most random inputs, then the thorough ones that converge on more
-// of the rest (random sweeps, docs/benchmarks.md "Random FK sweeps"):
+// ForwardKinematics::solve's attempts, tried in order until one converges (kStrategies; 6-9 in
+// fk_last_resorts.cpp). Two tiers: fast attempts with short budgets that solve most random inputs, then
+// the thorough ones that converge on more of the rest (random sweeps, docs/benchmarks.md "Random FK sweeps"):
 //  1. Newton from the path predictor's start (the last solution off a path; a short budget after several
 //     such attempts failed in a row), or from the default equilibrium (solved once per model,
 //     fk_data.hpp) when there is no solution yet;
@@ -29,101 +29,36 @@
 #include <optional>
 #include <string>
 #include <utility>
-#include <vector>
 
 #include "coarse_continuation.hpp"
-#include "continuation_weights.hpp"
-#include "energy_fallback.hpp"
-#include "fk_data.hpp"
-#include "fold_continuation.hpp"
-#include "input_continuation.hpp"
+#include "fk_attempt.hpp"
 
 namespace pcr::kinematics {
 
+namespace strategies {
+
+bool finish_continuation(FkAttempt& a, const ContinuationResult& r, const VecX& xr, const std::string& how) {
+  a.count(r.iterations, r.jacobian_evaluations);
+  if (!r.converged) {
+    a.summary.message += "; " + how + " stopped at " + r.stopped_at;
+    return false;
+  }
+  a.x = xr;
+  a.summary = r.last;
+  a.summary.message = "converged by " + how + " (" + std::to_string(r.steps) + " steps)";
+  return true;
+}
+
 namespace {
 
-/// Fresh-Jacobian budget of a direct attempt along a path and from the straight initial guess.
-constexpr int kDirectJacobianEvaluations = 10;
-/// The budget of a direct attempt from a start off a path (a jump in the inputs; the default equilibrium
-/// for a cold solve): Newton converges there in a few Jacobians or not at all (random planar_three_rod
-/// inputs: 3 gives other equilibria than 6 on 36 of 200 warm solves and twice the fresh Jacobians).
-constexpr int kJumpJacobianEvaluations = 6;
-/// After this many failed direct attempts from the last solution off a path in a row, such attempts get
-/// kProbeJacobianEvaluations only, until one converges: on random Stewart-Gough inputs 196 of 200 fail
-/// and each cost 6 fresh Jacobians, a third of a warm solve; the 4 that converge took 2, 3, 3 and 6 (the
-/// last reaches the same equilibrium by the continuation); random planar_three_rod jumps converge about
-/// every second time, which resets the count.
-constexpr int kFailedJumpsBeforeProbe = 5;
-constexpr int kProbeJacobianEvaluations = 2;
-/// The fast continuation: 4 fresh Jacobians per step, a first step of 0.03 of the line, cut to 0.3 when it
-/// fails, the next steps from the predictor's error (0.02: about 1 cm of platform or rod position on the
-/// Stewart-Gough robot, rod rotations of 0.02 rad). Random Stewart-Gough inputs: Newton converges from the
-/// default equilibrium only within about 0.02-0.05 m of rod length (the platform moves by up to 6 m per m
-/// of input there: its legs start parallel, a singular pose of the rigid mechanism, and the solution path
-/// bends where they tilt), while a random line is 0.3-0.6 m long; the predictor's error per step grows
-/// like h^2 with a constant that falls by more than 10 along the line (docs/benchmarks.md "Random FK
-/// sweeps": fewer fresh Jacobians than fixed growth factors, which the failed steps near the start cost).
-constexpr int kFastStepJacobianEvaluations = 4;
-constexpr LineSteps kFastSteps{0.03, 0.3, 0.02};
-/// The thorough continuation: steps that may take 8 fresh Jacobians (a planar robot near a fold needs
-/// them), from half the line, halved on failure.
-constexpr int kThoroughStepJacobianEvaluations = 8;
-constexpr LineSteps kThoroughSteps{0.5, 0.5};
-/// Orders tried by the one-input-at-a-time continuation (the last fallback; bounds its cost on inputs
-/// without a reachable equilibrium: at most this many orders of one leg per input).
-constexpr int kOneInputOrders = 3;
-/// Step budget of the fold-aware continuation from the default inputs (snaps included). A universal_passive
-/// input of the random sweep (0.260 0.320 0.327 0.212 0.341 0.279) needs 442: two snaps, and 0.56 of the
-/// line between them on a branch whose legs buckle one after the other (3-4 corrector iterations per
-/// step of 0.003 in the inputs).
-constexpr int kArclengthSteps = 600;
-/// Waypoints tried by strategy 6. The 7 inputs of a 1,000-input Stewart-Gough sweep that every other
-/// strategy failed on all converged through waypoint 1 or 2, to stable equilibria (docs/benchmarks.md
-/// "Random FK sweeps").
-constexpr int kWaypoints = 8;
-
-/// A continuation's budget and step control; loose: its intermediate steps to kIntermediateTolerance.
-struct ContinuationKind {
-  int step_jacobians;
-  LineSteps steps;
-  bool loose;
-};
-constexpr ContinuationKind kFast{kFastStepJacobianEvaluations, kFastSteps, true};
-constexpr ContinuationKind kThorough{kThoroughStepJacobianEvaluations, kThoroughSteps, false};
-
-/// One FK solve in progress.
-struct FkAttempt {
-  FkAttempt(FkData& d, const VecX& u, VecX& x_out) : data(d), inputs(u), x(x_out) {}
-  FkData& data;
-  const VecX& inputs;
-  VecX& x;               // the result (the last iterate of a failed attempt)
-  SolveSummary summary;  // of the converged attempt, else of the first direct one with notes appended
-  int iterations = 0, jacobians = 0;  // of all attempts
-  const VecX* x_default = nullptr;    // the equilibrium at the default inputs (nullptr: did not converge)
-  bool on_path = false;               // the predicted start was extrapolated along a path
-  bool fast_from_last = false;        // the fast continuation from the last solution was tried
-  bool coarse_from_last = false;      // the coarse-mesh continuation from the last solution was tried
-  bool tried_straight = false;        // Newton from the straight initial guess was tried
-
-  void count(int more_iterations, int more_jacobians) {
-    iterations += more_iterations;
-    jacobians += more_jacobians;
-  }
-  SolveAtInputs solve_at(bool loose) {
-    return [this, loose](const VecX& u, VecX& xs, int max_jacobians, bool intermediate) {
-      return data.solve_at(u, xs, max_jacobians, loose && intermediate);
-    };
-  }
-  VecX default_inputs() const { return data.model->assembly->model().default_input_values(); }
-  /// The continuation's predictor error weights (continuation_weights.hpp), made on first use.
-  const ContinuationWeights& weights() {
-    if (weights_.size() == 0) weights_ = continuation_weights(*data.model->assembly);
-    return weights_;
-  }
-
- private:
-  ContinuationWeights weights_;
-};
+/// Continuation along the line from (u0, x0) to the inputs.
+bool continuation(FkAttempt& a, const VecX& u0, const VecX& x0, const ContinuationKind& kind,
+                  const char* how) {
+  VecX xs = x0;
+  const ContinuationResult r = continue_along_line(a.solve_at(kind.loose), u0, a.inputs, kind.step_jacobians,
+                                                   xs, kind.steps, a.weights());
+  return finish_continuation(a, r, xs, how);
+}
 
 /// A direct Newton attempt from `start` with at most `jacobians` fresh Jacobians. The summary of the
 /// first one is the one reported if nothing converges (the later strategies append to its message).
@@ -218,28 +153,6 @@ bool warm_from_straight_guess(FkAttempt& a, const char* how) {
   return from_straight_guess(a, how, kDirectJacobianEvaluations);
 }
 
-/// Takes a continuation's result: on success its state and summary, else a note on where it stopped.
-bool finish_continuation(FkAttempt& a, const ContinuationResult& r, const VecX& xr, const std::string& how) {
-  a.count(r.iterations, r.jacobian_evaluations);
-  if (!r.converged) {
-    a.summary.message += "; " + how + " stopped at " + r.stopped_at;
-    return false;
-  }
-  a.x = xr;
-  a.summary = r.last;
-  a.summary.message = "converged by " + how + " (" + std::to_string(r.steps) + " steps)";
-  return true;
-}
-
-/// Continuation along the line from (u0, x0) to the inputs.
-bool continuation(FkAttempt& a, const VecX& u0, const VecX& x0, const ContinuationKind& kind,
-                  const char* how) {
-  VecX xs = x0;
-  const ContinuationResult r = continue_along_line(a.solve_at(kind.loose), u0, a.inputs, kind.step_jacobians,
-                                                   xs, kind.steps, a.weights());
-  return finish_continuation(a, r, xs, how);
-}
-
 /// Whether the inputs are nearer (Euclidean distance in input space) to the default inputs than to the
 /// last solution's: then the fast continuation from the default equilibrium goes first (a shorter path,
 /// from a state without bent rods).
@@ -305,135 +218,6 @@ bool coarse_from_default_inputs(FkAttempt& a, const char* how) {
   return a.x_default && coarse_continuation(a, a.default_inputs(), nullptr, how);
 }
 
-/// Pseudo-arclength continuation from the default inputs along the straight line, through folds: at a
-/// fold it follows the stable equilibrium the robot snaps to (fold_continuation.hpp). Unstable modes are
-/// counted only at folds and snap landings (a verdict costs about a cold solve).
-bool arclength_from_default_inputs(FkAttempt& a, const char* how) {
-  if (!a.x_default) return false;
-  const FkModel& m = *a.data.model;
-  if (m.options.solver != SolverKind::Newton) return false;
-  PathThroughFoldsOptions o;
-  o.at_fold = FoldPolicy::Snap;
-  o.count_unstable_modes = false;
-  o.max_steps = kArclengthSteps;
-  const SegmentOutcome seg =
-      continue_segment(*m.assembly, *a.x_default, -1, m.assembly->model().default_input_values(), a.inputs, 0,
-                       m.options.tolerance, o);
-  a.count(seg.iterations, seg.jacobian_evaluations);
-  if (!seg.reached) {
-    a.summary.message += "; " + std::string(how) + " stopped: " + seg.stopped;
-    return false;
-  }
-  int snaps = 0;
-  for (const PathEvent& e : seg.events) snaps += e.kind == PathEventKind::Snap ? 1 : 0;
-  a.x = seg.x;
-  VecX c;
-  m.assembly->problem().evaluate_residuals(a.x, c);
-  a.summary = SolveSummary{};
-  a.summary.status = SolveStatus::Converged;
-  a.summary.solver = "newton-arclength";
-  a.summary.residual_max_abs = c.size() ? (c - m.assembly->problem().row_lower()).cwiseAbs().maxCoeff() : 0.0;
-  a.summary.message = "converged by " + std::string(how) + " (" + std::to_string(seg.steps) + " steps, " +
-                      std::to_string(snaps) + " snaps)";
-  return true;
-}
-
-/// Element k >= 1 of the van der Corput sequence in `base` (the radical inverse of k), in (0, 1).
-double radical_inverse(int k, int base) {
-  double value = 0.0, scale = 1.0 / base;
-  for (; k > 0; k /= base, scale /= base) value += (k % base) * scale;
-  return value;
-}
-
-/// Waypoint k of strategy 6: point k + 1 of the Halton sequence (bases 2, 3, 5, ...: spread over the box
-/// with no random generator, the same for every solve) scaled to the input bounds.
-VecX waypoint(const RobotModel& model, int k) {
-  static constexpr int kPrimes[] = {2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37};
-  constexpr int kCount = sizeof kPrimes / sizeof kPrimes[0];
-  const std::vector<ActuationInput>& inputs = model.inputs();
-  VecX w(static_cast<int>(inputs.size()));
-  for (int i = 0; i < w.size(); ++i) {
-    const double h = radical_inverse(k + 1 + i / kCount, kPrimes[i % kCount]);
-    w[i] = inputs[i].lower + h * (inputs[i].upper - inputs[i].lower);
-  }
-  return w;
-}
-
-bool via_waypoints(FkAttempt& a, const char* how) {
-  if (!a.x_default) return false;
-  const RobotModel& model = a.data.model->assembly->model();
-  std::string stopped;
-  for (int k = 0; k < kWaypoints; ++k) {
-    const VecX w = waypoint(model, k);
-    VecX xw = *a.x_default;
-    const ContinuationResult to_w = continue_along_line(a.solve_at(true), a.default_inputs(), w,
-                                                        kFast.step_jacobians, xw, kFast.steps, a.weights());
-    a.count(to_w.iterations, to_w.jacobian_evaluations);
-    if (!to_w.converged) continue;
-    VecX xs = xw;
-    const ContinuationResult r = continue_along_line(a.solve_at(true), w, a.inputs, kFast.step_jacobians, xs,
-                                                     kFast.steps, a.weights());
-    a.count(r.iterations, r.jacobian_evaluations);
-    if (!r.converged) continue;
-    a.x = xs;
-    a.summary = r.last;
-    a.summary.message = "converged by " + std::string(how) + " (waypoint " + std::to_string(k + 1) + ", " +
-                        std::to_string(to_w.steps + r.steps) + " steps)";
-    return true;
-  }
-  a.summary.message +=
-      "; " + std::string(how) + ": none of " + std::to_string(kWaypoints) + " waypoints led there";
-  return false;
-}
-
-/// Strategy 6 on the coarse mesh: both legs there, then Newton on the requested mesh (the fine waypoints
-/// follow where no waypoint leads there this way).
-bool coarse_via_waypoints(FkAttempt& a, const char* how) {
-  if (!a.x_default || !has_coarse_mesh(a.data)) return false;
-  const RobotModel& model = a.data.model->assembly->model();
-  const VecX& u1 = a.inputs;
-  for (int k = 0; k < kWaypoints; ++k) {
-    const VecX w = waypoint(model, k);
-    const CoarseContinuation legs = [&w, &u1](FkData& coarse, const ContinuationWeights& weights,
-                                              const VecX& from, VecX& xc) {
-      const SolveAtInputs loose = [&coarse](const VecX& u, VecX& xs, int max_jacobians, bool) {
-        return coarse.solve_at(u, xs, max_jacobians, true);
-      };
-      const ContinuationResult to_w =
-          continue_along_line(loose, from, w, kFast.step_jacobians, xc, kFast.steps, weights);
-      if (!to_w.converged) return to_w;
-      ContinuationResult r =
-          continue_along_line(loose, w, u1, kFast.step_jacobians, xc, kFast.steps, weights);
-      r.steps += to_w.steps;
-      r.iterations += to_w.iterations;
-      r.jacobian_evaluations += to_w.jacobian_evaluations;
-      return r;
-    };
-    VecX xs;
-    const CoarseOutcome r = coarse_then_fine(a.data, a.default_inputs(), nullptr, u1, xs, legs);
-    a.count(r.iterations, r.jacobian_evaluations);
-    if (!r.converged) continue;
-    a.x = xs;
-    a.summary = r.last;
-    a.summary.message = "converged by " + std::string(how) + " (waypoint " + std::to_string(k + 1) + ", " +
-                        std::to_string(r.steps) + " steps, " + std::to_string(r.fine_jacobians) +
-                        " fresh Jacobians on the requested mesh)";
-    return true;
-  }
-  a.summary.message +=
-      "; " + std::string(how) + ": none of " + std::to_string(kWaypoints) + " waypoints led there";
-  return false;
-}
-
-bool one_input_at_a_time(FkAttempt& a, const char* how) {
-  if (!a.x_default) return false;
-  VecX xs = *a.x_default;
-  const ContinuationResult r = continue_one_input_at_a_time(
-      a.solve_at(false), a.default_inputs(), a.inputs, kDirectJacobianEvaluations,
-      kThoroughStepJacobianEvaluations, kOneInputOrders, xs, kThoroughSteps);
-  return finish_continuation(a, r, xs, how);
-}
-
 /// The name of the first rod of the equilibrium x with an axial stretch v3 <= 0 at a sample point (as
 /// read_solution samples it; admissible_axial_stretch), or "" when all are admissible.
 std::string inadmissible_rod(const FkModel& m, const VecX& x) {
@@ -446,24 +230,6 @@ std::string inadmissible_rod(const FkModel& m, const VecX& x) {
       if (!admissible_axial_stretch(v3)) return a.rod(i).model().name;
   }
   return "";
-}
-
-/// The last resort (energy_fallback.hpp): minimise the total potential energy at the inputs, then Newton
-/// from the minimiser; accepted only at a stable equilibrium.
-bool energy_minimisation(FkAttempt& a, const char* how) {
-  const std::vector<EnergyStart> starts{{&a.x, "the last failed attempt's state"},
-                                        {a.x_default, "the default equilibrium"},
-                                        {a.data.has_solution ? &a.data.x : nullptr, "the last solution"}};
-  const EnergyFallback r = minimise_energy_then_newton(a.data, a.inputs, starts);
-  a.count(r.iterations, r.jacobians);
-  if (!r.converged) {
-    a.summary.message += "; " + std::string(how) + ": " + r.message;
-    return false;
-  }
-  a.x = r.x;
-  a.summary = r.summary;
-  a.summary.message = "converged by " + std::string(how) + " (" + r.message + ")";
-  return true;
 }
 
 /// A strategy returns whether it converged; the name is what the summary's message calls it.
@@ -494,7 +260,10 @@ constexpr FkStrategy kStrategies[] = {
 
 }  // namespace
 
-SolveSummary solve_with_fallbacks(FkData& data, const VecX& inputs, VecX& x) {
+}  // namespace strategies
+
+SolveSummary solve_with_fallbacks(FkData& data, const VecX& inputs, VecX& x, std::optional<Stability>* verdict) {
+  using namespace strategies;
   FkAttempt a(data, inputs, x);
   bool solved_here = false;
   const DefaultEquilibrium& start = data.model->default_equilibrium(&solved_here);
@@ -516,6 +285,7 @@ SolveSummary solve_with_fallbacks(FkData& data, const VecX& inputs, VecX& x) {
     a.summary.message = inadmissible->second.message + "; rod '" + rod +
                         "' compressed to a point or inverted there: the later strategies tried";
   }
+  if (verdict) *verdict = converged ? a.verdict : std::nullopt;
   if (!converged && inadmissible) {
     a.x = inadmissible->first;
     a.summary.status = inadmissible->second.status;

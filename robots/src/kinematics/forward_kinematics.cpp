@@ -125,7 +125,8 @@ RobotSolution ForwardKinematics::solve(const VecX& inputs) {
   const FkModel& m = *d.model;
   m.assembly->check_inputs(inputs);
   VecX x;
-  const SolveSummary summary = kinematics::solve_with_fallbacks(d, inputs, x);
+  std::optional<Stability> verdict;  // computed by the strategy that converged (the energy minimisation)
+  const SolveSummary summary = kinematics::solve_with_fallbacks(d, inputs, x, &verdict);
   bool accepted = false;
   RobotSolution out = kinematics::finish_solution(*m.assembly, x, d.x, summary, start, m.sample_bases,
                                                   m.options.read_centerline, accepted);
@@ -135,7 +136,10 @@ RobotSolution ForwardKinematics::solve(const VecX& inputs) {
     d.predictor.accept(d.x, inputs);
     if (m.options.check_stability)
       kinematics::monitor_stability(m.assembly->problem(), d.x, d.last_jacobian_sign, out);
-    if (m.options.stability_verdict) kinematics::add_stability_verdict(*m.assembly, d.x, out);
+    if (m.options.stability_verdict && verdict)
+      out.stability_verdict = *verdict;
+    else if (m.options.stability_verdict)
+      kinematics::add_stability_verdict(*m.assembly, d.x, out);
   }
   return out;
 }

@@ -1,0 +1,165 @@
+// The last resorts of ForwardKinematics::solve (fk_strategies.cpp kStrategies 6-9): continuations via
+// waypoints and one input at a time, the fold-aware arclength continuation, the energy minimisation.
+#include <string>
+#include <vector>
+
+#include "coarse_continuation.hpp"
+#include "energy_fallback.hpp"
+#include "fk_attempt.hpp"
+#include "fold_continuation.hpp"
+
+namespace pcr::kinematics::strategies {
+
+namespace {
+
+/// Element k >= 1 of the van der Corput sequence in `base` (the radical inverse of k), in (0, 1).
+double radical_inverse(int k, int base) {
+  double value = 0.0, scale = 1.0 / base;
+  for (; k > 0; k /= base, scale /= base) value += (k % base) * scale;
+  return value;
+}
+
+/// Waypoint k of strategy 6: point k + 1 of the Halton sequence (bases 2, 3, 5, ...: spread over the box
+/// with no random generator, the same for every solve) scaled to the input bounds.
+VecX waypoint(const RobotModel& model, int k) {
+  static constexpr int kPrimes[] = {2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37};
+  constexpr int kCount = sizeof kPrimes / sizeof kPrimes[0];
+  const std::vector<ActuationInput>& inputs = model.inputs();
+  VecX w(static_cast<int>(inputs.size()));
+  for (int i = 0; i < w.size(); ++i) {
+    const double h = radical_inverse(k + 1 + i / kCount, kPrimes[i % kCount]);
+    w[i] = inputs[i].lower + h * (inputs[i].upper - inputs[i].lower);
+  }
+  return w;
+}
+
+}  // namespace
+
+bool via_waypoints(FkAttempt& a, const char* how) {
+  if (!a.x_default) return false;
+  const RobotModel& model = a.data.model->assembly->model();
+  std::string stopped;
+  for (int k = 0; k < kWaypoints; ++k) {
+    const VecX w = waypoint(model, k);
+    VecX xw = *a.x_default;
+    const ContinuationResult to_w = continue_along_line(a.solve_at(true), a.default_inputs(), w,
+                                                        kFast.step_jacobians, xw, kFast.steps, a.weights());
+    a.count(to_w.iterations, to_w.jacobian_evaluations);
+    if (!to_w.converged) continue;
+    VecX xs = xw;
+    const ContinuationResult r = continue_along_line(a.solve_at(true), w, a.inputs, kFast.step_jacobians, xs,
+                                                     kFast.steps, a.weights());
+    a.count(r.iterations, r.jacobian_evaluations);
+    if (!r.converged) continue;
+    a.x = xs;
+    a.summary = r.last;
+    a.summary.message = "converged by " + std::string(how) + " (waypoint " + std::to_string(k + 1) + ", " +
+                        std::to_string(to_w.steps + r.steps) + " steps)";
+    return true;
+  }
+  a.summary.message +=
+      "; " + std::string(how) + ": none of " + std::to_string(kWaypoints) + " waypoints led there";
+  return false;
+}
+
+/// Strategy 6 on the coarse mesh: both legs there, then Newton on the requested mesh (the fine waypoints
+/// follow where no waypoint leads there this way).
+bool coarse_via_waypoints(FkAttempt& a, const char* how) {
+  if (!a.x_default || !has_coarse_mesh(a.data)) return false;
+  const RobotModel& model = a.data.model->assembly->model();
+  const VecX& u1 = a.inputs;
+  for (int k = 0; k < kWaypoints; ++k) {
+    const VecX w = waypoint(model, k);
+    const CoarseContinuation legs = [&w, &u1](FkData& coarse, const ContinuationWeights& weights,
+                                              const VecX& from, VecX& xc) {
+      const SolveAtInputs loose = [&coarse](const VecX& u, VecX& xs, int max_jacobians, bool) {
+        return coarse.solve_at(u, xs, max_jacobians, true);
+      };
+      const ContinuationResult to_w =
+          continue_along_line(loose, from, w, kFast.step_jacobians, xc, kFast.steps, weights);
+      if (!to_w.converged) return to_w;
+      ContinuationResult r =
+          continue_along_line(loose, w, u1, kFast.step_jacobians, xc, kFast.steps, weights);
+      r.steps += to_w.steps;
+      r.iterations += to_w.iterations;
+      r.jacobian_evaluations += to_w.jacobian_evaluations;
+      return r;
+    };
+    VecX xs;
+    const CoarseOutcome r = coarse_then_fine(a.data, a.default_inputs(), nullptr, u1, xs, legs);
+    a.count(r.iterations, r.jacobian_evaluations);
+    if (!r.converged) continue;
+    a.x = xs;
+    a.summary = r.last;
+    a.summary.message = "converged by " + std::string(how) + " (waypoint " + std::to_string(k + 1) + ", " +
+                        std::to_string(r.steps) + " steps, " + std::to_string(r.fine_jacobians) +
+                        " fresh Jacobians on the requested mesh)";
+    return true;
+  }
+  a.summary.message +=
+      "; " + std::string(how) + ": none of " + std::to_string(kWaypoints) + " waypoints led there";
+  return false;
+}
+
+bool one_input_at_a_time(FkAttempt& a, const char* how) {
+  if (!a.x_default) return false;
+  VecX xs = *a.x_default;
+  const ContinuationResult r = continue_one_input_at_a_time(
+      a.solve_at(false), a.default_inputs(), a.inputs, kDirectJacobianEvaluations,
+      kThoroughStepJacobianEvaluations, kOneInputOrders, xs, kThoroughSteps);
+  return finish_continuation(a, r, xs, how);
+}
+
+/// Pseudo-arclength continuation from the default inputs along the straight line, through folds: at a
+/// fold it follows the stable equilibrium the robot snaps to (fold_continuation.hpp). Unstable modes are
+/// counted only at folds and snap landings (a verdict costs about a cold solve).
+bool arclength_from_default_inputs(FkAttempt& a, const char* how) {
+  if (!a.x_default) return false;
+  const FkModel& m = *a.data.model;
+  if (m.options.solver != SolverKind::Newton) return false;
+  PathThroughFoldsOptions o;
+  o.at_fold = FoldPolicy::Snap;
+  o.count_unstable_modes = false;
+  o.max_steps = kArclengthSteps;
+  const SegmentOutcome seg =
+      continue_segment(*m.assembly, *a.x_default, -1, m.assembly->model().default_input_values(), a.inputs, 0,
+                       m.options.tolerance, o);
+  a.count(seg.iterations, seg.jacobian_evaluations);
+  if (!seg.reached) {
+    a.summary.message += "; " + std::string(how) + " stopped: " + seg.stopped;
+    return false;
+  }
+  int snaps = 0;
+  for (const PathEvent& e : seg.events) snaps += e.kind == PathEventKind::Snap ? 1 : 0;
+  a.x = seg.x;
+  VecX c;
+  m.assembly->problem().evaluate_residuals(a.x, c);
+  a.summary = SolveSummary{};
+  a.summary.status = SolveStatus::Converged;
+  a.summary.solver = "newton-arclength";
+  a.summary.residual_max_abs = c.size() ? (c - m.assembly->problem().row_lower()).cwiseAbs().maxCoeff() : 0.0;
+  a.summary.message = "converged by " + std::string(how) + " (" + std::to_string(seg.steps) + " steps, " +
+                      std::to_string(snaps) + " snaps)";
+  return true;
+}
+
+/// The last resort (energy_fallback.hpp): minimise the total potential energy at the inputs, then Newton
+/// from the minimiser; accepted only at a stable equilibrium.
+bool energy_minimisation(FkAttempt& a, const char* how) {
+  const std::vector<EnergyStart> starts{{&a.x, "the last failed attempt's state"},
+                                        {a.x_default, "the default equilibrium"},
+                                        {a.data.has_solution ? &a.data.x : nullptr, "the last solution"}};
+  const EnergyFallback r = minimise_energy_then_newton(a.data, a.inputs, starts);
+  a.count(r.iterations, r.jacobians);
+  if (!r.converged) {
+    a.summary.message += "; " + std::string(how) + ": " + r.message;
+    return false;
+  }
+  a.x = r.x;
+  a.verdict = r.verdict;
+  a.summary = r.summary;
+  a.summary.message = "converged by " + std::string(how) + " (" + r.message + ")";
+  return true;
+}
+
+}  // namespace pcr::kinematics::strategies
