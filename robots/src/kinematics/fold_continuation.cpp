@@ -31,6 +31,10 @@ constexpr double kCornerSteps[] = {1e-6, 1e-4, 1e-3};
 /// converges long before; at a corner it falls like ds (planar_post: 6.9e-7 at ds = 3.9e-6, 1.0e-9 at
 /// 1.2e-8) and the corrector fails at every length.
 constexpr double kCornerStepBelow = 2e-6;
+/// Where Newton does not converge onto the path point (lambda = 1) from the step that passed it, the step
+/// is taken again this much shorter (a Stewart-Gough input of the random sweep reached lambda = 0.987
+/// and failed there; docs/benchmarks.md "Random FK sweeps").
+constexpr double kEndStepCut = 0.25;
 constexpr int kCornerIterations = 40;
 
 /// Largest platform displacement [m] and rotation angle [rad] between two sets of poses.
@@ -264,9 +268,17 @@ SegmentOutcome SegmentTracer::run(const VecX& x_start, int modes_start) {
         continue;
       }
       if (q.lambda >= 1.0) {
-        if (finish_at_end(p, q) && nu >= 0 && out_.unstable_modes >= 0 && out_.unstable_modes != nu)
-          locate_bifurcation(p, used, nu, out_.unstable_modes);
-        break;
+        if (finish_at_end(p, q)) {
+          if (nu >= 0 && out_.unstable_modes >= 0 && out_.unstable_modes != nu)
+            locate_bifurcation(p, used, nu, out_.unstable_modes);
+          break;
+        }
+        // Newton at lambda = 1 failed from the chord and from p: the path bends too much between them for
+        // either start; a shorter step from p ends nearer the path point.
+        if (used * kEndStepCut < o_.min_step) break;
+        out_.stopped.clear();
+        ds = kEndStepCut * used;
+        continue;
       }
       if (nu >= 0 && nu_q >= 0 && nu_q != nu) locate_bifurcation(p, used, nu, nu_q);
       p = q;
