@@ -78,7 +78,8 @@ BOOST_AUTO_TEST_CASE(stewart_gough_input_reached_by_the_arclength_continuation) 
   const VecX u = (VecX(6) << 0.775311, 0.236274, 0.759704, 0.763474, 0.218596, 0.426491).finished();
   const RobotSolution s = fk.solve(u);
   BOOST_TEST_REQUIRE(s.summary.converged(), s.summary.message);
-  BOOST_TEST(s.summary.message.find("converged by fold-aware arclength continuation") == 0u, s.summary.message);
+  BOOST_TEST(s.summary.message.find("converged by fold-aware arclength continuation") == 0u,
+             s.summary.message);
   BOOST_TEST(s.summary.residual_max_abs <= KinematicsOptions{}.tolerance);
   BOOST_TEST((fk.assembly().inputs(fk.state()) - u).cwiseAbs().maxCoeff() == 0.0);
   BOOST_TEST(to_string(s.stability_verdict.verdict) == std::string("stable"), s.stability_verdict.reason);

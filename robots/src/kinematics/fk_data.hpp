@@ -8,8 +8,8 @@
 
 #include "default_equilibrium.hpp"
 #include "path_predictor.hpp"
-#include "pcr/rods/stability/stability.hpp"
 #include "pcr/robots/kinematics.hpp"
+#include "pcr/rods/stability/stability.hpp"
 #include "pcr/solve/ipopt_solver.hpp"
 #include "pcr/solve/newton_solver.hpp"
 

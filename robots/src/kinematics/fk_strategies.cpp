@@ -262,7 +262,8 @@ constexpr FkStrategy kStrategies[] = {
 
 }  // namespace strategies
 
-SolveSummary solve_with_fallbacks(FkData& data, const VecX& inputs, VecX& x, std::optional<Stability>* verdict) {
+SolveSummary solve_with_fallbacks(FkData& data, const VecX& inputs, VecX& x,
+                                  std::optional<Stability>* verdict) {
   using namespace strategies;
   FkAttempt a(data, inputs, x);
   bool solved_here = false;
