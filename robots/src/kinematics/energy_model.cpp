@@ -71,6 +71,7 @@ EnergyModel::EnergyModel(const RobotAssembly& assembly, const VecX& x)
   add_rods(x);
   add_platforms_and_passive_joints(x);
   add_couplings(x);
+  find_shared_slices();
 }
 
 void EnergyModel::add_rods(const VecX& x) {
@@ -146,47 +147,36 @@ void EnergyModel::add_couplings(const VecX& x) {
   }
 }
 
-VecX EnergyModel::from_state(const VecX& x) const {
-  VecX e(problem_.num_variables());
+void EnergyModel::find_shared_slices() {
+  const Problem& state = assembly_.problem();
   for (int i = 0; i < assembly_.num_rods(); ++i) {
     const CollocationRod& rod = assembly_.rod(i);
-    const RodVariables& v = assembly_.rod_variables(i);
     const collocation::PointLayout& layout = rod.point_layout();
     for (std::size_t k = 0; k < rod_points_[i].size(); ++k) {
-      const int o = v.control_point_offset + static_cast<int>(k) * rod.control_point_size();
+      const int o =
+          assembly_.rod_variables(i).control_point_offset + static_cast<int>(k) * rod.control_point_size();
       const int oe = problem_.variable(rod_points_[i][k]).offset;
-      e.segment<3>(oe) = x.segment<3>(o + layout.p);
-      e.segment<4>(oe + 3) = x.segment<4>(o + layout.q);
+      shared_.push_back({o + layout.p, oe, 3});
+      shared_.push_back({o + layout.q, oe + 3, 4});
     }
   }
   for (std::size_t p = 0; p < platforms_.size(); ++p)
-    e.segment<7>(problem_.variable(platforms_[p]).offset) =
-        x.segment<7>(assembly_.problem().variable(assembly_.platform_variable(static_cast<int>(p))).offset);
+    shared_.push_back({state.variable(assembly_.platform_variable(static_cast<int>(p))).offset,
+                       problem_.variable(platforms_[p]).offset, 7});
   for (std::size_t j = 0; j < passive_.size(); ++j)
-    e[problem_.variable(passive_[j]).offset] =
-        x[assembly_.problem().variable(assembly_.passive_joint_variable(static_cast<int>(j))).offset];
+    shared_.push_back({state.variable(assembly_.passive_joint_variable(static_cast<int>(j))).offset,
+                       problem_.variable(passive_[j]).offset, 1});
+}
+
+VecX EnergyModel::from_state(const VecX& x) const {
+  VecX e(problem_.num_variables());
+  for (const SharedSlice& s : shared_) e.segment(s.energy_offset, s.size) = x.segment(s.state_offset, s.size);
   return e;
 }
 
 void EnergyModel::to_state(const VecX& e, VecX& x) const {
-  for (int i = 0; i < assembly_.num_rods(); ++i) {
-    const CollocationRod& rod = assembly_.rod(i);
-    const RodVariables& v = assembly_.rod_variables(i);
-    const collocation::PointLayout& layout = rod.point_layout();
-    for (std::size_t k = 0; k < rod_points_[i].size(); ++k) {
-      const int o = v.control_point_offset + static_cast<int>(k) * rod.control_point_size();
-      const int oe = problem_.variable(rod_points_[i][k]).offset;
-      x.segment<3>(o + layout.p) = e.segment<3>(oe);
-      x.segment<4>(o + layout.q) = e.segment<4>(oe + 3);
-    }
-    write_rod_forces(i, e, x);
-  }
-  for (std::size_t p = 0; p < platforms_.size(); ++p)
-    x.segment<7>(assembly_.problem().variable(assembly_.platform_variable(static_cast<int>(p))).offset) =
-        e.segment<7>(problem_.variable(platforms_[p]).offset);
-  for (std::size_t j = 0; j < passive_.size(); ++j)
-    x[assembly_.problem().variable(assembly_.passive_joint_variable(static_cast<int>(j))).offset] =
-        e[problem_.variable(passive_[j]).offset];
+  for (const SharedSlice& s : shared_) x.segment(s.state_offset, s.size) = e.segment(s.energy_offset, s.size);
+  for (int i = 0; i < assembly_.num_rods(); ++i) write_rod_forces(i, e, x);
 }
 
 void EnergyModel::write_rod_forces(int i, const VecX& e, VecX& x) const {

@@ -56,11 +56,18 @@ class EnergyModel {
   std::vector<std::vector<VariableId>> rod_points_;  // per rod: its control points [P, Q]
   std::vector<VariableId> platforms_, passive_;
   double energy_scale_ = 1.0;
+  /// A run of unknowns the collocation state and the energy unknowns share (a control point's P or Q, a
+  /// platform pose, a passive joint value): from_state and to_state copy them one way and the other.
+  struct SharedSlice {
+    int state_offset, energy_offset, size;
+  };
+  std::vector<SharedSlice> shared_;
 
   void add_rods(const VecX& x);
   void add_platforms_and_passive_joints(const VecX& x);
   void add_couplings(const VecX& x);
   void write_rod_forces(int rod, const VecX& e, VecX& x) const;
+  void find_shared_slices();
 };
 
 }  // namespace pcr::kinematics
