@@ -22,7 +22,8 @@ std::mutex& ipopt_mutex() {
 /// Ipopt on the energy: exact gradient, Hessian by differences of it (energy_hessian.hpp). tol 1e-8 on the
 /// scaled problem: the minimiser need only be inside Newton's basin of the equilibrium (Newton then reaches
 /// the full tolerance); constraint rows to 1e-10 (L0 units, as the collocation tolerance). 3,000 iterations:
-/// the passive_hinge input of docs/stability.md "Energy minimisation" takes a few hundred.
+/// the passive_hinge input of docs/design.md "Energy minimisation (the last FK strategy)" takes a few
+/// hundred.
 IpoptOptions energy_ipopt_options() {
   IpoptOptions o;
   o.tol = 1e-8;

@@ -2,7 +2,7 @@
 // The last FK strategy (fk_strategies.cpp): minimise the total potential energy at the requested inputs
 // (energy_model.hpp) with Ipopt, then Newton on the collocation equations from the minimiser; accepted
 // only when Newton converges to the full tolerance and the stability verdict (robot_stability.hpp) is
-// `stable` (docs/stability.md "Energy minimisation"). Internal header of pcr::robots.
+// `stable` (docs/design.md "Energy minimisation (the last FK strategy)"). Internal header of pcr::robots.
 #include <string>
 #include <vector>
 

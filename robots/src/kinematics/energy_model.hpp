@@ -1,6 +1,7 @@
 #pragma once
 // The total potential energy of a robot at fixed inputs as an optimisation problem (the last FK strategy,
-// energy_fallback.hpp; docs/stability.md "Energy minimisation"), internal header of pcr::robots:
+// energy_fallback.hpp; docs/design.md "Energy minimisation (the last FK strategy)"), internal header of
+// pcr::robots:
 //   min  V = sum_rods int_0^L [1/2 (v - v*)^T K_SE (v - v*) + 1/2 (u - u*)^T K_BT (u - u*) - f . p] ds
 //          - sum_free_rod_ends F . p
 //          - sum_platforms (m g + F) . (weights' and dead forces' points)
