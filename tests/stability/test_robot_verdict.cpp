@@ -63,7 +63,7 @@ BOOST_AUTO_TEST_CASE(stewart_gough_default_pose_is_stable) {
   BOOST_TEST(t.stability_verdict.unstable_modes == 0);
 }
 
-// A random Stewart-Gough input (the README's sweep, seed 11) that every continuation at fixed input steps
+// A random Stewart-Gough input (the README's sweep) that every continuation at fixed input steps
 // fails on: on the way from the default inputs the platform turns over (to a roll of about -106 deg, z
 // 0.16 m) and the long rods curl (bend radii of a few cm). The fold-aware arclength continuation passes
 // lambda = 0.987, where Newton at the path point (lambda = 1) converges only from a shorter last step.
