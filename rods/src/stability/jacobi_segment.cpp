@@ -42,7 +42,7 @@ struct Scaled {
 struct JacobiMatrix {
   Mat3 p_th, p_n, th_th, th_m, m_th, m_n;
   /// A~ Z for a 12 x 12 Z whose dn rows are [0 0 I 0] (those of the transfer matrix Phi and of its RK4
-  /// stages: dn' = 0), using that and the zero blocks (about a third of the dense product's work).
+  /// stages: dn' = 0), using that and the zero blocks (a quarter of the dense product's multiplications).
   Mat12 times_transfer(const Mat12& Z) const {
     Mat12 out;
     out.middleRows<3>(0).noalias() = p_th * Z.middleRows<3>(3);
