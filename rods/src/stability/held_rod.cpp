@@ -79,27 +79,30 @@ EndSpace end_space(const HeldEnd& end, const JacobiState& y, double sigma, doubl
   return e;
 }
 
-/// A segment stiffness is symmetric but for the integration error; above this its segment is halved (the
-/// RK4 error, and with it the asymmetry, falls by about 16).
-constexpr double kTargetAsymmetry = 1e-6;
+/// A segment stiffness is symmetric but for the integration error and the error of the state; above this
+/// its segment is halved (the RK4 error, and with it the asymmetry, falls by about 16). Not below 0.01
+/// times the state's strain mismatch: the neutral tolerance (below) is then 0.1 x mismatch whatever the
+/// asymmetry, and halving further cannot make it smaller (on random Stewart-Gough states the mismatch is
+/// 1e-6 - 3e-2, and a target of 1e-6 halved the segments of the most bent rods up to 12 times).
+double target_asymmetry(double strain_mismatch) { return std::max(1e-6, 0.01 * strain_mismatch); }
 
 /// Segment stiffnesses of [s_a, s_b], split in halves where a piece reaches a conjugate point of its start
-/// or is integrated less accurately than kTargetAsymmetry (at most `depth` times). False when a conjugate
+/// or is integrated less accurately than `target` (at most `depth` times). False when a conjugate
 /// point remains.
 bool add_segments(const HeldRod& rod, const JacobiStateAt& state, double s_a, double s_b, int substeps,
-                  int depth, std::vector<Mat12>& K, double& asymmetry) {
+                  int depth, double target, std::vector<Mat12>& K, double& asymmetry) {
   Mat12 k;
   double a = 0.0;
   const bool regular = stability::segment_stiffness(rod, state, s_a, s_b, substeps, k, a);
-  if (regular && (a <= kTargetAsymmetry || depth == 0)) {
+  if (regular && (a <= target || depth == 0)) {
     K.push_back(k);
     asymmetry = std::max(asymmetry, a);
     return true;
   }
   if (depth == 0) return false;
   const double s_m = 0.5 * (s_a + s_b);
-  return add_segments(rod, state, s_a, s_m, substeps, depth - 1, K, asymmetry) &&
-         add_segments(rod, state, s_m, s_b, substeps, depth - 1, K, asymmetry);
+  return add_segments(rod, state, s_a, s_m, substeps, depth - 1, target, K, asymmetry) &&
+         add_segments(rod, state, s_m, s_b, substeps, depth - 1, target, K, asymmetry);
 }
 
 /// Neutral tolerance of the probe eigenvalues (dimensionless, bending stiffnesses are O(1)): at least 1e-8,
@@ -165,8 +168,8 @@ HeldRodIndex held_rod_index(const HeldRod& rod, const JacobiStateAt& equilibrium
     K.reserve(N);
     double asymmetry = 0.0;
     for (int j = 0; j < N; ++j) {
-      if (!add_segments(rod, state, rod.length * j / N, rod.length * (j + 1) / N, substeps, 6, K,
-                        asymmetry)) {
+      if (!add_segments(rod, state, rod.length * j / N, rod.length * (j + 1) / N, substeps, 6,
+                        target_asymmetry(mismatch), K, asymmetry)) {
         std::ostringstream msg;
         msg << "no segment near s = " << rod.length * j / N
             << " m is free of conjugate points (transfer matrix singular)";
