@@ -84,7 +84,9 @@ EndSpace end_space(const HeldEnd& end, const JacobiState& y, double sigma, doubl
 /// times the state's strain mismatch: the neutral tolerance (below) is then 0.1 x mismatch whatever the
 /// asymmetry, and halving further cannot make it smaller (on random Stewart-Gough states the mismatch is
 /// 1e-6 - 3e-2, and a target of 1e-6 halved the segments of the most bent rods up to 12 times).
-double target_asymmetry(double strain_mismatch) { return std::max(1e-6, 0.01 * strain_mismatch); }
+double target_asymmetry(double strain_mismatch) {
+  return std::max(1e-6, 0.01 * strain_mismatch);
+}
 
 /// Segment stiffnesses of [s_a, s_b], split in halves where a piece reaches a conjugate point of its start
 /// or is integrated less accurately than `target` (at most `depth` times). False when a conjugate
