@@ -12,7 +12,7 @@
 // reported; --trace=1: one line per solve, warm and cold in
 // the order solved: time with the verdict and FK alone [s], iterations, fresh Jacobians, status, verdict,
 // unstable modes, margin, the first platform's position [m], message; for comparing runs by the
-// equilibria they reach and their verdicts).
+// equilibria they reach and their verdicts; --trace=2 adds a line INPUTS with the inputs after each).
 #define BOOST_TEST_MODULE random_sweeps
 #include <boost/test/unit_test.hpp>
 
@@ -234,6 +234,11 @@ bool solve_and_check(const std::string& name, ForwardKinematics& fk, const VecX&
                 to_string(sum.status), to_string(out.stability_verdict.verdict),
                 out.stability_verdict.unstable_modes, out.stability_verdict.margin, p.x(), p.y(), p.z(),
                 sum.message.c_str());
+    if (argument("trace", 0) > 1) {  // --trace=2: the inputs too, to solve one again (pcr fk --inputs)
+      std::printf("INPUTS");
+      for (int k = 0; k < u.size(); ++k) std::printf(" %.17g", u[k]);
+      std::printf("\n");
+    }
   }
   ++stats.statuses[to_string(sum.status)];
   ++stats.histogram[iteration_bin(sum.iterations)];
