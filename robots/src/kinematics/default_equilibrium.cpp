@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "contact_ipopt_fk.hpp"
+#include "pcr/robots/robot_stability.hpp"
 #include "solve_support.hpp"
 
 namespace pcr::kinematics {
@@ -70,6 +71,16 @@ const DefaultEquilibrium& SharedDefaultEquilibrium::get(
     if (then_solve) then_solve(value_.summary);
   });
   return value_;
+}
+
+int SharedDefaultEquilibrium::unstable_modes(const RobotAssembly& assembly) {
+  std::call_once(counted_, [&] {
+    if (!value_.converged) return;
+    const Stability s = robot_stability(assembly, value_.x);
+    if (s.verdict == StabilityVerdict::Stable || s.verdict == StabilityVerdict::Unstable)
+      unstable_modes_ = s.unstable_modes;
+  });
+  return unstable_modes_;
 }
 
 std::shared_ptr<SharedDefaultEquilibrium> shared_default_equilibrium(const RobotAssembly& assembly,

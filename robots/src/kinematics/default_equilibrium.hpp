@@ -29,10 +29,15 @@ class SharedDefaultEquilibrium {
   const DefaultEquilibrium& get(const RobotAssembly& assembly, const KinematicsOptions& options,
                                 bool* solved_here = nullptr,
                                 const std::function<void(SolveSummary&)>& then_solve = {});
+  /// The equilibrium's unstable modes (robot_stability on `assembly`, any assembly of the model as for
+  /// get; -1 where it did not converge or the verdict is not a count), counted on the first call
+  /// (std::call_once, as get). Call after get.
+  int unstable_modes(const RobotAssembly& assembly);
 
  private:
-  std::once_flag solved_;
+  std::once_flag solved_, counted_;
   DefaultEquilibrium value_;
+  int unstable_modes_ = -1;
 };
 
 /// The shared default equilibrium of the assembly's model and of the options that shape it (the

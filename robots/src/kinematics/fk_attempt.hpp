@@ -73,6 +73,7 @@ struct FkAttempt {
   bool fast_from_last = false;        // the fast continuation from the last solution was tried
   bool coarse_from_last = false;      // the coarse-mesh continuation from the last solution was tried
   bool tried_straight = false;        // Newton from the straight initial guess was tried
+  bool tried_arclength = false;       // the fold-aware continuation from the default inputs was tried
   std::optional<Stability> verdict;   // of x, where the attempt that reached x computed it
 
   void count(int more_iterations, int more_jacobians) {
@@ -104,6 +105,7 @@ bool coarse_via_waypoints(FkAttempt& a, const char* how);
 bool via_waypoints(FkAttempt& a, const char* how);
 bool one_input_at_a_time(FkAttempt& a, const char* how);
 bool arclength_from_default_inputs(FkAttempt& a, const char* how);
+bool cold_arclength_from_default_inputs(FkAttempt& a, const char* how);
 bool energy_minimisation(FkAttempt& a, const char* how);
 
 }  // namespace pcr::kinematics::strategies

@@ -42,6 +42,8 @@ struct FkModel {
     return default_start->get(*assembly, options, solved_here,
                               [this](SolveSummary& s) { solve_coarse_default_equilibrium(*this, s); });
   }
+  /// Unstable modes of the default equilibrium (counted on first use, shared as it is; -1: unknown).
+  int default_unstable_modes() const { return default_start->unstable_modes(*assembly); }
   /// The coarse mesh of the same rods (coarse_continuation.hpp), built on first use; nullptr in the coarse
   /// mesh's own FkModel.
   std::shared_ptr<SharedCoarseMesh> coarse_mesh = new_shared_coarse_mesh();

@@ -13,7 +13,9 @@
 //     requested mesh;
 //  4. Newton from the straight initial guess (it reaches equilibria of the planar robots that the
 //     continuations from the default equilibrium do not; cold solves try it before 3, with the short
-//     budget);
+//     budget); a cold solve whose continuations from the default inputs stopped tries 8 next (on the
+//     coarse mesh first): the equilibrium the robot reaches from its default state through the folds on
+//     that line;
 //  5. thorough continuation (first step half the line, 8 fresh Jacobians per step, every step to the
 //     full tolerance) from the last solution, then from the default inputs;
 //  6. fast continuations from the default inputs via a waypoint, a few waypoints spread over the input
@@ -246,6 +248,7 @@ constexpr FkStrategy kStrategies[] = {
     {"continuation in the inputs from the last solution", fast_from_last_solution_if_nearer},
     {"coarse-mesh continuation in the inputs from the default inputs", coarse_from_default_inputs},
     {"continuation in the inputs from the default inputs", fast_from_default_inputs},
+    {"fold-aware arclength continuation from the default inputs", cold_arclength_from_default_inputs},
     {"coarse-mesh continuation in the inputs from the last solution", coarse_from_last_solution},
     {"continuation in the inputs from the last solution", fast_from_last_solution},
     {"the straight initial guess", warm_from_straight_guess},
