@@ -12,8 +12,8 @@
 //     (coarse_continuation.hpp; a jump in 1 and 4 is probed there too), where that fails on the
 //     requested mesh;
 //  4. Newton from the straight initial guess (it reaches equilibria of the planar robots that the
-//     continuations from the default equilibrium do not; cold solves try it before 3, with the short
-//     budget); a cold solve whose continuations from the default inputs stopped tries 8 next (on the
+//     continuations from the default equilibrium do not; cold solves from an unstable default equilibrium
+//     try it before 3, with the short budget); a cold solve whose continuations from the default inputs stopped tries 8 next (on the
 //     coarse mesh first): the equilibrium the robot reaches from its default state through the folds on
 //     that line;
 //  5. thorough continuation (first step half the line, 8 fresh Jacobians per step, every step to the
@@ -139,10 +139,13 @@ bool from_straight_guess(FkAttempt& a, const char* how, int jacobians) {
   a.summary.message = "converged by Newton from " + std::string(how);
   return true;
 }
-/// Cold solves (no solution yet) try it early, with the short budget: the planar robots' cold solves
-/// converge there more often than by the continuations from their default equilibrium (random sweeps).
+/// Cold solves (no solution yet) try it early, with the short budget, where the default equilibrium is not
+/// stable: the planar robots' cold solves converge there more often than by the continuations from their
+/// default equilibrium (random sweeps). From a stable default equilibrium the continuations come first
+/// (the equilibrium the robot reaches from its default state; on random Stewart-Gough inputs Newton
+/// converges from the straight guess on 0.06 % of cold solves, and the attempt cost 15-20 % of one).
 bool cold_from_straight_guess(FkAttempt& a, const char* how) {
-  if (a.data.has_solution) return false;
+  if (a.data.has_solution || (a.x_default && a.data.model->default_unstable_modes() == 0)) return false;
   if (!a.x_default || a.tried_straight || !has_coarse_mesh(a.data))
     return from_straight_guess(a, how, kJumpJacobianEvaluations);
   a.tried_straight = true;
