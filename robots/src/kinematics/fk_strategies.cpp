@@ -12,10 +12,10 @@
 //     (coarse_continuation.hpp; a jump in 1 and 4 is probed there too), where that fails on the
 //     requested mesh;
 //  4. Newton from the straight initial guess (it reaches equilibria of the planar robots that the
-//     continuations from the default equilibrium do not; cold solves from an unstable default equilibrium
-//     try it before 3, with the short budget); a cold solve whose continuations from the default inputs stopped tries 8 next (on the
-//     coarse mesh first): the equilibrium the robot reaches from its default state through the folds on
-//     that line;
+//     continuations from the default equilibrium do not; cold solves from an unstable default
+//     equilibrium try it before 3, with the short budget); a cold solve from a stable one whose
+//     continuations from the default inputs stopped tries 8 next (on the coarse mesh first): the
+//     equilibrium the robot reaches from its default state through the folds on that line;
 //  5. thorough continuation (first step half the line, 8 fresh Jacobians per step, every step to the
 //     full tolerance) from the last solution, then from the default inputs;
 //  6. fast continuations from the default inputs via a waypoint, a few waypoints spread over the input
