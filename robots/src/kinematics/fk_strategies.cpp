@@ -34,6 +34,7 @@
 
 #include "coarse_continuation.hpp"
 #include "fk_attempt.hpp"
+#include "pcr/robots/robot_stability.hpp"
 
 namespace pcr::kinematics {
 
@@ -264,6 +265,40 @@ constexpr FkStrategy kStrategies[] = {
     {"energy minimisation (Ipopt) then Newton", energy_minimisation},
 };
 
+/// A cold solve from a stable default equilibrium whose result is unstable has left the stable path from
+/// the default state (a continuation passed a fold or a bifurcation unseen: random planar_pinned cold
+/// solves reached equilibria with 300-700 unstable modes, their rods crushed). With the verdict asked for
+/// (it is computed anyway), the fold-aware continuation along the line from the default inputs is tried
+/// too where it was not yet, and the result with fewer unstable modes is kept (the first on a tie).
+void prefer_the_stable_path(FkAttempt& a) {
+  const FkModel& m = *a.data.model;
+  if (!m.options.stability_verdict || a.data.has_solution || !a.x_default || a.tried_arclength) return;
+  if (m.default_unstable_modes() != 0) return;
+  const int n = m.assembly->problem().num_variables();
+  if (!a.verdict) a.verdict = robot_stability(*m.assembly, a.x.head(n));
+  if (a.verdict->verdict != StabilityVerdict::Unstable) return;
+  const VecX first_x = a.x;
+  const SolveSummary first = a.summary;
+  const Stability first_verdict = *a.verdict;
+  const char* how = "fold-aware arclength continuation from the default inputs";
+  if (cold_arclength_from_default_inputs(a, how) && inadmissible_rod(m, a.x).empty()) {
+    const Stability v = robot_stability(*m.assembly, a.x.head(n));
+    if ((v.verdict == StabilityVerdict::Stable || v.verdict == StabilityVerdict::Unstable) &&
+        v.unstable_modes < first_verdict.unstable_modes) {
+      a.verdict = v;
+      a.summary.message += "; preferred to an equilibrium with " +
+                           std::to_string(first_verdict.unstable_modes) + " unstable modes (" +
+                           first.message + ")";
+      return;
+    }
+  }
+  a.x = first_x;
+  a.summary = first;
+  a.summary.message += "; unstable (" + std::to_string(first_verdict.unstable_modes) + " modes): the " + how +
+                       " reached none with fewer";
+  a.verdict = first_verdict;
+}
+
 }  // namespace
 
 }  // namespace strategies
@@ -292,6 +327,7 @@ SolveSummary solve_with_fallbacks(FkData& data, const VecX& inputs, VecX& x,
     a.summary.message = inadmissible->second.message + "; rod '" + rod +
                         "' compressed to a point or inverted there: the later strategies tried";
   }
+  if (converged) prefer_the_stable_path(a);
   if (verdict) *verdict = converged ? a.verdict : std::nullopt;
   if (!converged && inadmissible) {
     a.x = inadmissible->first;
