@@ -106,6 +106,8 @@ bool via_waypoints(FkAttempt& a, const char* how);
 bool one_input_at_a_time(FkAttempt& a, const char* how);
 bool arclength_from_default_inputs(FkAttempt& a, const char* how);
 bool cold_arclength_from_default_inputs(FkAttempt& a, const char* how);
+/// The fold-aware continuation from the last solution along the line to the inputs (coarse mesh first).
+bool arclength_from_last_solution(FkAttempt& a, const char* how);
 bool energy_minimisation(FkAttempt& a, const char* how);
 
 }  // namespace pcr::kinematics::strategies

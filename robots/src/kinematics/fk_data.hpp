@@ -67,6 +67,7 @@ struct FkData {
   const std::shared_ptr<const FkModel> model;  // first: outlives the solvers that refer into it
   VecX x;                                      // the last converged solution (initial guess before)
   bool has_solution = false;
+  int last_unstable_modes = -1;  // of x where its verdict was computed (stable or unstable), else -1
   int failed_jumps = 0;        // direct attempts from the last solution off a path that failed in a row
   int last_jacobian_sign = 0;  // of the last checked converged solve (check_stability)
   PathPredictor predictor;     // start point along a path of inputs

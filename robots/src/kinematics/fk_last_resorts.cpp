@@ -128,10 +128,11 @@ int snaps_of(const SegmentOutcome& seg) {
   return snaps;
 }
 
-/// The fold-aware continuation from the default inputs on the coarse mesh, then Newton on the requested
-/// mesh from the coarse equilibrium (coarse_continuation.hpp): false where there is no coarse mesh or
-/// either stage fails (the continuation on the requested mesh follows).
-bool coarse_arclength(FkAttempt& a, const char* how) {
+/// The fold-aware continuation from (u0, x_from: an equilibrium of the requested mesh, or the default
+/// equilibrium when nullptr) on the coarse mesh, then Newton on the requested mesh from the coarse
+/// equilibrium (coarse_continuation.hpp): false where there is no coarse mesh or either stage fails (the
+/// continuation on the requested mesh follows).
+bool coarse_arclength(FkAttempt& a, const VecX& u0, const VecX* x_from, const char* how) {
   if (!has_coarse_mesh(a.data)) return false;
   int snaps = 0;
   const VecX& u1 = a.inputs;
@@ -151,7 +152,7 @@ bool coarse_arclength(FkAttempt& a, const char* how) {
     return r;
   };
   VecX xs;
-  const CoarseOutcome r = coarse_then_fine(a.data, a.default_inputs(), nullptr, a.inputs, xs, along);
+  const CoarseOutcome r = coarse_then_fine(a.data, u0, x_from, a.inputs, xs, along);
   a.count(r.iterations, r.jacobian_evaluations);
   if (!r.converged) {
     if (!r.stopped.empty()) a.summary.message += "; coarse-mesh " + std::string(how) + ": " + r.stopped;
@@ -171,18 +172,11 @@ bool coarse_arclength(FkAttempt& a, const char* how) {
   return true;
 }
 
-}  // namespace
-
-/// Pseudo-arclength continuation from the default inputs along the straight line, through folds: at a
-/// fold it follows the stable equilibrium the robot snaps to (fold_continuation.hpp).
-bool arclength_from_default_inputs(FkAttempt& a, const char* how) {
-  if (!a.x_default || a.tried_arclength) return false;
-  a.tried_arclength = true;
+/// The fold-aware continuation on the requested mesh from the equilibrium x0 at inputs u0.
+bool fine_arclength(FkAttempt& a, const VecX& x0, const VecX& u0, const char* how) {
   const FkModel& m = *a.data.model;
-  if (m.options.solver != SolverKind::Newton) return false;
   const SegmentOutcome seg =
-      continue_segment(*m.assembly, *a.x_default, -1, m.assembly->model().default_input_values(), a.inputs, 0,
-                       m.options.tolerance, arclength_options());
+      continue_segment(*m.assembly, x0, -1, u0, a.inputs, 0, m.options.tolerance, arclength_options());
   a.count(seg.iterations, seg.jacobian_evaluations);
   if (!seg.reached) {
     a.summary.message += "; " + std::string(how) + " stopped: " + seg.stopped;
@@ -200,6 +194,17 @@ bool arclength_from_default_inputs(FkAttempt& a, const char* how) {
   return true;
 }
 
+}  // namespace
+
+/// Pseudo-arclength continuation from the default inputs along the straight line, through folds: at a
+/// fold it follows the stable equilibrium the robot snaps to (fold_continuation.hpp).
+bool arclength_from_default_inputs(FkAttempt& a, const char* how) {
+  if (!a.x_default || a.tried_arclength) return false;
+  a.tried_arclength = true;
+  if (a.data.model->options.solver != SolverKind::Newton) return false;
+  return fine_arclength(a, *a.x_default, a.default_inputs(), how);
+}
+
 /// A cold solve (no solution yet) whose continuations in the inputs from the default inputs stopped follows
 /// the same line through its folds next, on the coarse mesh first: the equilibrium the robot reaches from
 /// its default state. Only from a stable default equilibrium: from an unstable one (the planar robots'
@@ -209,7 +214,13 @@ bool cold_arclength_from_default_inputs(FkAttempt& a, const char* how) {
   if (a.data.has_solution || !a.x_default || a.tried_arclength) return false;
   if (a.data.model->options.solver != SolverKind::Newton) return false;
   if (a.data.model->default_unstable_modes() != 0) return false;
-  return coarse_arclength(a, how) || arclength_from_default_inputs(a, how);
+  return coarse_arclength(a, a.default_inputs(), nullptr, how) || arclength_from_default_inputs(a, how);
+}
+
+bool arclength_from_last_solution(FkAttempt& a, const char* how) {
+  if (!a.data.has_solution || a.data.model->options.solver != SolverKind::Newton) return false;
+  const VecX u0 = a.data.model->assembly->inputs(a.data.x);
+  return coarse_arclength(a, u0, &a.data.x, how) || fine_arclength(a, a.data.x, u0, how);
 }
 
 /// The last resort (energy_fallback.hpp): minimise the total potential energy at the inputs, then Newton

@@ -265,23 +265,28 @@ constexpr FkStrategy kStrategies[] = {
     {"energy minimisation (Ipopt) then Newton", energy_minimisation},
 };
 
-/// A cold solve from a stable default equilibrium whose result is unstable has left the stable path from
-/// the default state (a continuation passed a fold or a bifurcation unseen: random planar_pinned cold
-/// solves reached equilibria with 300-700 unstable modes, their rods crushed). With the verdict asked for
-/// (it is computed anyway), the fold-aware continuation along the line from the default inputs is tried
-/// too where it was not yet, and the result with fewer unstable modes is kept (the first on a tie).
+/// A solve that starts from a stable equilibrium (cold: the default one; warm: the last solution) and
+/// ends on an unstable one has left the stable path (a continuation passed a fold or a bifurcation
+/// unseen, or a jump landed on another branch: random planar_pinned cold solves reached equilibria with
+/// 300-700 unstable modes, their rods crushed). With the verdict asked for (it is computed anyway), the
+/// fold-aware continuation along the line from that start is tried too where it was not yet, and the
+/// result with fewer unstable modes is kept (the first on a tie).
 void prefer_the_stable_path(FkAttempt& a) {
   const FkModel& m = *a.data.model;
-  if (!m.options.stability_verdict || a.data.has_solution || !a.x_default || a.tried_arclength) return;
-  if (m.default_unstable_modes() != 0) return;
+  if (!m.options.stability_verdict || a.tried_arclength) return;
+  const bool cold = !a.data.has_solution;
+  if (cold ? !a.x_default || m.default_unstable_modes() != 0 : a.data.last_unstable_modes != 0) return;
   const int n = m.assembly->problem().num_variables();
   if (!a.verdict) a.verdict = robot_stability(*m.assembly, a.x.head(n));
   if (a.verdict->verdict != StabilityVerdict::Unstable) return;
   const VecX first_x = a.x;
   const SolveSummary first = a.summary;
   const Stability first_verdict = *a.verdict;
-  const char* how = "fold-aware arclength continuation from the default inputs";
-  if (cold_arclength_from_default_inputs(a, how) && inadmissible_rod(m, a.x).empty()) {
+  const std::string how = std::string("fold-aware arclength continuation from the ") +
+                          (cold ? "default inputs" : "last solution");
+  const bool reached = cold ? cold_arclength_from_default_inputs(a, how.c_str())
+                            : arclength_from_last_solution(a, how.c_str());
+  if (reached && inadmissible_rod(m, a.x).empty()) {
     const Stability v = robot_stability(*m.assembly, a.x.head(n));
     if ((v.verdict == StabilityVerdict::Stable || v.verdict == StabilityVerdict::Unstable) &&
         v.unstable_modes < first_verdict.unstable_modes) {

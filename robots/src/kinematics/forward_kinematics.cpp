@@ -140,6 +140,10 @@ RobotSolution ForwardKinematics::solve(const VecX& inputs) {
       out.stability_verdict = *verdict;
     else if (m.options.stability_verdict)
       kinematics::add_stability_verdict(*m.assembly, d.x, out);
+    const StabilityVerdict v = out.stability_verdict.verdict;
+    d.last_unstable_modes = v == StabilityVerdict::Stable || v == StabilityVerdict::Unstable
+                                ? out.stability_verdict.unstable_modes
+                                : -1;
   }
   return out;
 }
