@@ -128,11 +128,12 @@ BOOST_AUTO_TEST_CASE(cold_fk_follows_the_stable_path_through_a_fold) {
 // the default inputs (coarse mesh, then Newton on the requested mesh) ends on an equilibrium with 1
 // unstable mode: it left the stable path from the default state. Without the verdict that is the cold
 // result; with it, cold FK also follows the line with the fold-aware continuation and keeps the stable
-// equilibrium that reaches. Reference for it: the same line followed by solve_path_through_folds on the
+// equilibrium that reaches; a warm solve from the default equilibrium does the same from its last
+// solution. Reference for both: the same line followed by solve_path_through_folds on the
 // requested mesh (no FK strategies), to 1e-8 m as above (measured: 2e-15 m). The discrete model does not
 // relax from either state (its undamped Newton), so the two verdicts are robot_stability's, checked against
 // it in the tests above.
-BOOST_AUTO_TEST_CASE(cold_fk_with_the_verdict_prefers_the_stable_path) {
+BOOST_AUTO_TEST_CASE(fk_with_the_verdict_prefers_the_stable_path) {
   const auto model = load_model("stewart_gough");
   const VecX u = (VecX(6) << 0.41908834156292896, 0.62314994390034217, 0.67545734979910099,
                   0.40135198425522994, 0.40406059876163714, 0.53049769882105569)
@@ -159,6 +160,16 @@ BOOST_AUTO_TEST_CASE(cold_fk_with_the_verdict_prefers_the_stable_path) {
   const double gap = (s.platforms[0].position - path.points.back().platforms[0].position).norm();
   BOOST_TEST_MESSAGE("cold FK with the verdict vs the path on the requested mesh: " << gap << " m");
   BOOST_TEST(gap < 1e-8);
+  // Warm, from the stable default equilibrium as the last solution: the same rule from the last solution.
+  ForwardKinematics warm(model, with_verdict());
+  BOOST_TEST_REQUIRE(warm.solve(model->default_input_values()).summary.converged());
+  const RobotSolution w = warm.solve(u);
+  BOOST_TEST_REQUIRE(w.summary.converged(), w.summary.message);
+  BOOST_TEST(w.summary.message.find("from the last solution") != std::string::npos, w.summary.message);
+  BOOST_TEST(w.summary.message.find("preferred to an equilibrium with 1 unstable modes") != std::string::npos,
+             w.summary.message);
+  BOOST_TEST(to_string(w.stability_verdict.verdict) == std::string("stable"), w.stability_verdict.reason);
+  BOOST_TEST((w.platforms[0].position - path.points.back().platforms[0].position).norm() < 1e-8);
 }
 
 // planar_three_rod at its default lengths: one unstable mode, the platform tilting out of its plane about
