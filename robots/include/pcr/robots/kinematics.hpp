@@ -99,7 +99,10 @@ struct KinematicsOptions {
   /// Stability verdict of every converged solve (RobotSolution::stability_verdict, robot_stability.hpp),
   /// FK and IK (the FK system at the IK solution's inputs): per rod its Jacobi integration and node
   /// elimination, for the platforms one Jacobian evaluation, one LU and 6 solves per platform. Off by
-  /// default: it costs about as much as a cold FK solve (docs/benchmarks.md).
+  /// default: Stewart-Gough about 5 ms, a third of a cold FK solve (docs/benchmarks.md). With it, an FK
+  /// solve that starts from a stable equilibrium (cold: the default one; warm: the last solution) and ends
+  /// on an unstable one also follows the line from that start through its folds and keeps the result with
+  /// fewer unstable modes (docs/paths_through_folds.md "Which equilibrium forward kinematics returns").
   bool stability_verdict = false;
   IkOptions ik;  ///< inverse kinematics only
 };
