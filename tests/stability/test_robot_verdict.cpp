@@ -131,8 +131,8 @@ BOOST_AUTO_TEST_CASE(cold_fk_follows_the_stable_path_through_a_fold) {
 // equilibrium that reaches; a warm solve from the default equilibrium does the same from its last
 // solution. Reference for both: the same line followed by solve_path_through_folds on the
 // requested mesh (no FK strategies), to 1e-8 m as above (measured: 2e-15 m). The discrete model does not
-// relax from either state (its undamped Newton), so the two verdicts are robot_stability's, checked against
-// it in the tests above.
+// relax from either state (its undamped Newton), so the two verdicts are robot_stability's alone (the
+// tests above check robot_stability against the discrete model).
 BOOST_AUTO_TEST_CASE(fk_with_the_verdict_prefers_the_stable_path) {
   const auto model = load_model("stewart_gough");
   const VecX u = (VecX(6) << 0.41908834156292896, 0.62314994390034217, 0.67545734979910099,
