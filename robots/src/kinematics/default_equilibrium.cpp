@@ -75,10 +75,7 @@ const DefaultEquilibrium& SharedDefaultEquilibrium::get(
 
 int SharedDefaultEquilibrium::unstable_modes(const RobotAssembly& assembly) {
   std::call_once(counted_, [&] {
-    if (!value_.converged) return;
-    const Stability s = robot_stability(assembly, value_.x);
-    if (s.verdict == StabilityVerdict::Stable || s.verdict == StabilityVerdict::Unstable)
-      unstable_modes_ = s.unstable_modes;
+    if (value_.converged) unstable_modes_ = definite_unstable_modes(robot_stability(assembly, value_.x));
   });
   return unstable_modes_;
 }

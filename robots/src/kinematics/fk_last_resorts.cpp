@@ -7,6 +7,7 @@
 #include "energy_fallback.hpp"
 #include "fk_attempt.hpp"
 #include "fold_continuation.hpp"
+#include "pcr/robots/robot_stability.hpp"
 
 namespace pcr::kinematics::strategies {
 
@@ -159,12 +160,16 @@ bool coarse_arclength(FkAttempt& a, const VecX& u0, const VecX* x_from, const ch
     return false;
   }
   // The coarse snap landing carried to the requested mesh can lie nearer one of its unstable equilibria
-  // (1 of 300 random Stewart-Gough cold solves): the path on the requested mesh decides then.
-  if (unstable_mode_count(*a.data.model->assembly, xs) > 0) {
+  // (1 of 300 random Stewart-Gough cold solves): the path on the requested mesh decides then. The verdict
+  // is kept with the result (FK reports it instead of computing it again).
+  const RobotAssembly& assembly = *a.data.model->assembly;
+  const Stability verdict = robot_stability(assembly, xs.head(assembly.problem().num_variables()));
+  if (unstable_mode_count(verdict) > 0) {
     a.summary.message += "; coarse-mesh " + std::string(how) + ": unstable on the requested mesh";
     return false;
   }
   a.x = xs;
+  a.verdict = verdict;
   a.summary = r.last;
   a.summary.message = "converged by coarse-mesh " + std::string(how) + " (" + std::to_string(r.steps) +
                       " steps, " + std::to_string(snaps) + " snaps, " + std::to_string(r.fine_jacobians) +

@@ -35,6 +35,7 @@
 #include "coarse_continuation.hpp"
 #include "fk_attempt.hpp"
 #include "pcr/robots/robot_stability.hpp"
+#include "solve_support.hpp"
 
 namespace pcr::kinematics {
 
@@ -284,12 +285,13 @@ void prefer_the_stable_path(FkAttempt& a) {
   const Stability first_verdict = *a.verdict;
   const std::string how = std::string("fold-aware arclength continuation from the ") +
                           (cold ? "default inputs" : "last solution");
+  a.verdict.reset();  // the attempt below sets it where it computes the verdict of its result
   const bool reached = cold ? cold_arclength_from_default_inputs(a, how.c_str())
                             : arclength_from_last_solution(a, how.c_str());
   if (reached && inadmissible_rod(m, a.x).empty()) {
-    const Stability v = robot_stability(*m.assembly, a.x.head(n));
-    if ((v.verdict == StabilityVerdict::Stable || v.verdict == StabilityVerdict::Unstable) &&
-        v.unstable_modes < first_verdict.unstable_modes) {
+    const Stability v = a.verdict ? *a.verdict : robot_stability(*m.assembly, a.x.head(n));
+    const int modes = definite_unstable_modes(v);
+    if (modes >= 0 && modes < first_verdict.unstable_modes) {
       a.verdict = v;
       a.summary.message += "; preferred to an equilibrium with " +
                            std::to_string(first_verdict.unstable_modes) + " unstable modes (" +
@@ -328,6 +330,7 @@ SolveSummary solve_with_fallbacks(FkData& data, const VecX& inputs, VecX& x,
       break;
     }
     if (!inadmissible) inadmissible.emplace(a.x, a.summary);
+    a.verdict.reset();  // of the inadmissible state, not of what a later strategy reaches
     a.summary.status = SolveStatus::Failed;
     a.summary.message = inadmissible->second.message + "; rod '" + rod +
                         "' compressed to a point or inverted there: the later strategies tried";

@@ -13,7 +13,10 @@
 namespace pcr::kinematics {
 
 int unstable_mode_count(const RobotAssembly& assembly, const VecX& x) {
-  const Stability s = robot_stability(assembly, x);
+  return unstable_mode_count(robot_stability(assembly, x));
+}
+
+int unstable_mode_count(const Stability& s) {
   const bool counted = s.verdict == StabilityVerdict::Stable || s.verdict == StabilityVerdict::Unstable ||
                        s.verdict == StabilityVerdict::Critical;
   return counted ? s.unstable_modes : -1;

@@ -22,6 +22,8 @@ struct SegmentOutcome {
 
 /// Unstable modes of the equilibrium x (robot_stability), -1 when the verdict is not a count.
 int unstable_mode_count(const RobotAssembly& assembly, const VecX& x);
+/// The same of a verdict already computed.
+int unstable_mode_count(const Stability& s);
 
 /// x_start: converged at u_a; modes_start: its unstable modes (-1: unknown or not counted). segment:
 /// the path index of u_a (event path parameters are segment + lambda).

@@ -140,10 +140,7 @@ RobotSolution ForwardKinematics::solve(const VecX& inputs) {
       out.stability_verdict = *verdict;
     else if (m.options.stability_verdict)
       kinematics::add_stability_verdict(*m.assembly, d.x, out);
-    const StabilityVerdict v = out.stability_verdict.verdict;
-    d.last_unstable_modes = v == StabilityVerdict::Stable || v == StabilityVerdict::Unstable
-                                ? out.stability_verdict.unstable_modes
-                                : -1;
+    d.last_unstable_modes = kinematics::definite_unstable_modes(out.stability_verdict);
   }
   return out;
 }

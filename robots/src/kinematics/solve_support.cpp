@@ -90,4 +90,9 @@ void add_stability_verdict(const RobotAssembly& assembly, const VecX& x, RobotSo
   out.stability_verdict = robot_stability(assembly, x.head(assembly.problem().num_variables()));
 }
 
+int definite_unstable_modes(const Stability& s) {
+  return s.verdict == StabilityVerdict::Stable || s.verdict == StabilityVerdict::Unstable ? s.unstable_modes
+                                                                                          : -1;
+}
+
 }  // namespace pcr::kinematics

@@ -40,4 +40,8 @@ void monitor_stability(const Problem& fk, const VecX& x, int& last_sign, RobotSo
 /// variables lead x (an IK state has its target blocks after them) into out.stability_verdict.
 void add_stability_verdict(const RobotAssembly& assembly, const VecX& x, RobotSolution& out);
 
+/// The unstable modes of a `stable` or `unstable` verdict; -1 for any other (critical, unknown, not
+/// checked): no definite count.
+int definite_unstable_modes(const Stability& s);
+
 }  // namespace pcr::kinematics
