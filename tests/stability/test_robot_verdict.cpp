@@ -146,7 +146,7 @@ BOOST_AUTO_TEST_CASE(fk_with_the_verdict_prefers_the_stable_path) {
   ForwardKinematics fk(model, with_verdict());
   const RobotSolution s = fk.solve(u);
   BOOST_TEST_REQUIRE(s.summary.converged(), s.summary.message);
-  BOOST_TEST(s.summary.message.find("preferred to an equilibrium with 1 unstable modes") != std::string::npos,
+  BOOST_TEST(s.summary.message.find("preferred to an equilibrium with 1 unstable mode") != std::string::npos,
              s.summary.message);
   BOOST_TEST(to_string(s.stability_verdict.verdict) == std::string("stable"), s.stability_verdict.reason);
   BOOST_TEST((s.platforms[0].position - first.platforms[0].position).norm() > 1e-3);
@@ -166,7 +166,7 @@ BOOST_AUTO_TEST_CASE(fk_with_the_verdict_prefers_the_stable_path) {
   const RobotSolution w = warm.solve(u);
   BOOST_TEST_REQUIRE(w.summary.converged(), w.summary.message);
   BOOST_TEST(w.summary.message.find("from the last solution") != std::string::npos, w.summary.message);
-  BOOST_TEST(w.summary.message.find("preferred to an equilibrium with 1 unstable modes") != std::string::npos,
+  BOOST_TEST(w.summary.message.find("preferred to an equilibrium with 1 unstable mode") != std::string::npos,
              w.summary.message);
   BOOST_TEST(to_string(w.stability_verdict.verdict) == std::string("stable"), w.stability_verdict.reason);
   BOOST_TEST((w.platforms[0].position - path.points.back().platforms[0].position).norm() < 1e-8);

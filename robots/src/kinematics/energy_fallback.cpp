@@ -75,7 +75,7 @@ bool from_start(FkData& data, const VecX& inputs, const EnergyStart& start, VecX
   if (verdict.verdict != StabilityVerdict::Stable) {
     note += std::string("; the equilibrium is ") + to_string(verdict.verdict) +
             (verdict.verdict == StabilityVerdict::Unstable
-                 ? " (" + std::to_string(verdict.unstable_modes) + " unstable modes)"
+                 ? " (" + unstable_modes_text(verdict.unstable_modes) + ")"
              : verdict.reason.empty() ? ""
                                       : " (" + verdict.reason + ")");
     return false;

@@ -294,15 +294,14 @@ void prefer_the_stable_path(FkAttempt& a) {
     if (modes >= 0 && modes < first_verdict.unstable_modes) {
       a.verdict = v;
       a.summary.message += "; preferred to an equilibrium with " +
-                           std::to_string(first_verdict.unstable_modes) + " unstable modes (" +
-                           first.message + ")";
+                           unstable_modes_text(first_verdict.unstable_modes) + " (" + first.message + ")";
       return;
     }
   }
   a.x = first_x;
   a.summary = first;
-  a.summary.message += "; unstable (" + std::to_string(first_verdict.unstable_modes) + " modes): the " + how +
-                       " reached none with fewer";
+  a.summary.message +=
+      "; " + unstable_modes_text(first_verdict.unstable_modes) + ": the " + how + " reached none with fewer";
   a.verdict = first_verdict;
 }
 

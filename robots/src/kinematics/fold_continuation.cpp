@@ -214,8 +214,8 @@ bool SegmentTracer::finish_at_end(const ArcPoint& p, const ArcPoint& q) {
 bool SegmentTracer::pass_fold(ArcPoint& p, int& nu, const ArcPoint& fold, int nu_beyond) {
   PathEvent e = event(PathEventKind::Fold, fold, nu, nu_beyond);
   std::ostringstream d;
-  d << "fold at path parameter " << e.path_parameter << ": the branch with " << nu
-    << " unstable modes ends (beyond the fold: " << nu_beyond << ")";
+  d << "fold at path parameter " << e.path_parameter << ": the branch with " << unstable_modes_text(nu)
+    << " ends (beyond the fold: " << nu_beyond << ")";
   e.description = d.str();
   out_.events.push_back(e);
   out_.x = fold.x;
@@ -235,8 +235,8 @@ bool SegmentTracer::pass_fold(ArcPoint& p, int& nu, const ArcPoint& fold, int nu
   jump_between(s.platforms_before, s.platforms_after, s);
   std::ostringstream text;
   text << "snap-through at path parameter " << s.path_parameter << ": the platforms jump by "
-       << s.jump_position << " m and " << s.jump_rotation << " rad to an equilibrium with " << nu_landing
-       << " unstable modes";
+       << s.jump_position << " m and " << s.jump_rotation << " rad to an equilibrium with "
+       << unstable_modes_text(nu_landing);
   s.description = text.str();
   out_.events.push_back(s);
   if (o_.keep_trace) out_.trace.push_back({segment_ + landing.lambda, landing.tau(), nu_landing, landing.x});

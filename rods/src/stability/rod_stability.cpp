@@ -217,4 +217,8 @@ Stability unknown_stability(std::string reason) {
   return s;
 }
 
+std::string unstable_modes_text(int n) {
+  return std::to_string(n) + (n == 1 ? " unstable mode" : " unstable modes");
+}
+
 }  // namespace pcr

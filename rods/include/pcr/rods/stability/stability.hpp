@@ -48,5 +48,7 @@ struct Stability {
 StabilityVerdict verdict_of(int unstable_modes, int neutral_modes);
 /// A Stability with verdict Unknown and the reason.
 Stability unknown_stability(std::string reason);
+/// "1 unstable mode", "n unstable modes" (for messages).
+std::string unstable_modes_text(int n);
 
 }  // namespace pcr
