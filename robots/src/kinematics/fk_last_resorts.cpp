@@ -202,24 +202,26 @@ bool fine_arclength(FkAttempt& a, const VecX& x0, const VecX& u0, const char* ho
 }  // namespace
 
 /// Pseudo-arclength continuation from the default inputs along the straight line, through folds: at a
-/// fold it follows the stable equilibrium the robot snaps to (fold_continuation.hpp).
+/// fold it follows the stable equilibrium the robot snaps to (fold_continuation.hpp). From a stable
+/// default equilibrium on the coarse mesh first (as the cold solves' strategy 4 below); from an unstable
+/// one on the requested mesh only (a coarse landing is accepted only without unstable modes).
 bool arclength_from_default_inputs(FkAttempt& a, const char* how) {
   if (!a.x_default || a.tried_arclength) return false;
   a.tried_arclength = true;
   if (a.data.model->options.solver != SolverKind::Newton) return false;
+  if (a.data.model->default_unstable_modes() == 0 && coarse_arclength(a, a.default_inputs(), nullptr, how))
+    return true;
   return fine_arclength(a, *a.x_default, a.default_inputs(), how);
 }
 
 /// A cold solve (no solution yet) whose continuations in the inputs from the default inputs stopped follows
-/// the same line through its folds next, on the coarse mesh first: the equilibrium the robot reaches from
-/// its default state. Only from a stable default equilibrium: from an unstable one (the planar robots'
-/// out-of-plane mode) no such path exists, and the later strategies reach an equilibrium at a tenth of
-/// the cost (random planar_three_rod cold solves: 38 against 344 ms median, 6.0 against 7.5 % stable).
+/// the same line through its folds next: the equilibrium the robot reaches from its default state. Only
+/// from a stable default equilibrium: from an unstable one (the planar robots' out-of-plane mode) no such
+/// path exists, and the later strategies reach an equilibrium at a tenth of the cost (random
+/// planar_three_rod cold solves: 38 against 344 ms median, 6.0 against 7.5 % stable).
 bool cold_arclength_from_default_inputs(FkAttempt& a, const char* how) {
-  if (a.data.has_solution || !a.x_default || a.tried_arclength) return false;
-  if (a.data.model->options.solver != SolverKind::Newton) return false;
-  if (a.data.model->default_unstable_modes() != 0) return false;
-  return coarse_arclength(a, a.default_inputs(), nullptr, how) || arclength_from_default_inputs(a, how);
+  if (a.data.has_solution || !a.x_default || a.data.model->options.solver != SolverKind::Newton) return false;
+  return a.data.model->default_unstable_modes() == 0 && arclength_from_default_inputs(a, how);
 }
 
 bool arclength_from_last_solution(FkAttempt& a, const char* how) {
