@@ -17,6 +17,7 @@
 #include "pcr/robots/urdf_loader.hpp"
 #include "robot_fixtures.hpp"
 #include "stability/robot_discrete.hpp"
+#include "stability/robot_stability_parts.hpp"
 
 using namespace pcr;
 using test::load_model;
@@ -314,4 +315,36 @@ BOOST_AUTO_TEST_CASE(passive_hinge_count_kept_at_a_small_asymmetry) {
   BOOST_TEST_REQUIRE(std::abs(fine.passive_joints[0] - coarse.passive_joints[0]) < 0.05);
   BOOST_TEST(vf.asymmetry <= 1e-4);
   BOOST_TEST(vf.unstable_modes == v.unstable_modes);
+}
+
+// The border count of a reduced stiffness whose diagonal is small beside its coupling: a universal joint
+// whose rod lies along its first axis (the second at pi / 2) turns that rod about its own axis, which a
+// rod free to spin at its other end does not resist (universal_passive reached such a state). Blocks of
+// [[-eps, k], [k, -eps]] have eigenvalues -eps +- k: one unstable mode each, whatever the scaling of the
+// diagonal (Sylvester), here with an asymmetry of 1e-9 relative to k (the size of a solve's error).
+BOOST_AUTO_TEST_CASE(border_count_of_a_small_diagonal_beside_its_coupling) {
+  MatX K = MatX::Zero(4, 4);
+  K.block<2, 2>(0, 0) << 2.0, 1.0, 1.0, 2.0;  // eigenvalues 1 and 3: stable
+  const double eps = 1e-7, k = 10.0;
+  K.block<2, 2>(2, 2) << -eps, k, k * (1.0 + 1e-9), -eps;
+  Stability s;
+  BOOST_TEST_REQUIRE(stability::count_border(K, s), s.reason);
+  BOOST_TEST(s.border_unstable_modes == 1);
+  BOOST_TEST(s.neutral_modes == 0);
+  BOOST_TEST(s.asymmetry < 1e-8);  // 1e-9 of the balanced entry 1 (the diagonal scaling made it 1e8)
+  // The margin: the smallest eigenvalue of K's symmetric part, -eps - k (1 + 5e-10), to rounding.
+  BOOST_TEST(s.margin == -eps - k * (1.0 + 5e-10), boost::test_tools::tolerance(1e-12));
+  // A positive definite K with the same coupling structure is stable; an asymmetry of 10 % is not trusted.
+  MatX stable = K;
+  stable.block<2, 2>(2, 2) << 3.0 * k, k, k, 3.0 * k;
+  Stability t;
+  BOOST_TEST(stability::count_border(stable, t));
+  BOOST_TEST(t.border_unstable_modes == 0);
+  BOOST_TEST(t.margin == 1.0, boost::test_tools::tolerance(1e-12));
+  MatX skewed = stable;
+  skewed(3, 2) *= 1.1;
+  Stability u;
+  BOOST_TEST(!stability::count_border(skewed, u));
+  BOOST_TEST((u.verdict == StabilityVerdict::Unknown));
+  BOOST_TEST(u.reason.find("not symmetric") != std::string::npos, u.reason);
 }

@@ -12,16 +12,29 @@ namespace pcr {
 
 namespace {
 
-/// K in its diagonal scaling D K D, D = diag(|K_ii|^-1/2) (as for the rods' segment stiffnesses): a
-/// congruence, so its symmetric part has the same count of negative eigenvalues as K's (Sylvester).
-MatX diagonally_scaled(const MatX& K) {
+/// K in a balanced scaling D K D (D positive diagonal): a congruence, so its symmetric part has the same
+/// count of negative eigenvalues as K's (Sylvester). First D = diag(|K_ii|^-1/2) (as for the rods' segment
+/// stiffnesses), which leaves a positive definite K with unit diagonal and every entry within 1; where an
+/// entry still exceeds 1 (an indefinite K whose diagonal is small beside its coupling, e.g. a universal
+/// joint whose rod lies along its first axis: turning that axis twists a rod free to spin at its other
+/// end), rows and columns are scaled down by the square root of their largest entry until none exceeds 1
+/// (Ruiz's equilibration), so that the asymmetry below is relative to the entries it is an error of.
+MatX balanced(const MatX& K) {
   VecX d(K.rows());
   for (int i = 0; i < K.rows(); ++i)
     d[i] = std::abs(K(i, i)) > 0.0 ? 1.0 / std::sqrt(std::abs(K(i, i))) : 1.0;
-  return d.asDiagonal() * K * d.asDiagonal();
+  MatX Ks = d.asDiagonal() * K * d.asDiagonal();
+  for (int pass = 0; pass < 50; ++pass) {
+    const VecX largest =
+        Ks.cwiseAbs().rowwise().maxCoeff().cwiseMax(Ks.cwiseAbs().colwise().maxCoeff().transpose());
+    if (largest.size() == 0 || largest.maxCoeff() <= 1.0 + 1e-9) break;
+    const VecX shrink = largest.cwiseMax(1.0).cwiseSqrt().cwiseInverse();
+    Ks = shrink.asDiagonal() * Ks * shrink.asDiagonal();
+  }
+  return Ks;
 }
 
-/// Relative asymmetry of K: max |Ks - Ks^T| of the diagonally scaled Ks.
+/// Relative asymmetry of K: max |Ks - Ks^T| of the balanced Ks.
 double scaled_asymmetry(const MatX& Ks) {
   return (Ks - Ks.transpose()).cwiseAbs().maxCoeff();
 }
@@ -30,7 +43,7 @@ double scaled_asymmetry(const MatX& Ks) {
 /// residual of the solve); beyond this the state is not an accurate equilibrium.
 constexpr double kMaxAsymmetry = 1e-4;
 /// Between kMaxAsymmetry and this, the count is kept where no error of the asymmetry's size can change
-/// it: every eigenvalue of the symmetrised diagonally scaled K_hat (the scaling in which the asymmetry
+/// it: every eigenvalue of the symmetrised balanced K_hat (the scaling in which the asymmetry
 /// is measured) farther than n x asymmetry from zero (Weyl: a symmetric
 /// perturbation E of an n x n matrix moves each eigenvalue by at most |E|_2 <= n max|E_ij|), the
 /// asymmetry taken as the size of the discretisation error it is the antisymmetric part of (passive_hinge,
@@ -38,7 +51,7 @@ constexpr double kMaxAsymmetry = 1e-4;
 /// at 8 elements, 3.4e-7 at 16, 5.9e-9 at 32, docs/benchmarks.md "Random FK sweeps").
 constexpr double kMaxClearAsymmetry = 1e-3;
 
-/// The reason the count of K_hat (Ks: diagonally scaled) is not trusted, or "".
+/// The reason the count of K_hat (Ks: balanced) is not trusted, or "".
 std::string asymmetry_failure(double asymmetry, const MatX& Ks) {
   if (asymmetry <= kMaxAsymmetry) return "";
   const VecX lambda = Eigen::SelfAdjointEigenSolver<MatX>(0.5 * (Ks + Ks.transpose())).eigenvalues();
@@ -53,15 +66,24 @@ std::string asymmetry_failure(double asymmetry, const MatX& Ks) {
   return msg.str();
 }
 
-/// Adds the border's count (negative eigenvalues of the symmetrised K_hat below -tolerance, neutral ones
-/// within it) and margin to s; false with s Unknown on failure.
+/// Adds the border's count and margin to s (stability::count_border), with the scales; false with s
+/// Unknown on failure.
 bool add_border(const RobotAssembly& assembly, const VecX& x, Stability& s) {
   const BorderStiffness border = robot_border_stiffness(assembly, x);
   if (!border.ok) {
     s = unknown_stability(border.failure);
     return false;
   }
-  const MatX scaled = diagonally_scaled(border.stiffness);
+  if (!stability::count_border(border.stiffness, s)) return false;
+  s.length_scale = assembly.length_scale();
+  s.energy_scale = assembly.moment_scale();
+  return true;
+}
+
+}  // namespace
+
+bool stability::count_border(const MatX& K, Stability& s) {
+  const MatX scaled = balanced(K);
   const double asymmetry = scaled_asymmetry(scaled);
   s.asymmetry = std::max(s.asymmetry, asymmetry);
   const std::string failure = asymmetry_failure(asymmetry, scaled);
@@ -82,15 +104,10 @@ bool add_border(const RobotAssembly& assembly, const VecX& x, Stability& s) {
       ++s.neutral_modes;
   }
   // The margin: the smallest eigenvalue of the dimensionless K (bending stiffnesses O(1)).
-  const Eigen::SelfAdjointEigenSolver<MatX> eig(0.5 * (border.stiffness + border.stiffness.transpose()),
-                                                Eigen::EigenvaluesOnly);
+  const Eigen::SelfAdjointEigenSolver<MatX> eig(0.5 * (K + K.transpose()), Eigen::EigenvaluesOnly);
   s.margin = eig.eigenvalues()[0];
-  s.length_scale = assembly.length_scale();
-  s.energy_scale = assembly.moment_scale();
   return true;
 }
-
-}  // namespace
 
 Stability robot_stability(const RobotAssembly& assembly, const VecX& x) {
   const std::string failure = stability::robot_assumption_failure(assembly.model());

@@ -7,6 +7,7 @@
 
 #include "pcr/robots/robot_assembly.hpp"
 #include "pcr/rods/stability/held_rod.hpp"
+#include "pcr/rods/stability/stability.hpp"
 
 namespace pcr::stability {
 
@@ -18,5 +19,10 @@ std::string robot_assumption_failure(const RobotModel& model);
 /// Rod i's Morse index with its couplings held in their link frames at the state x (the link poses at the
 /// state's inputs, passive joint values and platform poses).
 HeldRodIndex held_rod_in_robot(const RobotAssembly& assembly, const VecX& x, int rod);
+
+/// The border's count (negative eigenvalues of the symmetrised reduced stiffness K below -tolerance,
+/// neutral ones within it, in a balanced scaling) and margin (smallest eigenvalue of K's symmetric part),
+/// added to s; false with s Unknown where K's asymmetry is too large to trust the count.
+bool count_border(const MatX& K, Stability& s);
 
 }  // namespace pcr::stability
