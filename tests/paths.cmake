@@ -9,6 +9,7 @@ if(PCR_SANITIZE)
 endif()
 pcr_add_test(NAME test_paths_through_folds LABELS robots ARGS ${paths_args}
              SOURCES ${CMAKE_CURRENT_LIST_DIR}/paths/test_paths_through_folds.cpp
+                     ${CMAKE_CURRENT_LIST_DIR}/paths/test_snaps_past_folds.cpp
                      $<TARGET_OBJECTS:pcr_test_discrete>)
 # The damped motion of the snap (robots/src/kinematics/pseudo_transient_snap.hpp, internal) is tested
 # directly: its internal header (the target is absent when PCR_SKIP_TESTS leaves it out).
