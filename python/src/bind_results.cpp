@@ -30,6 +30,7 @@ void bind_summary(py::module_& m) {
       .def_readonly("iterations", &SolveSummary::iterations)
       .def_readonly("jacobian_evaluations", &SolveSummary::jacobian_evaluations)
       .def_readonly("residual_max_abs", &SolveSummary::residual_max_abs)
+      .def_readonly("residual_round_off", &SolveSummary::residual_round_off)
       .def_readonly("residual_by_kind", &SolveSummary::residual_by_kind)
       .def_readonly("objective", &SolveSummary::objective)
       .def_readonly("wall_time_seconds", &SolveSummary::wall_time_seconds)

@@ -32,6 +32,7 @@ pcr::RobotSolution planar_solution(const pcr::RobotModel& model) {
   s.summary.iterations = 3;
   s.summary.jacobian_evaluations = 2;
   s.summary.residual_max_abs = 1.25e-13;
+  s.summary.residual_round_off = 2.5e-13;
   s.summary.message = "ok \"quoted\"";
   s.inputs = model.default_input_values();
   pcr::Pose platform;
@@ -180,6 +181,7 @@ BOOST_AUTO_TEST_CASE(solution_json_is_parsed_back_with_every_field) {
   BOOST_CHECK_EQUAL(summary["iterations"].number, 3.0);
   BOOST_CHECK_EQUAL(summary["jacobian_evaluations"].number, 2.0);
   BOOST_CHECK_EQUAL(summary["residual_max_abs"].number, 1.25e-13);
+  BOOST_CHECK_EQUAL(summary["residual_round_off"].number, 2.5e-13);
   BOOST_CHECK_EQUAL(summary["message"].text, "ok \"quoted\"");
   BOOST_CHECK(summary.has("wall_time_seconds"));
   BOOST_CHECK(!j.has("targets"));

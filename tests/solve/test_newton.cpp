@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,49 @@ BOOST_AUTO_TEST_CASE(circle_and_line_intersection) {
   BOOST_TEST(std::abs(x[1] - std::sqrt(2.0)) <= 1e-9);
   BOOST_TEST(s.residual_by_kind.size() == 2u);
   BOOST_TEST(s.wall_time_seconds >= 0.0);
+}
+
+// A tolerance no double-precision point meets: on the line y = x (exact in doubles) the circle's
+// residual x^2 + y^2 - 4 is at least 8.9e-16 in magnitude (2 fl(sqrt 2)^2 = 4 + 8.9e-16: no double
+// squares to 2), and off it the line's residual y - x is at least 1 ulp of sqrt 2, 2.2e-16. Against a
+// tolerance of 2e-16 Newton reports convergence to the round-off: every row above the tolerance within
+// 2 eps sum_j |J_ij x_j| (circle 2 eps (2 x^2 + 2 y^2) = 16 eps, line 2 eps (|x| + |y|) = 5.7 eps) and
+// within 10 x the tolerance (kRoundOffTolerances). Against 1e-18 that is 890 x the tolerance: not
+// converged.
+BOOST_AUTO_TEST_CASE(converged_to_the_round_off_of_the_residuals) {
+  const double eps = std::numeric_limits<double>::epsilon();
+  CircleLine cl(1.0, 0.2);
+  NewtonOptions o;
+  o.tolerance = 2e-16;
+  NewtonSolver newton(cl.p, o);
+  VecX x = cl.p.initial_values();
+  const SolveSummary s = newton.solve(x);
+  BOOST_TEST(s.converged(), s.brief_report());
+  BOOST_TEST(s.residual_max_abs > o.tolerance);
+  BOOST_TEST(s.residual_max_abs <= kRoundOffTolerances * o.tolerance);
+  BOOST_TEST(s.residual_round_off >= 5.0 * eps);  // the smaller row bound, to rounding of the Jacobian
+  BOOST_TEST(s.residual_round_off <= 16.0 * eps * (1.0 + 1e-6));
+  BOOST_TEST(s.residual_max_abs <= s.residual_round_off);
+  BOOST_TEST(s.message.find("round-off") != std::string::npos, s.message);
+  // Within 2 units in the last place of sqrt 2 (|J^-1| ~ 1/4 times the residual's round-off).
+  BOOST_TEST(std::abs(x[0] - std::sqrt(2.0)) <= 4.5e-16);
+  BOOST_TEST(std::abs(x[1] - std::sqrt(2.0)) <= 4.5e-16);
+  // Far below the round-off the solve is not converged, and says why.
+  CircleLine strict(1.0, 0.2);
+  o.tolerance = 1e-18;
+  NewtonSolver strict_newton(strict.p, o);
+  VecX y = strict.p.initial_values();
+  const SolveSummary t = strict_newton.solve(y);
+  BOOST_TEST(!t.converged(), t.brief_report());
+  BOOST_TEST(t.residual_round_off == 0.0);
+  BOOST_TEST(!t.message.empty());
+  // At the default tolerance the same solve converges within it and reports no round-off bound.
+  CircleLine plain(1.0, 0.2);
+  NewtonSolver plain_newton(plain.p);
+  VecX z = plain.p.initial_values();
+  const SolveSummary u = plain_newton.solve(z);
+  BOOST_TEST(u.converged(), u.brief_report());
+  BOOST_TEST(u.residual_round_off == 0.0);
 }
 
 BOOST_AUTO_TEST_CASE(fixed_variable_and_inactive_block) {

@@ -119,17 +119,17 @@ NewtonLoop::Step NewtonLoop::check_point(Run& run) {
   if (run.r_max <= options_.tolerance) return finish(run, SolveStatus::Converged, {});
   const int iterations = run.result.iterations;
   if (iterations >= run.limits.max_iterations)
-    return finish(run, SolveStatus::MaxIterations,
-                  format("no convergence in %.0f iterations (|r|max = %.3g)", iterations, run.r_max));
+    return stop_short(run, SolveStatus::MaxIterations,
+                      format("no convergence in %.0f iterations (|r|max = %.3g)", iterations, run.r_max));
   // Stalled (e.g. at a local minimum of |r| with no root nearby, or on the way to another branch).
   const int window = options_.stall_window;
   if (window == 0) return Step::Newton;
   stall_history_.push_back(run.r_norm);
   const int seen = static_cast<int>(stall_history_.size());
   if (seen > window && run.r_norm > options_.stall_ratio * stall_history_[seen - 1 - window])
-    return finish(run, SolveStatus::Failed,
-                  format("stalled: |r| = %.3g fell by less than a factor %.3g in %.0f iterations", run.r_norm,
-                         options_.stall_ratio, window));
+    return stop_short(run, SolveStatus::Failed,
+                      format("stalled: |r| = %.3g fell by less than a factor %.3g in %.0f iterations",
+                             run.r_norm, options_.stall_ratio, window));
   return Step::Newton;
 }
 
@@ -186,9 +186,9 @@ NewtonLoop::Step NewtonLoop::newton_step(Run& run) {
   NonlinearSystem& system = *run.system;
   NewtonLoopResult& result = run.result;
   if (result.jacobian_evaluations >= run.limits.max_jacobian_evaluations)
-    return finish(run, SolveStatus::MaxIterations,
-                  format("no convergence with %.0f Jacobian evaluations (|r|max = %.3g)",
-                         run.limits.max_jacobian_evaluations, run.r_max));
+    return stop_short(run, SolveStatus::MaxIterations,
+                      format("no convergence with %.0f Jacobian evaluations (|r|max = %.3g)",
+                             run.limits.max_jacobian_evaluations, run.r_max));
   ++result.jacobian_evaluations;
   SystemStatus status = system.factorize(r_);
   if (system.jacobian_refreshes_residual()) measure_residual(run);
@@ -216,14 +216,15 @@ NewtonLoop::Step NewtonLoop::newton_step(Run& run) {
   if (lm && levenberg_marquardt_step(run)) return Step::Next;
   const std::string after_lm = lm ? "; no Levenberg-Marquardt step reduces |r| either" : "";
   if (!status.ok()) return finish(run, status.failure, status.message + after_lm);
-  return finish(run, SolveStatus::Failed,
-                format(options_.natural_monotonicity
-                           ? "line search found no decrease of |r| nor of the Newton correction along the "
-                             "Newton step (|r|max = %.3g): local minimum of |r| or inconsistent system"
-                           : "line search found no decrease of |r| along the Newton step (|r|max = %.3g): "
-                             "local minimum of |r| or inconsistent system",
-                       run.r_max) +
-                    after_lm);
+  return stop_short(
+      run, SolveStatus::Failed,
+      format(options_.natural_monotonicity
+                 ? "line search found no decrease of |r| nor of the Newton correction along the "
+                   "Newton step (|r|max = %.3g): local minimum of |r| or inconsistent system"
+                 : "line search found no decrease of |r| along the Newton step (|r|max = %.3g): "
+                   "local minimum of |r| or inconsistent system",
+             run.r_max) +
+          after_lm);
 }
 
 bool NewtonLoop::line_search(Run& run, double* alpha_out) {
@@ -301,6 +302,17 @@ void NewtonLoop::cap(const NonlinearSystem& system, VecX& dx) const {
   if (!std::isfinite(options_.max_step)) return;
   const double size = system.step_size(dx);
   if (size > options_.max_step) dx *= options_.max_step / size;
+}
+
+NewtonLoop::Step NewtonLoop::stop_short(Run& run, SolveStatus status, std::string message) {
+  double bound = 0.0;
+  if (!run.r_finite || !run.system->within_round_off(r_, options_.tolerance, bound))
+    return finish(run, status, std::move(message));
+  run.result.round_off_bound = bound;
+  return finish(run, SolveStatus::Converged,
+                format("converged to the round-off of the residuals: |r|max = %.3g above the tolerance %.3g, "
+                       "within the round-off bound of each row (largest %.3g)",
+                       run.r_max, options_.tolerance, bound));
 }
 
 NewtonLoop::Step NewtonLoop::finish(Run& run, SolveStatus status, std::string message) {

@@ -97,8 +97,10 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
     summary.message = result.message;
     summary.iterations = result.iterations;
     summary.jacobian_evaluations = result.jacobian_evaluations;
+    summary.residual_round_off = result.round_off_bound;
     if (summary.converged() && w.options.reuse_factorization)
-      summary.message = std::to_string(result.jacobian_evaluations) + " Jacobian evaluations";
+      summary.message = std::to_string(result.jacobian_evaluations) + " Jacobian evaluations" +
+                        (result.message.empty() ? "" : "; " + result.message);
   }
   summary.residual_by_kind = problem.violation_by_kind(*constraints);
   summary.residual_max_abs = 0.0;  // = problem.constraint_violation(c), without a second pass
@@ -110,6 +112,23 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
   summary.wall_time_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   return summary;
+}
+
+bool residuals_within_round_off(const Eigen::SparseMatrix<double, Eigen::RowMajor>& J, const VecX& x,
+                                const VecX& r, double tolerance, double& bound) {
+  bound = 0.0;
+  if (J.rows() != r.size() || J.cols() != x.size() || J.nonZeros() == 0) return false;
+  constexpr double kUnitRoundoffs = 2.0 * std::numeric_limits<double>::epsilon();
+  for (int i = 0; i < r.size(); ++i) {
+    if (!(std::abs(r[i]) > tolerance)) continue;
+    double sensitivity = 0.0;  // sum_j |J_ij x_j|
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(J, i); it; ++it)
+      sensitivity += std::abs(it.value() * x[it.col()]);
+    const double row_bound = kUnitRoundoffs * sensitivity;
+    if (!(std::abs(r[i]) <= row_bound) || !(std::abs(r[i]) <= kRoundOffTolerances * tolerance)) return false;
+    bound = std::max(bound, row_bound);
+  }
+  return true;
 }
 
 }  // namespace pcr

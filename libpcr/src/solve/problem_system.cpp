@@ -193,6 +193,11 @@ void ProblemSystem::accept_trial() {
 }
 
 // Newton step, first half: J at x, its free columns, the factorisation.
+bool ProblemSystem::within_round_off(const VecX& r, double tolerance, double& bound) const {
+  bound = 0.0;
+  return x_ && residuals_within_round_off(J_, *x_, r, tolerance, bound);
+}
+
 SystemStatus ProblemSystem::factorize(VecX&) {
   problem_.evaluate_residuals_and_jacobian(*x_, c_, J_);
   if (value_map_.size() != static_cast<size_t>(J_.nonZeros())) build_free_pattern();

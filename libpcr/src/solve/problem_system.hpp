@@ -49,6 +49,8 @@ class ProblemSystem : public NonlinearSystem {
   bool has_factorization() const override { return factored_ != Factored::None; }
   void solve(const VecX& b, VecX& y) override;
   SystemStatus newton_direction(const VecX& r, VecX& dx) override;
+  /// residuals_within_round_off (newton_solver.hpp) with the last evaluated Jacobian.
+  bool within_round_off(const VecX& r, double tolerance, double& bound) const override;
 
  private:
   /// J_free_, value_map_ and blocks_ from J_'s pattern: the analysis a solver over the problem left for

@@ -177,6 +177,7 @@ void write_summary(JsonWriter& json, const SolveSummary& s) {
   json.member("iterations", s.iterations);
   json.member("jacobian_evaluations", s.jacobian_evaluations);
   json.member("residual_max_abs", s.residual_max_abs);
+  json.member("residual_round_off", s.residual_round_off);
   json.key("residual_by_kind");
   json.begin_object();
   for (const auto& kind : s.residual_by_kind) {

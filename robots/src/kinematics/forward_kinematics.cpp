@@ -126,7 +126,8 @@ RobotSolution ForwardKinematics::solve(const VecX& inputs) {
   m.assembly->check_inputs(inputs);
   VecX x;
   std::optional<Stability> verdict;  // computed by the strategy that converged (the energy minimisation)
-  const SolveSummary summary = kinematics::solve_with_fallbacks(d, inputs, x, &verdict);
+  SolveSummary summary = kinematics::solve_with_fallbacks(d, inputs, x, &verdict);
+  kinematics::account_for_round_off(m.assembly->problem(), x, m.options.tolerance, summary);
   bool accepted = false;
   RobotSolution out = kinematics::finish_solution(*m.assembly, x, d.x, summary, start, m.sample_bases,
                                                   m.options.read_centerline, accepted);

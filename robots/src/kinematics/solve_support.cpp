@@ -39,6 +39,27 @@ bool reject_inadmissible(RobotSolution& s) {
 
 }  // namespace
 
+void account_for_round_off(const Problem& problem, const VecX& x, double tolerance, SolveSummary& summary) {
+  if (!summary.converged() || !(summary.residual_max_abs > tolerance) || !x.allFinite()) return;
+  const VecX xs = x.head(problem.num_variables());
+  VecX c;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> J;
+  problem.evaluate_residuals_and_jacobian(xs, c, J);
+  const VecX r = c - c.cwiseMax(problem.row_lower()).cwiseMin(problem.row_upper());  // violation
+  double bound = 0.0;
+  std::ostringstream note;
+  note << "|r|max = " << summary.residual_max_abs << " above the tolerance " << tolerance;
+  if (residuals_within_round_off(J, xs, r, tolerance, bound)) {
+    summary.residual_round_off = bound;
+    note << ", within the round-off bound of each row (largest " << bound << ")";
+    summary.message += "; converged to the round-off of the residuals: " + note.str();
+    return;
+  }
+  summary.status = SolveStatus::Failed;
+  summary.message =
+      "residual above the tolerance and its round-off: " + note.str() + " (" + summary.message + ")";
+}
+
 void append_contact_warning(RobotSolution& s) {
   const std::string warning = contact_penetration_warning(s.contact_gaps);
   if (warning.empty()) return;

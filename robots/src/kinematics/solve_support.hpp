@@ -29,6 +29,11 @@ RobotSolution finish_solution(const RobotAssembly& assembly, const VecX& x, cons
                               const std::vector<std::vector<BasisDerivatives>>& sample_bases,
                               bool with_centerline, bool& accepted);
 
+/// A converged summary whose residual exceeds the tolerance (a Newton solve stopped at the round-off of
+/// its residuals, NewtonLoop step 5): residual_round_off, the bound at the state x (its assembly variables
+/// first), and a note in the message; a residual beyond both is marked failed, never reported converged.
+void account_for_round_off(const Problem& problem, const VecX& x, double tolerance, SolveSummary& summary);
+
 /// Appends contact_penetration_warning (rod_contact.hpp) of s.contact_gaps, if any, to s.summary.message.
 void append_contact_warning(RobotSolution& s);
 

@@ -13,7 +13,11 @@
 //        monotonicity test: affine invariant, not fooled by rows of very different scales);
 //   4. when the Newton step fails (singular J, no decrease): a Levenberg-Marquardt step, if enabled,
 //      (J^T J + mu D) dx = -J^T r with Marquardt's scaling D = diag(J^T J) (Nocedal & Wright,
-//      Numerical Optimization, sec. 10.3), mu raised until |r| decreases.
+//      Numerical Optimization, sec. 10.3), mu raised until |r| decreases;
+//   5. when the loop stops short of the tolerance (iterations or Jacobians used up, stalled, no decrease)
+//      at a point where every residual above the tolerance is within the round-off of its evaluation
+//      (NonlinearSystem::within_round_off): converged all the same, with the bound reported - no point in
+//      double precision need have a smaller residual.
 // The loop owns its workspace (sized once per system size: no allocation per iteration) and the
 // Broyden updates, which can carry over from one solve to the next along a path (continue_path).
 #include <Eigen/Cholesky>
@@ -75,6 +79,9 @@ struct NewtonLoopResult {
   int iterations = 0;
   int jacobian_evaluations = 0;
   double residual_max_abs = 0.0;  ///< max |r_i| at the returned (current) point
+  /// Converged above the tolerance (round_off_bound > 0): the round-off bound every residual above the
+  /// tolerance is within (NonlinearSystem::within_round_off); 0 otherwise.
+  double round_off_bound = 0.0;
 };
 
 class NewtonLoop {
@@ -127,6 +134,9 @@ class NewtonLoop {
   void measure_residual(Run& run);
   void cap(const NonlinearSystem& system, VecX& dx) const;
   Step finish(Run& run, SolveStatus status, std::string message);
+  /// Stopped short of the tolerance: Converged where the residual is at its round-off (step 5), else
+  /// finish(status, message).
+  Step stop_short(Run& run, SolveStatus status, std::string message);
 
   NewtonLoopOptions options_;
   BroydenUpdates broyden_;

@@ -77,4 +77,16 @@ class NewtonSolver {
   std::unique_ptr<Impl> impl_;
 };
 
+/// Whether every residual |r_i| above tolerance is within its round-off bound 2 eps sum_j |J_ij x_j|
+/// (twice what changing every unknown by one unit in the last place can change r_i by: no point in double
+/// precision need do better) and within kRoundOffTolerances x tolerance; bound: the largest bound of those
+/// rows (0 when none is above tolerance).
+bool residuals_within_round_off(const Eigen::SparseMatrix<double, Eigen::RowMajor>& J, const VecX& x,
+                                const VecX& r, double tolerance, double& bound);
+/// How far above the tolerance a residual at its round-off is still accepted: the stretched rods of a
+/// robot wrapped around an obstacle (planar_post) reach 2.2e-10 against 1e-10; slender rods in the primal
+/// form stall at 1e-9 - 1e-7, where their solution is wrong by a locking error of 60 % and more
+/// (docs/benchmarks.md "Hard single rods").
+constexpr double kRoundOffTolerances = 10.0;
+
 }  // namespace pcr

@@ -59,6 +59,12 @@ class NonlinearSystem {
   /// freezes its integration mesh there and re-evaluates r (then Changed).
   enum class PointUpdate { Unchanged, Changed, Failed };
   virtual PointUpdate on_new_point(double /*r_max*/, VecX& /*r*/) { return PointUpdate::Unchanged; }
+  /// Whether every |r_i| above tolerance is within the round-off of evaluating r_i at the current point
+  /// (no point in double precision need do better); bound: the largest such row's bound. Default: no
+  /// estimate (false).
+  virtual bool within_round_off(const VecX& /*r*/, double /*tolerance*/, double& /*bound*/) const {
+    return false;
+  }
   /// Why the last failed evaluation failed ("" if unknown).
   virtual std::string evaluation_failure() const { return {}; }
 };

@@ -28,6 +28,10 @@ struct SolveSummary {
   /// measure that the shooting tolerance tests. Solvers on a Problem leave it 0: their rows are already
   /// that measure (residual_max_abs).
   double residual_scaled_max_abs = 0.0;
+  /// Newton on a Problem, converged above its tolerance: every residual row above the tolerance is within
+  /// its round-off bound 2 eps sum_j |J_ij x_j| (no double-precision point need do better; stiff axial
+  /// rows reach 1e-9), the largest of those bounds; 0 when converged within the tolerance.
+  double residual_round_off = 0.0;
   std::vector<std::pair<std::string, double>> residual_by_kind;  ///< max-abs per residual block kind
   double objective = 0.0;
   double wall_time_seconds = 0.0;
