@@ -17,6 +17,7 @@
 #include "pcr/robots/robot_stability.hpp"
 #include "pcr/solve/ipopt_solver.hpp"
 #include "pcr/solve/jacobian_check.hpp"
+#include "pcr/solve/newton_solver.hpp"
 #include "robot_fixtures.hpp"
 #include "stability/robot_discrete.hpp"
 
@@ -214,6 +215,48 @@ BOOST_AUTO_TEST_CASE(passive_hinge_input_that_all_other_strategies_fail_on) {
   BOOST_TEST(d.zero == 0);
   // Off the robot's plane (y = 0): the in-plane equilibria there are saddles.
   BOOST_TEST(std::abs(fk.assembly->platform_pose(r.x, 0).position.y()) > 1e-3);
+}
+
+// universal_passive at 0.287075 0.242793 0.349163 0.343611 0.208591 0.259523 m, an input of the random
+// sweep on which every other strategy fails, warm and cold (every continuation stops at 0.74-0.84 of the
+// line from the default inputs; the fold-aware one at a fold of the stable branch with nothing stable to
+// snap to). From the default equilibrium Ipopt reaches the energy's minimiser, and Newton from there an
+// equilibrium with 4 unstable modes (the Ritz minimiser lies off the collocation's equilibria by the two
+// discretisations' difference); the damped motion of the platform and passive joints from the minimiser
+// reaches a stable one. Checked without the code that found it: the residual recomputed, the rod lengths
+// equal to the inputs, the verdict computed again, and Newton from the state with its platform moved by
+// 1 mm back to it to 1e-9 m (an isolated, regular equilibrium: two states within the tolerance of one
+// differ by its compliance times the residual). About 8 s in Release.
+BOOST_AUTO_TEST_CASE(universal_passive_input_reached_by_the_damped_motion_from_the_minimiser) {
+  const auto model = load_model("universal_passive");
+  Fk fk(model);
+  const DefaultEquilibrium& start = fk.data.model->default_equilibrium();
+  BOOST_TEST_REQUIRE(start.converged);
+  const VecX inputs = (VecX(6) << 0.287075, 0.242793, 0.349163, 0.343611, 0.208591, 0.259523).finished();
+  const EnergyFallback r =
+      minimise_energy_then_newton(fk.data, inputs, {{&start.x, "the default equilibrium"}});
+  BOOST_TEST_REQUIRE(r.converged, r.message);
+  BOOST_TEST(r.message.find("Newton 29 iterations; the equilibrium is unstable") != std::string::npos,
+             r.message);
+  BOOST_TEST(r.message.find("damped motion from the minimiser") != std::string::npos, r.message);
+  const Problem& problem = fk.assembly->problem();
+  const double tolerance = KinematicsOptions{}.tolerance;
+  VecX c;
+  problem.evaluate_residuals(r.x, c);
+  BOOST_TEST(c.cwiseAbs().maxCoeff() <= tolerance);
+  for (int i = 0; i < fk.assembly->num_rods(); ++i)
+    BOOST_TEST(fk.assembly->rod(i).length(r.x, fk.assembly->rod_variables(i)) == inputs[i]);
+  const Stability verdict = robot_stability(*fk.assembly, r.x);
+  BOOST_TEST(to_string(verdict.verdict) == std::string("stable"), verdict.reason);
+  BOOST_TEST(r.verdict.margin == verdict.margin);
+  VecX x = r.x;
+  const int platform = problem.variable(fk.assembly->platform_variable(0)).offset;
+  x.segment<3>(platform) += Vec3(1e-3, 0.0, 0.0);
+  NewtonOptions no;
+  no.tolerance = tolerance;
+  NewtonSolver newton(problem, no);
+  BOOST_TEST_REQUIRE(newton.solve(x).converged());
+  BOOST_TEST((x.segment<3>(platform) - r.x.segment<3>(platform)).norm() < 1e-9);
 }
 
 // A model with contact is not described by the energy: the strategy is skipped, saying why.

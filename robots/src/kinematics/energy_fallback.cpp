@@ -6,6 +6,7 @@
 
 #include "energy_model.hpp"
 #include "pcr/robots/robot_stability.hpp"
+#include "pseudo_transient_snap.hpp"
 #include "solve_support.hpp"
 
 namespace pcr::kinematics {
@@ -39,7 +40,67 @@ std::string format(const char* fmt, double value) {
   return buffer;
 }
 
-/// One start: Ipopt from it, then Newton; true when Newton converged to a stable equilibrium (in xs).
+/// "; the equilibrium is unstable (N unstable modes)" and the like, for a verdict that is not stable.
+std::string not_stable(const Stability& v) {
+  return std::string("; the equilibrium is ") + to_string(v.verdict) +
+         (v.verdict == StabilityVerdict::Unstable ? " (" + unstable_modes_text(v.unstable_modes) + ")"
+          : v.reason.empty()                      ? ""
+                                                  : " (" + v.reason + ")");
+}
+
+/// Newton from the minimiser (xs, in and out): true at a stable equilibrium (its verdict in v, the
+/// solve's summary in summary).
+bool newton_to_stable(FkData& data, const VecX& inputs, VecX& xs, EnergyFallback& out, std::string& note,
+                      SolveSummary& summary, Stability& v) {
+  summary = data.solve_at(inputs, xs);
+  out.iterations += summary.iterations;
+  out.jacobians += summary.jacobian_evaluations;
+  if (!summary.converged() || !xs.allFinite()) {
+    note += "; Newton from the minimiser: " + summary.message;
+    return false;
+  }
+  note += "; Newton " + std::to_string(summary.iterations) + " iterations";
+  v = robot_stability(*data.model->assembly, xs);
+  if (v.verdict == StabilityVerdict::Stable) return true;
+  note += not_stable(v);
+  return false;
+}
+
+/// Where Newton from the minimiser lands on an unstable equilibrium or none (the energy model's minimiser
+/// lies off the collocation's equilibria by the difference of the two discretisations, and Newton's
+/// first steps can cross a ridge), the damped motion of the platforms and passive joints from the
+/// minimiser (pseudo_transient_snap.hpp; with the shift on the rods' unknowns where the platforms alone
+/// stall, as the snap does) follows the robot's descent instead: true at a stable equilibrium (xs, v,
+/// summary: the FK Newton solver's at it).
+bool damped_to_stable(FkData& data, const VecX& inputs, const VecX& minimiser, VecX& xs, EnergyFallback& out,
+                      std::string& note, SolveSummary& summary, Stability& v) {
+  const RobotAssembly& assembly = *data.model->assembly;
+  for (double shift : {0.0, 1e-3}) {
+    const PseudoTransientResult r =
+        pseudo_transient_equilibrium(assembly, minimiser, data.model->options.tolerance, shift);
+    out.iterations += r.iterations;
+    out.jacobians += r.jacobian_evaluations;
+    if (!r.converged) {
+      note += "; damped motion from the minimiser" + std::string(shift > 0.0 ? " (shifted)" : "") + ": " +
+              r.stopped;
+      continue;
+    }
+    v = robot_stability(assembly, r.x);
+    note += "; damped motion from the minimiser" + std::string(shift > 0.0 ? " (shifted)" : "") + ": " +
+            std::to_string(r.steps) + " steps";
+    if (v.verdict != StabilityVerdict::Stable) {
+      note += not_stable(v);
+      continue;
+    }
+    xs = r.x;
+    summary = data.solve_at(inputs, xs);  // at the equilibrium: its residual, in the solver's summary
+    return summary.converged();
+  }
+  return false;
+}
+
+/// One start: Ipopt from it, then Newton, then the damped motion; true when either reached a stable
+/// equilibrium (in xs).
 bool from_start(FkData& data, const VecX& inputs, const EnergyStart& start, VecX& xs, EnergyFallback& out,
                 std::string& note) {
   const RobotAssembly& assembly = *data.model->assembly;
@@ -63,26 +124,15 @@ bool from_start(FkData& data, const VecX& inputs, const EnergyStart& start, VecX
          " J";
   if (!e.allFinite()) return false;
   energy.to_state(e, xs);
-  const SolveSummary newton = data.solve_at(inputs, xs);
-  out.iterations += newton.iterations;
-  out.jacobians += newton.jacobian_evaluations;
-  if (!newton.converged() || !xs.allFinite()) {
-    note += "; Newton from the minimiser: " + newton.message;
+  const VecX minimiser = xs;
+  SolveSummary summary;
+  Stability verdict;
+  if (!newton_to_stable(data, inputs, xs, out, note, summary, verdict) &&
+      !damped_to_stable(data, inputs, minimiser, xs, out, note, summary, verdict))
     return false;
-  }
-  note += "; Newton " + std::to_string(newton.iterations) + " iterations";
-  const Stability verdict = robot_stability(assembly, xs);
-  if (verdict.verdict != StabilityVerdict::Stable) {
-    note += std::string("; the equilibrium is ") + to_string(verdict.verdict) +
-            (verdict.verdict == StabilityVerdict::Unstable
-                 ? " (" + unstable_modes_text(verdict.unstable_modes) + ")"
-             : verdict.reason.empty() ? ""
-                                      : " (" + verdict.reason + ")");
-    return false;
-  }
   note +=
       "; stable, margin " + format("%.3g", verdict.margin) + ", " + format("%.2f", seconds_since(t0)) + " s";
-  out.summary = newton;
+  out.summary = summary;
   out.verdict = verdict;
   return true;
 }

@@ -38,8 +38,11 @@ bool SegmentTracer::snap(const ArcPoint& fold, int nu_fold_side, ArcPoint& landi
   if (snap_by_newton(fold, target, acceptable, landing, nu_landing)) return true;
   if (snap_by_pseudo_transient(fold, target, acceptable, landing, nu_landing)) return true;
   std::ostringstream why;
-  why << "no equilibrium as stable as the ending branch (" << unstable_modes_text(nu_fold_side)
-      << ") found to snap to at path parameter " << segment_ + fold.lambda;
+  if (nu_fold_side < 0)  // not counted (or unknown): any equilibrium was acceptable
+    why << "no equilibrium found to snap to at path parameter " << segment_ + fold.lambda;
+  else
+    why << "no equilibrium as stable as the ending branch (" << unstable_modes_text(nu_fold_side)
+        << ") found to snap to at path parameter " << segment_ + fold.lambda;
   out_.stopped = why.str();
   return false;
 }
