@@ -8,6 +8,7 @@
 #include "pcr/math/quaternion.hpp"
 #include "pcr/solve/free_jacobian.hpp"
 #include "pcr/solve/sparse_lu.hpp"
+#include "refined_verdict.hpp"
 #include "solve_support.hpp"
 
 namespace pcr {
@@ -141,6 +142,7 @@ RobotSolution ForwardKinematics::solve(const VecX& inputs) {
       out.stability_verdict = *verdict;
     else if (m.options.stability_verdict)
       kinematics::add_stability_verdict(*m.assembly, d.x, out);
+    kinematics::refine_asymmetric_verdict(*m.assembly, d.x, m.options.tolerance, out.stability_verdict);
     d.last_unstable_modes = kinematics::definite_unstable_modes(out.stability_verdict);
   }
   return out;

@@ -35,7 +35,8 @@ struct Stability {
   /// Largest relative asymmetry of a stiffness that theory says is symmetric (a check of the
   /// computation: integration and discretisation errors).
   double asymmetry = 0.0;
-  /// Unknown: which assumption fails; Critical: what the neutral mode may be.
+  /// Unknown: which assumption fails; Critical: what the neutral mode may be; a robot's count taken on a
+  /// refined mesh (its reduced stiffness too asymmetric on the requested one) says so.
   std::string reason;
   /// Robots: each rod's unstable modes with its couplings held in fixed link frames (rod order), and
   /// the negative eigenvalues of the reduced stiffness of the platforms and passive joint coordinates
