@@ -80,14 +80,13 @@ bool damped_to_stable(FkData& data, const VecX& inputs, const VecX& minimiser, V
         pseudo_transient_equilibrium(assembly, minimiser, data.model->options.tolerance, shift);
     out.iterations += r.iterations;
     out.jacobians += r.jacobian_evaluations;
+    note += std::string("; damped motion from the minimiser") + (shift > 0.0 ? " (shifted)" : "") + ": ";
     if (!r.converged) {
-      note += "; damped motion from the minimiser" + std::string(shift > 0.0 ? " (shifted)" : "") + ": " +
-              r.stopped;
+      note += r.stopped;
       continue;
     }
     v = robot_stability(assembly, r.x);
-    note += "; damped motion from the minimiser" + std::string(shift > 0.0 ? " (shifted)" : "") + ": " +
-            std::to_string(r.steps) + " steps";
+    note += std::to_string(r.steps) + " steps";
     if (v.verdict != StabilityVerdict::Stable) {
       note += not_stable(v);
       continue;
