@@ -23,6 +23,7 @@
 #include "stability/robot_discrete.hpp"
 
 using namespace pcr;
+using test::landing_of;
 using test::platform_position;
 using test::shipped;
 namespace tt = boost::test_tools;
@@ -283,12 +284,7 @@ BOOST_AUTO_TEST_CASE(planar_robot_fold_and_snap) {
   BOOST_TEST(around.beyond->unstable_modes == 2);
   BOOST_TEST(test::discrete_robot_inertia(*a, around.beyond->state, kDiscreteSegments).negative == 2);
   // The landing point (in the trace as the point the path goes on from).
-  const TracePoint* landed = nullptr;
-  for (const TracePoint& t : r.trace)
-    if ((platform_position(*a, t.state) - snap.platforms_after[0].position).norm() < 1e-12) {
-      landed = &t;
-      break;
-    }
+  const TracePoint* landed = landing_of(*a, r, snap);
   BOOST_TEST_REQUIRE(landed != nullptr);
   BOOST_TEST(test::discrete_robot_inertia(*a, landed->state, kDiscreteSegments).negative ==
              landed->unstable_modes);

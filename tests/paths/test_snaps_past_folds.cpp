@@ -17,6 +17,7 @@
 #include "pcr/solve/newton_solver.hpp"
 
 using namespace pcr;
+using test::landing_of;
 using test::platform_position;
 using test::shipped;
 namespace tt = boost::test_tools;
@@ -93,12 +94,7 @@ BOOST_AUTO_TEST_CASE(planar_pinned_snap_past_a_fold) {
   // Another equilibrium than the fold state: the snap's own threshold is 1e-4 of the length scale.
   BOOST_TEST(snap.jump_position > 1e-4 * a->length_scale());
 
-  const TracePoint* landed = nullptr;
-  for (const TracePoint& t : r.trace)
-    if ((platform_position(*a, t.state) - snap.platforms_after[0].position).norm() < 1e-12) {
-      landed = &t;
-      break;
-    }
+  const TracePoint* landed = landing_of(*a, r, snap);
   BOOST_TEST_REQUIRE(landed != nullptr);
   check_stable_isolated_landing(*a, landed->state, k.tolerance);
   // The path's end, reached from the landing: a converged FK result with its verdict.
@@ -192,13 +188,6 @@ PathThroughFoldsResult along_the_line_to(const std::shared_ptr<const RobotAssemb
   BOOST_TEST_MESSAGE(r.summary());
   for (const PathEvent& e : r.events) BOOST_TEST_MESSAGE(e.description);
   return r;
-}
-
-/// The accepted continuation point at the snap's landing.
-const TracePoint* landing_of(const RobotAssembly& a, const PathThroughFoldsResult& r, const PathEvent& snap) {
-  for (const TracePoint& t : r.trace)
-    if ((platform_position(a, t.state) - snap.platforms_after[0].position).norm() < 1e-12) return &t;
-  return nullptr;
 }
 
 }  // namespace
