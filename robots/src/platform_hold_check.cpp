@@ -5,6 +5,7 @@
 #include <string>
 
 #include "pcr/core/error.hpp"
+#include "pcr/math/dense_decompositions.hpp"
 #include "pcr/math/so3.hpp"
 #include "pcr/robots/robot_model.hpp"
 #include "pcr/rods/end_axes.hpp"
@@ -250,14 +251,14 @@ void check_platforms_held(const RobotModel& model) {
   if (bodies.columns == 0) return;
   // Rank at the initial configuration: every motion of the bodies must violate some coupling.
   const MatX C = coupling_constraint_matrix(model, q, poses);
-  Eigen::JacobiSVD<MatX> svd(C, Eigen::ComputeFullV);
-  const VecX& sigma = svd.singularValues();
+  const RightSingularVectors svd = right_singular_vectors(C);
+  const VecX& sigma = svd.sigma;
   // Relative threshold: exact dependencies give sigma ~ 1e-16 sigma_max; held bodies give
   // sigma_min ~ (smallest lever arm / largest) sigma_max, far above 1e-9 for any sensible geometry.
   const double tolerance = 1e-9 * (sigma.size() > 0 ? sigma[0] : 1.0);
   for (int i = 0; i < bodies.columns; ++i) {
     if (i < sigma.size() && sigma[i] > tolerance) continue;
-    reject_free_motion(model, bodies, svd.matrixV().col(i));
+    reject_free_motion(model, bodies, svd.V.col(i));
   }
 }
 

@@ -4,9 +4,8 @@
 #include <cmath>
 #include <sstream>
 
-#include <Eigen/SVD>
-
 #include "pcr/core/error.hpp"
+#include "pcr/math/dense_decompositions.hpp"
 #include "pcr/math/so3.hpp"
 #include "pcr/rods/drawn_rod.hpp"
 #include "pcr/rods/end_axes.hpp"
@@ -52,12 +51,12 @@ Twist free_rigid_motion(const RodModel& m) {
     C.block(row + 3, 3, B.rows(), 3) = B;
     row += 3 + static_cast<int>(B.rows());
   }
-  Eigen::JacobiSVD<MatX> svd(C, Eigen::ComputeFullV);
-  const VecX& sigma = svd.singularValues();
+  const RightSingularVectors svd = right_singular_vectors(C);
+  const VecX& sigma = svd.sigma;
   // Relative threshold as in the robot's rank check (platform_hold_check.cpp): exact dependencies give
   // ~1e-16 sigma_max, held rods ~ (shortest lever / longest) sigma_max.
   if (sigma[5] > 1e-9 * std::max(sigma[0], 1.0)) return Twist::Zero();
-  Twist motion = svd.matrixV().col(5);
+  Twist motion = svd.V.col(5);
   for (int k = 0; k < 6; ++k) motion[k] = std::abs(motion[k]) < 1e-12 ? 0.0 : motion[k];
   return motion;
 }

@@ -7,7 +7,6 @@
 #include <boost/test/unit_test.hpp>
 
 #include <sys/wait.h>
-#include <Eigen/SVD>
 
 #include <cmath>
 #include <cstdlib>
@@ -20,6 +19,7 @@
 #include "../../robots/src/kinematics/reduced_ik.hpp"
 #include "../rods/rod_fixtures.hpp"
 #include "pcr/core/error.hpp"
+#include "pcr/math/dense_decompositions.hpp"
 #include "pcr/math/quaternion.hpp"
 #include "pcr/robots/kinematics.hpp"
 #include "pcr/robots/urdf_loader.hpp"
@@ -311,11 +311,11 @@ BOOST_AUTO_TEST_CASE(effort_and_energy_optima_beat_nearby_feasible_points) {
     const double f_opt = value(s.inputs);
     BOOST_REQUIRE(fk.solve(s.inputs).summary.converged());
     const MatX J = fk.input_jacobian().topRows(3);
-    const Eigen::JacobiSVD<MatX> svd(J, Eigen::ComputeFullV);
+    const RightSingularVectors svd = right_singular_vectors(J);
     int compared = 0;
     for (int k = 3; k < 6; ++k)
       for (const double sign : {-1.0, 1.0}) {
-        VecX u = s.inputs + sign * 0.005 * svd.matrixV().col(k);
+        VecX u = s.inputs + sign * 0.005 * svd.V.col(k);
         BOOST_REQUIRE(project_onto_target(fk, u, kTarget));
         const double f_near = value(u);
         BOOST_TEST(f_opt <= f_near * (1.0 + 1e-7), to_string(objective)

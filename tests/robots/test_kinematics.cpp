@@ -4,12 +4,12 @@
 #define BOOST_TEST_MODULE kinematics
 #include <boost/test/unit_test.hpp>
 
-#include <Eigen/SVD>
 #include <fstream>
 #include <random>
 #include <sstream>
 
 #include "pcr/core/error.hpp"
+#include "pcr/math/dense_decompositions.hpp"
 #include "pcr/math/so3.hpp"
 #include "pcr/robots/kinematics.hpp"
 #include "pcr/robots/urdf_loader.hpp"
@@ -164,8 +164,8 @@ BOOST_AUTO_TEST_CASE(fk_then_ik_round_trip_on_every_model) {
             selected.conservativeResize(selected.rows() + 1, Eigen::NoChange);
             selected.row(selected.rows() - 1) = J.row(6 * model->platform_index(link) + k);
           }
-      const Eigen::JacobiSVD<MatX> svd(selected);
-      ratio = svd.singularValues().minCoeff() / svd.singularValues().maxCoeff();
+      const VecX sigma = singular_values(selected);
+      ratio = sigma.minCoeff() / sigma.maxCoeff();
       BOOST_TEST_MESSAGE(c.model << ": target/input singular value ratio " << ratio);
     }
     std::vector<LinkTarget> targets;

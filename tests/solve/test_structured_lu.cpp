@@ -8,13 +8,13 @@
 #define BOOST_TEST_MODULE structured_lu
 #include <boost/test/unit_test.hpp>
 
-#include <Eigen/SVD>
 #include <array>
 #include <limits>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "pcr/math/dense_decompositions.hpp"
 #include "pcr/solve/band_lu.hpp"
 #include "pcr/solve/bordered_block_lu.hpp"
 #include "pcr/solve/newton_solver.hpp"
@@ -25,8 +25,7 @@ using namespace pcr;
 namespace {
 
 double condition_number(const MatX& A) {
-  const Eigen::JacobiSVD<MatX> svd(A);
-  const VecX s = svd.singularValues();
+  const VecX s = singular_values(A);
   return s[0] / s[s.size() - 1];
 }
 

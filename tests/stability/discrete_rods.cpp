@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "pcr/math/dense_decompositions.hpp"
 #include "stability/hyper_dual.hpp"
 
 namespace pcr::test {
@@ -359,9 +360,8 @@ DiscreteRods::Inertia DiscreteRods::inertia(double zero_tolerance) const {
   assemble(nullptr, &H);
   VecX d(num_variables_);
   for (int i = 0; i < num_variables_; ++i) d[i] = 1.0 / std::sqrt(std::max(std::abs(H(i, i)), 1e-300));
-  const Eigen::SelfAdjointEigenSolver<MatX> eig(d.asDiagonal() * H * d.asDiagonal(), Eigen::EigenvaluesOnly);
+  const VecX lambda = symmetric_eigenvalues(d.asDiagonal() * H * d.asDiagonal());
   Inertia out;
-  const VecX& lambda = eig.eigenvalues();
   out.smallest = lambda[0];
   for (int i = 0; i < lambda.size(); ++i) {
     if (lambda[i] < -zero_tolerance)

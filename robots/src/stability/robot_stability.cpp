@@ -6,6 +6,7 @@
 #include <sstream>
 #include <string>
 
+#include "pcr/math/dense_decompositions.hpp"
 #include "robot_stability_parts.hpp"
 
 namespace pcr {
@@ -54,7 +55,7 @@ constexpr double kMaxClearAsymmetry = 1e-3;
 /// The reason the count of K_hat (Ks: balanced) is not trusted, or "".
 std::string asymmetry_failure(double asymmetry, const MatX& Ks) {
   if (asymmetry <= kMaxAsymmetry) return "";
-  const VecX lambda = Eigen::SelfAdjointEigenSolver<MatX>(0.5 * (Ks + Ks.transpose())).eigenvalues();
+  const VecX lambda = symmetric_eigen(0.5 * (Ks + Ks.transpose())).values;
   const double n = static_cast<double>(lambda.size());
   const bool clear = lambda.size() == 0 || lambda.cwiseAbs().minCoeff() > n * asymmetry;
   if (asymmetry <= kMaxClearAsymmetry && clear) return "";
@@ -94,9 +95,7 @@ bool stability::count_border(const MatX& K, Stability& s) {
   // The count on the symmetrised K_hat, in the scaling its asymmetry is measured in (the same inertia as
   // K's symmetric part: a congruence); the tolerance as for the rods' scaled segment stiffnesses.
   const double tolerance = std::max(1e-8, 10.0 * asymmetry);
-  const VecX scaled_lambda =
-      Eigen::SelfAdjointEigenSolver<MatX>(0.5 * (scaled + scaled.transpose()), Eigen::EigenvaluesOnly)
-          .eigenvalues();
+  const VecX scaled_lambda = symmetric_eigenvalues(0.5 * (scaled + scaled.transpose()));
   for (int i = 0; i < scaled_lambda.size(); ++i) {
     if (scaled_lambda[i] < -tolerance)
       ++s.border_unstable_modes;
@@ -104,8 +103,7 @@ bool stability::count_border(const MatX& K, Stability& s) {
       ++s.neutral_modes;
   }
   // The margin: the smallest eigenvalue of the dimensionless K (bending stiffnesses O(1)).
-  const Eigen::SelfAdjointEigenSolver<MatX> eig(0.5 * (K + K.transpose()), Eigen::EigenvaluesOnly);
-  s.margin = eig.eigenvalues()[0];
+  s.margin = symmetric_eigenvalues(0.5 * (K + K.transpose()))[0];
   return true;
 }
 

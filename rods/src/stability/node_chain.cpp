@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "pcr/math/dense_decompositions.hpp"
+
 namespace pcr::stability {
 
 namespace {
@@ -15,13 +17,13 @@ struct Pivot {
     if (k == 0) return;
     VecX d(k);
     for (int i = 0; i < k; ++i) d[i] = std::abs(P(i, i)) > 0.0 ? 1.0 / std::sqrt(std::abs(P(i, i))) : 1.0;
-    const Eigen::SelfAdjointEigenSolver<MatX> eig(d.asDiagonal() * P * d.asDiagonal());
-    const VecX& lambda = eig.eigenvalues();
+    const SymmetricEigen eig = symmetric_eigen(d.asDiagonal() * P * d.asDiagonal());
+    const VecX& lambda = eig.values;
     for (int i = 0; i < k; ++i) negative += lambda[i] < 0.0;
     smallest_magnitude = lambda.cwiseAbs().minCoeff();
     // P^-1 = D V Lambda^-1 V^T D
-    inverse = d.asDiagonal() * eig.eigenvectors() * lambda.cwiseInverse().asDiagonal() *
-              eig.eigenvectors().transpose() * d.asDiagonal();
+    inverse = d.asDiagonal() * eig.vectors * lambda.cwiseInverse().asDiagonal() * eig.vectors.transpose() *
+              d.asDiagonal();
   }
   int negative = 0;
   double smallest_magnitude = INFINITY;
@@ -91,8 +93,7 @@ ChainInertia chain_inertia(const std::vector<Mat12>& K, const EndSpace& base, co
     }
   }
   if (probe_pivot.rows() > 0) {
-    const Eigen::SelfAdjointEigenSolver<MatX> eig(0.5 * (probe_pivot + probe_pivot.transpose()));
-    const VecX& lambda = eig.eigenvalues();
+    const VecX lambda = symmetric_eigen(0.5 * (probe_pivot + probe_pivot.transpose())).values;
     out.probe_min = lambda[0];
     for (int i = 0; i < lambda.size(); ++i) {
       if (lambda[i] < -tolerance)
