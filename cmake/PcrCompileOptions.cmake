@@ -6,6 +6,9 @@ function(pcr_target_defaults target)
   cmake_parse_arguments(D "SANITIZERS_LINKED_ONLY" "" "" ${ARGN})
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic $<$<BOOL:${PCR_WERROR}>:-Werror>)
   if(PCR_SANITIZE)
+    # Eigen allocates its heap arrays by malloc where glibc aligns them, by its own aligned malloc under
+    # AddressSanitizer (Eigen/src/Core/util/Memory.h): instrumented and plain code must agree on one.
+    target_compile_definitions(${target} PRIVATE EIGEN_MALLOC_ALREADY_ALIGNED=0)
     if(NOT D_SANITIZERS_LINKED_ONLY)
       target_compile_options(${target} PRIVATE -fsanitize=address,undefined -fno-omit-frame-pointer
                                                -fno-sanitize-recover=undefined)
