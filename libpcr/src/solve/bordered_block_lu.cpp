@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "band_ordering.hpp"
+
 namespace pcr {
 
 namespace {
@@ -42,6 +44,7 @@ bool BorderedBlockLu::analyze_pattern(const Eigen::SparseMatrix<double>& A,
   if (!partition(A, column_groups, part)) return false;
   square_groups(part);
   move_wide_columns(A, part);
+  order_columns_for_narrow_band(A, part.rows, part.columns);
   std::sort(border_rows_.begin(), border_rows_.end());
   std::sort(border_columns_.begin(), border_columns_.end());
   size_t leftover = 0;

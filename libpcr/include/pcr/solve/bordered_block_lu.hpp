@@ -18,7 +18,9 @@
 // Groups come from the caller (Problem variable groups); a row belongs to group g when all its
 // nonzero columns are in g or the border, else to the border. A group with more columns than rows
 // (a rod whose length is an unknown) gives its densest surplus columns to the border, one with more
-// rows than columns its densest surplus rows.
+// rows than columns its densest surplus rows. A group's columns keep the Problem's order unless a
+// barycentric order makes the band LU cheaper (variables added after a rod's control points but coupled
+// to a few of them, e.g. contact forces; src/solve/band_ordering.hpp).
 //
 // Wide columns: a group column that more than half of the group's rows touch (the constant wrench
 // [n, h] of a condensed rod, read by every field row) would widen the band to the whole group, at a
