@@ -15,11 +15,6 @@ int median(std::vector<int>& values) {
   return values[middle];
 }
 
-/// The band LU's flops over 2 n: kl (kl + ku) (band_lu.hpp).
-long factorization_cost(const BandWidths& w) {
-  return static_cast<long>(w.kl) * (w.kl + w.ku);
-}
-
 /// The barycentric order of one group (file comment of the header): row_centre[r] is the median
 /// position of row r's columns in `columns`.
 std::vector<int> barycentric_order(const Eigen::SparseMatrix<double>& A, const std::vector<int>& columns,
@@ -45,7 +40,7 @@ std::vector<int> barycentric_order(const Eigen::SparseMatrix<double>& A, const s
 }  // namespace
 
 BandWidths group_band_widths(const Eigen::SparseMatrix<double>& A, const std::vector<int>& rows,
-                             const std::vector<int>& columns) {
+                             const std::vector<int>& columns, std::vector<int>* ordered_rows) {
   const int n = static_cast<int>(A.rows()), none = n;
   std::vector<int> local(n, -1), first(n, none), last(n, none), in_group(n, 0);
   for (size_t k = 0; k < columns.size(); ++k) local[columns[k]] = static_cast<int>(k);
@@ -70,6 +65,7 @@ BandWidths group_band_widths(const Eigen::SparseMatrix<double>& A, const std::ve
     w.kl = std::max(w.kl, static_cast<int>(k) - first[r]);
     w.ku = std::max(w.ku, last[r] - static_cast<int>(k));
   }
+  if (ordered_rows) ordered_rows->swap(ordered);
   return w;
 }
 

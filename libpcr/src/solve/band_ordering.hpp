@@ -27,11 +27,17 @@ struct BandWidths {
   int kl = 0, ku = 0;
 };
 
+/// The band LU's flops over 2 n: kl (kl + ku) (band_lu.hpp), the estimate the order is chosen by.
+inline long factorization_cost(const BandWidths& w) {
+  return static_cast<long>(w.kl) * (w.kl + w.ku);
+}
+
 /// kl and ku of the group with these rows and columns (global indices; local columns in the given
 /// order) when its rows are ordered by the sum of their first and last local column, then the first
-/// (stable: ties keep the order of `rows`), rows without a column of the group last.
+/// (stable: ties keep the order of `rows`), rows without a column of the group last: BorderedBlockLu's
+/// row order, written to *ordered_rows when given.
 BandWidths group_band_widths(const Eigen::SparseMatrix<double>& A, const std::vector<int>& rows,
-                             const std::vector<int>& columns);
+                             const std::vector<int>& columns, std::vector<int>* ordered_rows = nullptr);
 
 /// Reorders each group's columns (columns[g], global indices; rows[g] the group's rows) by the
 /// barycentric order where it at least halves the band LU's cost estimate (file comment).

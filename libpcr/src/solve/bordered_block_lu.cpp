@@ -175,49 +175,33 @@ void BorderedBlockLu::move_wide_columns(const Eigen::SparseMatrix<double>& A, Pa
   }
 }
 
-// Local numbering: group g's columns in ascending order, its rows by (first column + last column)
-// (rows without a column of the group last), the band widths, the dense border parts.
+// Local numbering: group g's columns in the order of part.columns, its rows by (first column + last
+// column) (group_band_widths: rows without a column of the group last), the band widths, the dense
+// border parts.
 void BorderedBlockLu::build_groups(const Eigen::SparseMatrix<double>& A, const Partition& part) {
   const int n = part.n, nb = static_cast<int>(border_columns_.size());
   local_column_.assign(n, -1);
   local_row_.assign(n, -1);
   group_of_row_.assign(n, -1);
   group_of_column_.assign(n, -1);
-  std::vector<int> first(n, n), last(n, n);  // a row's first and last column in its group (n: none)
   for (const std::vector<int>& columns : part.columns)
     for (size_t k = 0; k < columns.size(); ++k) local_column_[columns[k]] = static_cast<int>(k);
-  for (int c = 0; c < n; ++c) {
-    if (local_column_[c] < 0) continue;
-    for (Eigen::SparseMatrix<double>::InnerIterator it(A, c); it; ++it) {
-      const int r = static_cast<int>(it.row());
-      first[r] = std::min(first[r], local_column_[c]);
-      last[r] = last[r] == n ? local_column_[c] : std::max(last[r], local_column_[c]);
-    }
-  }
   for (int k = 0; k < nb; ++k) local_column_[border_columns_[k]] = k;
   for (size_t k = 0; k < border_rows_.size(); ++k) local_row_[border_rows_[k]] = static_cast<int>(k);
   int leftover_row = static_cast<int>(border_rows_.size());
   for (size_t g = 0; g < part.rows.size(); ++g) {
     if (part.rows[g].empty()) continue;
     Group group;
-    group.rows = part.rows[g];
     group.columns = part.columns[g];
-    std::stable_sort(group.rows.begin(), group.rows.end(), [&](int a, int b) {
-      return first[a] + last[a] != first[b] + last[b] ? first[a] + last[a] < first[b] + last[b]
-                                                      : first[a] < first[b];
-    });
-    int kl = 0, ku = 0;
+    // A row with no entry in the group comes last: A_g is singular unless the row is left over.
+    const BandWidths widths = group_band_widths(A, part.rows[g], group.columns, &group.rows);
     for (size_t k = 0; k < group.rows.size(); ++k) {
-      const int r = group.rows[k];
-      local_row_[r] = static_cast<int>(k);
-      group_of_row_[r] = static_cast<int>(groups_.size());
-      if (first[r] == n) continue;  // no entry in the group: A_g is singular unless the row is left over
-      kl = std::max(kl, static_cast<int>(k) - first[r]);
-      ku = std::max(ku, last[r] - static_cast<int>(k));
+      local_row_[group.rows[k]] = static_cast<int>(k);
+      group_of_row_[group.rows[k]] = static_cast<int>(groups_.size());
     }
     for (int c : group.columns) group_of_column_[c] = static_cast<int>(groups_.size());
     const int rows = static_cast<int>(group.rows.size()), columns = static_cast<int>(group.columns.size());
-    group.band.reshape(rows, columns, kl, ku);  // the numeric storage: on first factorize
+    group.band.reshape(rows, columns, widths.kl, widths.ku);  // the numeric storage: on first factorize
     group.leftover_row = leftover_row;
     leftover_row += rows - columns;
     groups_.push_back(std::move(group));
