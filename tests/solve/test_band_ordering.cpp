@@ -61,18 +61,12 @@ std::vector<int> all(int n) {
   return v;
 }
 
-Eigen::SparseMatrix<double> sparse(const MatX& A) {
-  Eigen::SparseMatrix<double> S = A.sparseView();
-  S.makeCompressed();
-  return S;
-}
-
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(contact_columns_join_their_points) {
   std::mt19937 rng(5);
   const MatX A = rod_in_contact(rng);
-  const Eigen::SparseMatrix<double> S = sparse(A);
+  const Eigen::SparseMatrix<double> S = A.sparseView();  // compressed (assigned from an expression)
   const std::vector<std::vector<int>> rows = {all(kSize)};
   std::vector<std::vector<int>> columns = {all(kSize)};
   std::vector<int> interleaved;
@@ -111,7 +105,7 @@ BOOST_AUTO_TEST_CASE(a_chain_keeps_its_order) {
   // The chain alone (its contact rows and columns dropped): the stored order is already the narrow one.
   std::mt19937 rng(6);
   const MatX A = rod_in_contact(rng).topLeftCorner(kChain, kChain);
-  const Eigen::SparseMatrix<double> S = sparse(A);
+  const Eigen::SparseMatrix<double> S = A.sparseView();  // compressed (assigned from an expression)
   std::vector<std::vector<int>> columns = {all(kChain)};
   order_columns_for_narrow_band(S, {all(kChain)}, columns);
   BOOST_TEST(columns[0] == all(kChain));
