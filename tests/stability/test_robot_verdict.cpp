@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include <fstream>
 #include <sstream>
 
 #include "kinematics/coarse_continuation.hpp"
@@ -323,4 +324,55 @@ BOOST_AUTO_TEST_CASE(asymmetric_verdict_counted_on_a_refined_mesh) {
   const Stability v32 = robot_stability(fine, x);
   BOOST_TEST(v32.unstable_modes == 1);
   BOOST_TEST(v32.asymmetry < 1e-4);
+}
+
+namespace {
+
+/// planar_three_rod with a ball its middle rod may touch: radius 10 mm, centre 50 mm right of the base
+/// and 150 mm up, about 80 mm from the middle rod at the default inputs.
+std::shared_ptr<const RobotModel> planar_three_rod_beside_a_ball() {
+  std::ifstream in(test::model_path("planar_three_rod"));
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  std::string xml = buffer.str();
+  const std::string gravity = "<pcr_gravity xyz=\"0 0 -9.81\"/>";
+  const std::size_t g = xml.find(gravity);
+  BOOST_TEST_REQUIRE(g != std::string::npos);
+  xml.insert(g + gravity.size(), R"(
+  <pcr_obstacle name="ball" type="sphere" xyz="0.05 0 0.15" radius="0.01"/>)");
+  const std::size_t middle = xml.find("<pcr_rod name=\"middle\">");
+  BOOST_TEST_REQUIRE(middle != std::string::npos);
+  xml.insert(xml.find("</pcr_rod>", middle), "  <contact obstacles=\"ball\"/>\n  ");
+  return std::make_shared<const RobotModel>(parse_robot_model(xml, "planar_three_rod_ball"));
+}
+
+}  // namespace
+
+// A rod that may touch an obstacle but does not at the equilibrium: the verdict is that of the robot
+// without the obstacle (planar_three_rod's default pose: one unstable mode, as the discrete model, which
+// has no obstacle, says). A rod on an obstacle (planar_post's default pose, the middle rod on the post):
+// `unknown`, naming the rod and the obstacle.
+BOOST_AUTO_TEST_CASE(open_contact_keeps_the_verdict_touching_gives_unknown) {
+  const auto beside = planar_three_rod_beside_a_ball();
+  ForwardKinematics fk(beside, with_verdict());
+  const RobotSolution s = fk.solve(beside->default_input_values());
+  BOOST_TEST_REQUIRE(s.summary.converged());
+  BOOST_TEST_REQUIRE(s.contacts.size() == 1u);
+  BOOST_TEST(s.contacts[0].min_gap > 0.05);
+  const Stability& v = s.stability_verdict;
+  BOOST_TEST(to_string(v.verdict) == std::string("unstable"), v.reason);
+  BOOST_TEST(v.unstable_modes == 1);
+  BOOST_TEST(v.border_unstable_modes == 1);
+  const test::DiscreteRods::Inertia d =
+      test::discrete_robot_inertia(fk.assembly(), fk.state(), kDiscreteSegments);
+  BOOST_TEST(d.negative == 1);
+  BOOST_TEST(d.zero == 0);
+
+  const auto post = load_model("planar_post");
+  ForwardKinematics on_post(post, with_verdict());
+  const RobotSolution t = on_post.solve(post->default_input_values());
+  BOOST_TEST_REQUIRE(t.summary.converged());
+  BOOST_TEST(to_string(t.stability_verdict.verdict) == std::string("unknown"));
+  BOOST_TEST(t.stability_verdict.reason.find("rod 'middle' touches obstacle 'post'") != std::string::npos,
+             t.stability_verdict.reason);
 }

@@ -1,9 +1,12 @@
 // Energy minimisation, then Newton, then the stability verdict (energy_fallback.hpp).
 #include "energy_fallback.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <mutex>
 
+#include "../stability/robot_stability_parts.hpp"
 #include "energy_model.hpp"
 #include "pcr/robots/robot_stability.hpp"
 #include "pseudo_transient_snap.hpp"
@@ -48,10 +51,37 @@ std::string not_stable(const Stability& v) {
                                                   : " (" + v.reason + ")");
 }
 
-/// Newton from the minimiser (xs, in and out): true at a stable equilibrium (its verdict in v, the
+/// The energy's minimum that Ipopt reached from one start.
+struct Minimum {
+  const EnergyModel& energy;
+  double value;  ///< V at the minimiser [J]
+};
+
+/// Two discretisations of one equilibrium differ in energy by far less than this fraction of it (the Ritz
+/// minimiser and the collocation's equilibrium next to it: 5.4e-7 on planar_post at 0.177198 0.184144
+/// 0.182836 m); Newton landing on another equilibrium changes it by more.
+constexpr double kSameMinimum = 1e-5;
+
+/// The verdicts the fallback accepts: stable, or `unknown` only because a rod touches an obstacle (the
+/// contact constraints are not in the second variation) at a state with the minimum's energy (to
+/// kSameMinimum of it, or of the energy scale M0 L0 where it is near 0): the collocation's equilibrium
+/// next to a minimiser of the energy with its gap constraints.
+bool accepted(const RobotAssembly& assembly, const Minimum& m, const VecX& x, const Stability& v,
+              std::string& note) {
+  if (v.verdict == StabilityVerdict::Stable) return true;
+  if (v.verdict != StabilityVerdict::Unknown || stability::active_contact_failure(assembly, x).empty())
+    return false;
+  const double V = m.energy.energy(m.energy.from_state(x));
+  if (std::abs(V - m.value) <= kSameMinimum * std::max(std::abs(m.value), m.energy.energy_scale()))
+    return true;
+  note += "; in contact at energy " + format("%.9g", V) + " J, not the minimum's";
+  return false;
+}
+
+/// Newton from the minimiser (xs, in and out): true at an accepted equilibrium (its verdict in v, the
 /// solve's summary in summary).
-bool newton_to_stable(FkData& data, const VecX& inputs, VecX& xs, EnergyFallback& out, std::string& note,
-                      SolveSummary& summary, Stability& v) {
+bool newton_to_stable(FkData& data, const Minimum& minimum, const VecX& inputs, VecX& xs, EnergyFallback& out,
+                      std::string& note, SolveSummary& summary, Stability& v) {
   summary = data.solve_at(inputs, xs);
   out.iterations += summary.iterations;
   out.jacobians += summary.jacobian_evaluations;
@@ -61,7 +91,7 @@ bool newton_to_stable(FkData& data, const VecX& inputs, VecX& xs, EnergyFallback
   }
   note += "; Newton " + std::to_string(summary.iterations) + " iterations";
   v = robot_stability(*data.model->assembly, xs);
-  if (v.verdict == StabilityVerdict::Stable) return true;
+  if (accepted(*data.model->assembly, minimum, xs, v, note)) return true;
   note += not_stable(v);
   return false;
 }
@@ -72,8 +102,8 @@ bool newton_to_stable(FkData& data, const VecX& inputs, VecX& xs, EnergyFallback
 /// minimiser (pseudo_transient_snap.hpp; with the shift on the rods' unknowns where the platforms alone
 /// stall, as the snap does) follows the robot's descent instead: true at a stable equilibrium (xs, v,
 /// summary: the FK Newton solver's at it).
-bool damped_to_stable(FkData& data, const VecX& inputs, const VecX& minimiser, VecX& xs, EnergyFallback& out,
-                      std::string& note, SolveSummary& summary, Stability& v) {
+bool damped_to_stable(FkData& data, const Minimum& minimum, const VecX& inputs, const VecX& minimiser,
+                      VecX& xs, EnergyFallback& out, std::string& note, SolveSummary& summary, Stability& v) {
   const RobotAssembly& assembly = *data.model->assembly;
   for (double shift : {0.0, 1e-3}) {
     const PseudoTransientResult r =
@@ -87,7 +117,7 @@ bool damped_to_stable(FkData& data, const VecX& inputs, const VecX& minimiser, V
     }
     v = robot_stability(assembly, r.x);
     note += std::to_string(r.steps) + " steps";
-    if (v.verdict != StabilityVerdict::Stable) {
+    if (!accepted(assembly, minimum, r.x, v, note)) {
       note += not_stable(v);
       continue;
     }
@@ -126,11 +156,13 @@ bool from_start(FkData& data, const VecX& inputs, const EnergyStart& start, VecX
   const VecX minimiser = xs;
   SolveSummary summary;
   Stability verdict;
-  if (!newton_to_stable(data, inputs, xs, out, note, summary, verdict) &&
-      !damped_to_stable(data, inputs, minimiser, xs, out, note, summary, verdict))
+  const Minimum minimum{energy, energy.energy(e)};
+  if (!newton_to_stable(data, minimum, inputs, xs, out, note, summary, verdict) &&
+      !damped_to_stable(data, minimum, inputs, minimiser, xs, out, note, summary, verdict))
     return false;
-  note +=
-      "; stable, margin " + format("%.3g", verdict.margin) + ", " + format("%.2f", seconds_since(t0)) + " s";
+  note += (verdict.verdict == StabilityVerdict::Stable ? "; stable, margin " + format("%.3g", verdict.margin)
+                                                       : "; verdict unknown (" + verdict.reason + ")") +
+          ", " + format("%.2f", seconds_since(t0)) + " s";
   out.summary = summary;
   out.verdict = verdict;
   return true;

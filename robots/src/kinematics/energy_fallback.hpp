@@ -2,7 +2,8 @@
 // The last FK strategy (fk_strategies.cpp): minimise the total potential energy at the requested inputs
 // (energy_model.hpp) with Ipopt, then Newton on the collocation equations from the minimiser; accepted
 // only when Newton converges to the full tolerance and the stability verdict (robot_stability.hpp) is
-// `stable` (docs/design.md "Energy minimisation (the last FK strategy)"). Internal header of pcr::robots.
+// `stable`, or `unknown` only because a rod touches an obstacle (docs/design.md "Energy minimisation (the
+// last FK strategy)"). Internal header of pcr::robots.
 #include <string>
 #include <vector>
 
@@ -12,10 +13,10 @@
 namespace pcr::kinematics {
 
 struct EnergyFallback {
-  bool converged = false;             ///< Newton converged from a minimiser and the verdict is stable
+  bool converged = false;             ///< Newton converged from a minimiser to an accepted verdict
   VecX x;                             ///< the equilibrium (converged only)
   SolveSummary summary;               ///< Newton's from the accepted minimiser
-  Stability verdict;                  ///< of x (converged only): stable
+  Stability verdict;                  ///< of x (converged only): stable, or unknown (contact)
   std::string message;                ///< what each start reached, or why the model was skipped
   int iterations = 0, jacobians = 0;  ///< Newton's and Ipopt's, over all starts
 };

@@ -2,11 +2,13 @@
 // (energy_model.hpp).
 #include "energy_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
 #include <Eigen/LU>
 
+#include "../assembly/contact_assembly.hpp"
 #include "energy_kinematics.hpp"
 #include "energy_terms.hpp"
 #include "pcr/splines/basis.hpp"
@@ -41,14 +43,27 @@ std::vector<Pose> platform_poses_of(const RobotAssembly& assembly, const VecX& x
   return poses;
 }
 
+/// Why the obstacle's contact is not among the energy's gap rows, or "".
+std::string contact_refusal(const RobotModel& model, const RodElement& rod, const ObstacleElement& e) {
+  const std::string which = "rod '" + rod.name + "' and obstacle '" + e.obstacle.name + "': ";
+  if (concentrated_contact(e.obstacle))
+    return which +
+           "a contact at one section (sharp obstacle, point contact or adhesion) is not part of the "
+           "energy";
+  if (e.link >= 0 && model.carrying_platform(e.link) >= 0)
+    return which + "an obstacle on a platform is not part of the energy";
+  return "";
+}
+
 }  // namespace
 
 std::string energy_model_refusal(const RobotModel& model) {
-  if (!model.obstacles().empty()) return "contact with obstacles is not part of the energy";
   for (const RodElement& r : model.rods()) {
     const RodModel& rod = r.rod;
-    if (!r.obstacles.empty())
-      return "rod '" + r.name + "' touches obstacles (contact is not part of the energy)";
+    for (int k : r.obstacles) {
+      const std::string refusal = contact_refusal(model, r, model.obstacles()[k]);
+      if (!refusal.empty()) return refusal;
+    }
     if (rod.drawing_speed != 0.0)
       return "rod '" + r.name + "' is drawn (a steady motion, not an equilibrium)";
     if (rod.loads.moment_per_length.squaredNorm() > 0.0)
@@ -71,6 +86,7 @@ EnergyModel::EnergyModel(const RobotAssembly& assembly, const VecX& x)
   add_rods(x);
   add_platforms_and_passive_joints(x);
   add_couplings(x);
+  add_obstacle_gaps(x);
   find_shared_slices();
 }
 
@@ -147,6 +163,29 @@ void EnergyModel::add_couplings(const VecX& x) {
   }
 }
 
+void EnergyModel::add_obstacle_gaps(const VecX& x) {
+  const RobotModel& m = assembly_.model();
+  const VecX q = joint_values_of(assembly_, x);
+  const std::vector<Pose> poses = platform_poses_of(assembly_, x);
+  rod_obstacles_.resize(assembly_.num_rods());
+  for (int i = 0; i < assembly_.num_rods(); ++i) {
+    const RodContactVariables* contact = assembly_.rod_contact(i);
+    if (!contact) continue;
+    const std::vector<Obstacle> placed = assembly::rod_obstacles_at(m, m.rods()[i], q, poses);
+    std::vector<Obstacle>& obstacles = rod_obstacles_[i];
+    for (int k : contact->distributed) obstacles.push_back(placed[k]);
+    const KnotVector& knots = assembly_.rod(i).knots();
+    for (double u : contact->midpoints) {
+      const BasisDerivatives d = basis_derivatives(knots, u, 0);
+      const VecX basis = d.values.row(0).transpose();
+      const std::vector<VariableId> points(rod_points_[i].begin() + d.first,
+                                           rod_points_[i].begin() + d.first + basis.size());
+      problem_.add_residual_block(std::make_shared<ObstacleGapRows>(obstacles, contact->options.radius, basis,
+                                                                    points, assembly_.length_scale()));
+    }
+  }
+}
+
 void EnergyModel::find_shared_slices() {
   const Problem& state = assembly_.problem();
   for (int i = 0; i < assembly_.num_rods(); ++i) {
@@ -176,7 +215,47 @@ VecX EnergyModel::from_state(const VecX& x) const {
 
 void EnergyModel::to_state(const VecX& e, VecX& x) const {
   for (const SharedSlice& s : shared_) x.segment(s.state_offset, s.size) = e.segment(s.energy_offset, s.size);
-  for (int i = 0; i < assembly_.num_rods(); ++i) write_rod_forces(i, e, x);
+  for (int i = 0; i < assembly_.num_rods(); ++i) {
+    write_rod_forces(i, e, x);
+    write_contact_forces(i, x);
+  }
+}
+
+void EnergyModel::write_contact_forces(int i, VecX& x) const {
+  const RodContactVariables* contact = assembly_.rod_contact(i);
+  if (!contact) return;
+  const CollocationRod& rod = assembly_.rod(i);
+  const RodVariables& v = assembly_.rod_variables(i);
+  const collocation::PointLayout& layout = rod.point_layout();
+  const Problem& state = assembly_.problem();
+  // Ipopt's interior point stops with the active gaps at a few 1e-7 m (its barrier's slack: 2.3e-7 and
+  // 4.7e-7 m on planar_post at 0.1821 0.2269 0.1597 m, where Newton from a force on one cell lands on
+  // another equilibrium):
+  // a centerline within 1e-4 L0 counts as touching. A force given to a cell that is open is removed by
+  // Newton's complementarity rows.
+  const double L = rod.length(x, v), touching = 1e-4 * assembly_.length_scale();
+  const Vec3 f = rod.model().distributed_force();
+  for (std::size_t j = 0; j < contact->midpoints.size(); ++j) {
+    // The density the force balance n' + f + F = 0 asks for, with n' of the N just written.
+    const BasisDerivatives d = basis_derivatives(rod.knots(), contact->midpoints[j], 1);
+    Vec3 p = Vec3::Zero(), n_s = Vec3::Zero();
+    for (int a = 0; a < d.values.cols(); ++a) {
+      const int o = v.control_point_offset + (d.first + a) * rod.control_point_size();
+      p += d.values(0, a) * x.segment<3>(o + layout.p);
+      n_s += d.values(1, a) / L * x.segment<3>(o + layout.n);
+    }
+    const Vec3 wanted = -(n_s + f);
+    // Its compressive normal part on each touching obstacle, nothing on the others.
+    Vec3 F = Vec3::Zero();
+    const int K = static_cast<int>(rod_obstacles_[i].size());
+    for (int k = 0; k < K; ++k) {
+      const ObstacleGap g = obstacle_gap(rod_obstacles_[i][k], p, contact->options.radius);
+      const double lambda = g.gap < touching ? std::max(0.0, wanted.dot(g.normal)) : 0.0;
+      x[state.variable(contact->multipliers[j]).offset + k] = lambda;
+      F += lambda * g.normal;
+    }
+    x.segment<3>(state.variable(v.contact_forces[j]).offset) = F;
+  }
 }
 
 void EnergyModel::write_rod_forces(int i, const VecX& e, VecX& x) const {

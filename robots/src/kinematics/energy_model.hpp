@@ -6,7 +6,9 @@
 //          - sum_free_rod_ends F . p
 //          - sum_platforms (m g + F) . (weights' and dead forces' points)
 //          + sum_passive 1/2 k (q - rest)^2 - (weights and dead forces on links moved by passive joints)
-//   s.t. each attached rod end in its link frame (the kinematic part of its coupling), unit quaternions.
+//   s.t. each attached rod end in its link frame (the kinematic part of its coupling), unit quaternions,
+//        and each rod's gaps to its obstacles >= 0 at the collocation's contact midpoints (frictionless
+//        contact: a workless reaction, the multiplier of its gap row).
 // Discretisation (Ritz form): each rod's p(u), q(u) are B-splines on the rod's own knots (those of its
 // collocation form), so the minimiser maps onto the collocation unknowns control point by control point;
 // v = R(q)^T p_s, u = 2 vec(conj(q) q_s) / |q|^2 (R(q) of the normalised q), integrated by Gauss-Legendre
@@ -22,8 +24,9 @@
 namespace pcr::kinematics {
 
 /// Why the energy above cannot describe the model, or "" when it can: it needs conservative loads (no
-/// dead torque, no distributed couple, no moment applied at a rod end, no drawn rod), no contact with
-/// obstacles, and no passive joint below a platform.
+/// dead torque, no distributed couple, no moment applied at a rod end, no drawn rod), contact only with
+/// distributed obstacles not carried by a platform (no sharp obstacle, point contact or adhesion), and no
+/// passive joint below a platform.
 std::string energy_model_refusal(const RobotModel& model);
 
 class EnergyModel {
@@ -40,7 +43,9 @@ class EnergyModel {
   VecX from_state(const VecX& x) const;
   /// Writes the energy unknowns e into the collocation state x (which holds the inputs): control points'
   /// P, Q; mixed rods' N, M interpolating the constitutive forces and moments at the Greville points;
-  /// condensed rods' constant wrench and running integrals; platforms; passive joints.
+  /// condensed rods' constant wrench and running integrals; platforms; passive joints; per contact
+  /// midpoint the density F = -(n' + f) of the force balance, its compressive normal part on each
+  /// obstacle the centerline touches (gap < 1e-4 L0) as that obstacle's multiplier, 0 elsewhere.
   void to_state(const VecX& e, VecX& x) const;
   /// e moved off any symmetry plane of the robot: control point and platform positions by up to
   /// size L0, their quaternions and the passive joint values by up to size, in a fixed pattern (a
@@ -56,6 +61,7 @@ class EnergyModel {
   Problem problem_;
   std::vector<std::vector<VariableId>> rod_points_;  // per rod: its control points [P, Q]
   std::vector<VariableId> platforms_, passive_;
+  std::vector<std::vector<Obstacle>> rod_obstacles_;  // per rod: its distributed obstacles, placed
   double energy_scale_ = 1.0;
   /// A run of unknowns the collocation state and the energy unknowns share (a control point's P or Q, a
   /// platform pose, a passive joint value): from_state and to_state copy them one way and the other.
@@ -67,6 +73,8 @@ class EnergyModel {
   void add_rods(const VecX& x);
   void add_platforms_and_passive_joints(const VecX& x);
   void add_couplings(const VecX& x);
+  void add_obstacle_gaps(const VecX& x);
+  void write_contact_forces(int rod, VecX& x) const;
   void write_rod_forces(int rod, const VecX& e, VecX& x) const;
   void find_shared_slices();
 };

@@ -8,6 +8,7 @@
 #include "energy_hessian.hpp"
 #include "pcr/robots/robot_model.hpp"
 #include "pcr/rods/collocation_rod.hpp"
+#include "pcr/rods/obstacle.hpp"
 #include "pcr/solve/residual_block.hpp"
 
 namespace pcr::kinematics {
@@ -121,6 +122,28 @@ class CouplingRows : public ResidualBlock {
   std::vector<int> passive_joints_;  // joint indices
   double length_scale_;
   std::vector<int> sizes_;
+};
+
+/// Frictionless contact as constraints of the energy (a workless reaction: the obstacles add no potential):
+/// the gap g_k(p(u)) (obstacle.hpp, contact radius r) of the centerline point p(u) = sum_a N_a(u) P_a to
+/// each obstacle k, divided by length_scale, bounded below by 0. One row per obstacle, over the control
+/// points [P, Q] whose basis functions do not vanish at u (basis: their N_a(u)). The collocation's contact
+/// rows hold at its midpoints (rod_contact.hpp), and so do these. Jacobian N_a nu_k^T / length_scale;
+/// Hessian of sum_k w_k g_k: sum_k w_k N_a N_b (d nu_k / d p) / length_scale in the P-P blocks.
+class ObstacleGapRows : public ResidualBlock {
+ public:
+  ObstacleGapRows(std::vector<Obstacle> obstacles, double radius, VecX basis, std::vector<VariableId> points,
+                  double length_scale);
+  void evaluate(const double* const* values, double* residual, double* const* jacobians) const override;
+  bool provides_hessian() const override { return true; }
+  void evaluate_hessian(const double* const* values, const double* weights, double* hessian) const override;
+
+ private:
+  std::vector<Obstacle> obstacles_;
+  double radius_;
+  VecX basis_;
+  double length_scale_;
+  Vec3 centerline(const double* const* values) const;
 };
 
 }  // namespace pcr::kinematics

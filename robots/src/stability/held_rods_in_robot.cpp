@@ -15,8 +15,6 @@ std::string robot_assumption_failure(const RobotModel& model) {
   for (const RodElement& rod : model.rods()) {
     const std::string rod_failure = nonconservative_loads(rod.rod);
     if (!rod_failure.empty()) add(rod_failure);
-    if (!rod.obstacles.empty())
-      add("rod '" + rod.name + "' may touch obstacles: contact is not in the second variation");
   }
   for (const ExternalLoad& load : model.loads())
     if (!load.torque.isZero(0.0))

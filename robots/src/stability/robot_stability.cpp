@@ -108,7 +108,8 @@ bool stability::count_border(const MatX& K, Stability& s) {
 }
 
 Stability robot_stability(const RobotAssembly& assembly, const VecX& x) {
-  const std::string failure = stability::robot_assumption_failure(assembly.model());
+  std::string failure = stability::robot_assumption_failure(assembly.model());
+  if (failure.empty()) failure = stability::active_contact_failure(assembly, x);
   if (!failure.empty()) return unknown_stability(failure);
   Stability s;
   double rod_margin = INFINITY;

@@ -13,8 +13,14 @@ namespace pcr::stability {
 
 /// Why the criterion does not apply to the model (empty when it does): non-conservative loads
 /// (rod_stability.hpp nonconservative_loads; a dead torque on a link carried by a platform or moved by
-/// passive joints) or contact (obstacles).
+/// passive joints).
 std::string robot_assumption_failure(const RobotModel& model);
+
+/// Why it does not apply at the state x because of contact (empty when every contact is open): a rod
+/// touching an obstacle at one of its contact rows (gap below 1e-6 L0, read_rod_contact's threshold).
+/// With every contact open the equilibrium is one of the robot without obstacles, and variations small
+/// enough for the second variation keep the contacts open: the criterion applies unchanged.
+std::string active_contact_failure(const RobotAssembly& assembly, const VecX& x);
 
 /// Rod i's Morse index with its couplings held in their link frames at the state x (the link poses at the
 /// state's inputs, passive joint values and platform poses).

@@ -15,8 +15,9 @@
 // its discretisation error, reported as the asymmetry).
 // Assumptions (else the verdict is `unknown` with the reason): conservative loads (dead forces and
 // gravity; no dead couple on a platform or at a rod end that can turn, no distributed couple, no dead
-// torque on a link), no contact with obstacles, no rod at a conjugate point with its links held (A
-// singular). Passive joints are border coordinates beside the platform poses (docs/design.md §4).
+// torque on a link), no rod touching an obstacle (every contact open: the equilibrium is then one of the
+// robot without obstacles, and small variations keep it so), no rod at a conjugate point with its links
+// held (A singular). Passive joints are border coordinates beside the platform poses (docs/design.md §4).
 #include <string>
 
 #include "pcr/robots/robot_assembly.hpp"
