@@ -200,7 +200,8 @@ BOOST_AUTO_TEST_CASE(stability_verdict_in_the_json_and_the_table) {
   const Run post = run_pcr("fk " + model("planar_post.urdf") + " --stability --json");
   BOOST_REQUIRE_EQUAL(post.exit_code, 0);
   const test_json::Value c = test_json::parse(post.out);
-  BOOST_CHECK_EQUAL(c["stability"]["verdict"].text, "unknown");
+  BOOST_CHECK_EQUAL(c["stability"]["verdict"].text, "unstable");  // in the plane: test_contact_verdict
+  BOOST_CHECK_EQUAL(c["stability"]["unstable_modes"].number, 1);
   BOOST_CHECK_MESSAGE(contains(c["stability"]["reason"].text, "rod 'middle' touches obstacle 'post'"),
                       c["stability"]["reason"].text);
 }

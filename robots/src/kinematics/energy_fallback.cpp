@@ -69,7 +69,7 @@ constexpr double kSameMinimum = 1e-5;
 bool accepted(const RobotAssembly& assembly, const Minimum& m, const VecX& x, const Stability& v,
               std::string& note) {
   if (v.verdict == StabilityVerdict::Stable) return true;
-  if (v.verdict != StabilityVerdict::Unknown || stability::active_contact_failure(assembly, x).empty())
+  if (v.verdict != StabilityVerdict::Unknown || stability::touching_contact(assembly, x).empty())
     return false;
   const double V = m.energy.energy(m.energy.from_state(x));
   if (std::abs(V - m.value) <= kSameMinimum * std::max(std::abs(m.value), m.energy.energy_scale()))

@@ -1,4 +1,4 @@
-// Whether contact keeps the stability criterion from applying at a state (robot_stability_parts.hpp).
+// Whether rods touch obstacles at a state (robot_stability_parts.hpp touching_contact).
 #include <sstream>
 
 #include "pcr/rods/rod_contact.hpp"
@@ -17,7 +17,7 @@ constexpr double kOpenGap = 1e-6;
 
 }  // namespace
 
-std::string active_contact_failure(const RobotAssembly& assembly, const VecX& x) {
+std::string touching_contact(const RobotAssembly& assembly, const VecX& x) {
   const double open = kOpenGap * assembly.length_scale();
   for (int i = 0; i < assembly.num_rods(); ++i) {
     const RodContactVariables* contact = assembly.rod_contact(i);
@@ -29,7 +29,7 @@ std::string active_contact_failure(const RobotAssembly& assembly, const VecX& x)
         if (c.gaps[j] > open) continue;
         std::ostringstream msg;
         msg << "rod '" << c.rod << "' touches obstacle '" << c.obstacle << "' (gap " << c.gaps[j]
-            << " m at s = " << c.arc_lengths[j] << " m): contact constraints are not in the second variation";
+            << " m at s = " << c.arc_lengths[j] << " m)";
         return msg.str();
       }
   }

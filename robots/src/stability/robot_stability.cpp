@@ -6,6 +6,7 @@
 #include <sstream>
 #include <string>
 
+#include "../kinematics/energy_model.hpp"
 #include "pcr/math/dense_decompositions.hpp"
 #include "robot_stability_parts.hpp"
 
@@ -108,9 +109,16 @@ bool stability::count_border(const MatX& K, Stability& s) {
 }
 
 Stability robot_stability(const RobotAssembly& assembly, const VecX& x) {
-  std::string failure = stability::robot_assumption_failure(assembly.model());
-  if (failure.empty()) failure = stability::active_contact_failure(assembly, x);
+  const std::string failure = stability::robot_assumption_failure(assembly.model());
   if (!failure.empty()) return unknown_stability(failure);
+  const std::string touching = stability::touching_contact(assembly, x);
+  if (!touching.empty()) {
+    const std::string refusal = kinematics::energy_model_refusal(assembly.model());
+    if (!refusal.empty())
+      return unknown_stability(touching + ": contact is counted on the energy's Ritz form, which does not " +
+                               "describe this model (" + refusal + ")");
+    return stability::contact_stability(assembly, x, touching);
+  }
   Stability s;
   double rod_margin = INFINITY;
   HeldRodIndex weakest;

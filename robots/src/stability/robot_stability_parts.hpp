@@ -16,11 +16,16 @@ namespace pcr::stability {
 /// passive joints).
 std::string robot_assumption_failure(const RobotModel& model);
 
-/// Why it does not apply at the state x because of contact (empty when every contact is open): a rod
-/// touching an obstacle at one of its contact rows (gap below 1e-6 L0, read_rod_contact's threshold).
-/// With every contact open the equilibrium is one of the robot without obstacles, and variations small
+/// The first rod touching an obstacle at one of its contact rows at the state x (gap below 1e-6 L0,
+/// read_rod_contact's threshold): "rod 'a' touches obstacle 'b' (gap g m at s = s m)", or "" when every
+/// contact is open. Then the equilibrium is one of the robot without obstacles, and variations small
 /// enough for the second variation keep the contacts open: the criterion applies unchanged.
-std::string active_contact_failure(const RobotAssembly& assembly, const VecX& x);
+std::string touching_contact(const RobotAssembly& assembly, const VecX& x);
+
+/// The verdict at a state x on which rods touch obstacles (touching: which, for the reason): the second
+/// variation of the energy's Ritz form (energy_model.hpp) at its equilibrium next to x, with the
+/// touching contacts held, on the tangent space of the held constraints (docs/design.md §4).
+Stability contact_stability(const RobotAssembly& assembly, const VecX& x, const std::string& touching);
 
 /// Rod i's Morse index with its couplings held in their link frames at the state x (the link poses at the
 /// state's inputs, passive joint values and platform poses).

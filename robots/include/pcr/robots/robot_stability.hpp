@@ -15,9 +15,11 @@
 // its discretisation error, reported as the asymmetry).
 // Assumptions (else the verdict is `unknown` with the reason): conservative loads (dead forces and
 // gravity; no dead couple on a platform or at a rod end that can turn, no distributed couple, no dead
-// torque on a link), no rod touching an obstacle (every contact open: the equilibrium is then one of the
-// robot without obstacles, and small variations keep it so), no rod at a conjugate point with its links
-// held (A singular). Passive joints are border coordinates beside the platform poses (docs/design.md §4).
+// torque on a link), no rod at a conjugate point with its links held (A singular). Contact: with every
+// contact open the equilibrium is one of the robot without obstacles (small variations keep it so);
+// where a rod touches an obstacle the count is taken on the energy's Ritz form with the touching contacts
+// held (docs/design.md §4; `unknown` where one carries no force, or for contact the energy does not
+// describe: sharp obstacles, point contact, adhesion, obstacles on a platform). Passive joints are border coordinates beside the platform poses (docs/design.md §4).
 #include <string>
 
 #include "pcr/robots/robot_assembly.hpp"

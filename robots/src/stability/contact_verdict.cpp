@@ -1,0 +1,146 @@
+// The verdict of an equilibrium on which rods touch obstacles (robot_stability_parts.hpp
+// contact_stability): the second variation of the energy's Ritz form with the touching contacts held.
+#include <Eigen/LU>
+#include <Eigen/QR>
+#include <sstream>
+
+#include "../kinematics/energy_model.hpp"
+#include "pcr/math/dense_decompositions.hpp"
+#include "robot_stability_parts.hpp"
+
+namespace pcr::stability {
+
+namespace {
+
+using kinematics::EnergyModel;
+
+/// A gap row counts as touching below this (in L0), as in touching_contact.
+constexpr double kTouching = 1e-6;
+/// Newton on the Ritz form's stationarity conditions (the energy scaled by energy_scale(), positions in
+/// m) runs until its residual stops halving, at the round-off of the stiff axial and shear terms (1e-8 -
+/// 6e-8 at the default states of planar_three_rod, stewart_gough and passive_hinge, reached in 1-2
+/// iterations from the collocation's equilibrium); beyond this the state is not next to a Ritz
+/// equilibrium.
+constexpr double kStationary = 1e-6;
+constexpr int kMaxNewton = 10;
+
+/// D: L0 for the positions of control points and platforms (the first 3 of each 7-block), 1 for the
+/// rest, so that D H D is the Hessian against displacements / L0 (dimensionless as the border's K_hat).
+VecX coordinate_scale(const Problem& p, double L0) {
+  VecX d = VecX::Ones(p.num_variables());
+  for (int b = 0; b < p.num_variable_blocks(); ++b)
+    if (p.variable(b).size == 7) d.segment(p.variable(b).offset, 3).setConstant(L0);
+  return d;
+}
+
+struct Active {
+  std::vector<int> rows;  // all equality rows and the touching gap rows
+  std::vector<int> gaps;  // the touching gap rows (indices into rows)
+};
+
+Active active_rows(const Problem& p, const VecX& c) {
+  Active a;
+  const VecX lower = p.row_lower(), upper = p.row_upper();
+  for (int i = 0; i < c.size(); ++i) {
+    const bool inequality = upper[i] > lower[i];
+    if (inequality && c[i] > kTouching) continue;
+    if (inequality) a.gaps.push_back(static_cast<int>(a.rows.size()));
+    a.rows.push_back(i);
+  }
+  return a;
+}
+
+MatX rows_of(const Eigen::SparseMatrix<double, Eigen::RowMajor>& J, const std::vector<int>& rows) {
+  MatX out(rows.size(), J.cols());
+  const MatX dense(J);
+  for (std::size_t r = 0; r < rows.size(); ++r) out.row(r) = dense.row(rows[r]);
+  return out;
+}
+
+/// The Lagrangian's Hessian (both triangles) at e with the multipliers y of the active rows.
+MatX lagrangian_hessian(const Problem& p, const VecX& e, const Active& a, const VecX& y) {
+  VecX multipliers = VecX::Zero(p.num_rows());
+  for (std::size_t r = 0; r < a.rows.size(); ++r) multipliers[a.rows[r]] = y[r];
+  Eigen::SparseMatrix<double, Eigen::RowMajor> H;
+  p.evaluate_hessian(e, 1.0, multipliers, H);
+  const MatX lower(H);
+  MatX full = lower + lower.transpose();
+  full.diagonal() = lower.diagonal();
+  return full;
+}
+
+}  // namespace
+
+Stability contact_stability(const RobotAssembly& assembly, const VecX& x, const std::string& touching) {
+  const EnergyModel energy(assembly, x);
+  const Problem& p = energy.problem();
+  VecX e = energy.from_state(x), c, g;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> J;
+  p.evaluate_residuals_and_jacobian(e, c, J);
+  const Active a = active_rows(p, c);
+  // The Ritz form's equilibrium next to the state: grad V + J_a^T y = 0, c_a = 0 (L = V + y . c_a), by
+  // Newton from the collocation state's unknowns and the least-squares multipliers.
+  const int n = p.num_variables(), m = static_cast<int>(a.rows.size());
+  p.evaluate_objective(e, &g);
+  MatX Ja = rows_of(J, a.rows);
+  VecX y = Ja.transpose().colPivHouseholderQr().solve(-g);
+  MatX H;
+  double stationarity = INFINITY;
+  for (int k = 0; k < kMaxNewton; ++k) {
+    H = lagrangian_hessian(p, e, a, y);
+    VecX r(n + m);
+    r.head(n) = g + Ja.transpose() * y;
+    for (int i = 0; i < m; ++i) r[n + i] = c[a.rows[i]];
+    const double previous = stationarity;
+    stationarity = r.cwiseAbs().maxCoeff();
+    if (stationarity > 0.5 * previous) break;  // at round-off (H is the last iterate's: fine for the count)
+    MatX K = MatX::Zero(n + m, n + m);
+    K.topLeftCorner(n, n) = H;
+    K.topRightCorner(n, m) = Ja.transpose();
+    K.bottomLeftCorner(m, n) = Ja;
+    const VecX step = K.partialPivLu().solve(-r);
+    e += step.head(n);
+    y += step.tail(m);
+    p.evaluate_residuals_and_jacobian(e, c, J);
+    p.evaluate_objective(e, &g);
+    Ja = rows_of(J, a.rows);
+  }
+  if (!(stationarity <= kStationary)) {
+    std::ostringstream msg;
+    msg << touching << "; the energy's Ritz form has no equilibrium next to it (stationarity " << stationarity
+        << ")";
+    return unknown_stability(msg.str());
+  }
+  // Every touching gap pushes (a strictly active contact: V = V_min + mu g, mu > 0, i.e. y < 0).
+  for (int i : a.gaps)
+    if (!(y[i] < -kStationary))
+      return unknown_stability(touching + "; a contact there carries no force (at the border of activity)");
+  // Inertia of the Lagrangian's Hessian on the tangent space {J_a de = 0}: Z an orthonormal basis of it in
+  // the scaled coordinates (D de), from the QR of (J_a D)^T.
+  const VecX D = coordinate_scale(p, assembly.length_scale());
+  const MatX Hs = D.asDiagonal() * H * D.asDiagonal();
+  const MatX JsT = (Ja * D.asDiagonal()).transpose();
+  const Eigen::ColPivHouseholderQR<MatX> qr(JsT);
+  const MatX Q = qr.householderQ();
+  const MatX Z = Q.rightCols(n - qr.rank());
+  const VecX lambda = symmetric_eigenvalues(Z.transpose() * Hs * Z);
+  Stability s;
+  // Zero within the accuracy of the Hessian (differences of the exact gradient: about 1e-10 of its size,
+  // energy_hessian.hpp); the stiff axial terms set the largest eigenvalue (1e8 at planar_three_rod's
+  // default state, whose smallest are -1.41 and 0.27).
+  const double tolerance = 1e-10 * lambda.cwiseAbs().maxCoeff();
+  for (int i = 0; i < lambda.size(); ++i) {
+    if (lambda[i] < -tolerance)
+      ++s.unstable_modes;
+    else if (lambda[i] <= tolerance)
+      ++s.neutral_modes;
+  }
+  s.verdict = verdict_of(s.unstable_modes, s.neutral_modes);
+  s.margin = lambda.size() ? lambda[0] : 0.0;
+  s.length_scale = assembly.length_scale();
+  s.energy_scale = energy.energy_scale();
+  s.reason = "counted with the touching contacts held, on the energy's Ritz form (" + touching + ")";
+  return s;
+}
+
+}  // namespace pcr::stability

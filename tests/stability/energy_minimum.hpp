@@ -1,0 +1,34 @@
+#pragma once
+// Energy minimisations next to an equilibrium (the tests' check of contact verdicts): Ipopt on the
+// energy's Ritz form with the gap constraints (robots/src/kinematics/energy_model.hpp).
+#include <boost/test/unit_test.hpp>
+
+#include "kinematics/energy_model.hpp"
+#include "pcr/solve/ipopt_solver.hpp"
+
+namespace pcr::test {
+
+/// Ipopt from the equilibrium x moved by `size` off its symmetry planes (EnergyModel::perturbed): the
+/// minimiser's energy [J], and its first platform's position in `platform`.
+inline double energy_minimised_from(const RobotAssembly& a, const VecX& x, double size, Vec3& platform) {
+  const kinematics::EnergyModel energy(a, x);
+  VecX e = energy.perturbed(energy.from_state(x), size);
+  IpoptOptions o;
+  o.tol = 1e-10;
+  o.constraint_tolerance = 1e-10;
+  o.warm_start = false;
+  IpoptSolver ipopt(energy.problem(), o);
+  BOOST_TEST_REQUIRE(ipopt.solve(e).converged());
+  VecX xs = x;
+  energy.to_state(e, xs);
+  platform = a.platform_pose(xs, 0).position;
+  return energy.energy(e);
+}
+
+/// The energy's Ritz form at the collocation state x [J].
+inline double energy_at(const RobotAssembly& a, const VecX& x) {
+  const kinematics::EnergyModel energy(a, x);
+  return energy.energy(energy.from_state(x));
+}
+
+}  // namespace pcr::test
