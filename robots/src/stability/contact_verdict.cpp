@@ -69,65 +69,55 @@ MatX lagrangian_hessian(const Problem& p, const VecX& e, const Active& a, const 
   return full;
 }
 
-}  // namespace
+/// The Ritz form's equilibrium next to the state: grad V + J_a^T y = 0, c_a = 0 (L = V + y . c_a).
+struct RitzEquilibrium {
+  VecX y;                     ///< the active rows' multipliers
+  MatX H, Ja;                 ///< the Lagrangian's Hessian and the active rows' Jacobian there
+  double stationarity = 0.0;  ///< max |(grad V + J_a^T y, c_a)| reached
+};
 
-Stability contact_stability(const RobotAssembly& assembly, const VecX& x, const std::string& touching) {
-  const EnergyModel energy(assembly, x);
-  const Problem& p = energy.problem();
-  VecX e = energy.from_state(x), c, g;
-  Eigen::SparseMatrix<double, Eigen::RowMajor> J;
-  p.evaluate_residuals_and_jacobian(e, c, J);
-  const Active a = active_rows(p, c);
-  // The Ritz form's equilibrium next to the state: grad V + J_a^T y = 0, c_a = 0 (L = V + y . c_a), by
-  // Newton from the collocation state's unknowns and the least-squares multipliers.
+/// Newton on the stationarity conditions from e (the collocation state's unknowns) and the least-squares
+/// multipliers, until the residual stops halving (round-off).
+RitzEquilibrium ritz_equilibrium(const Problem& p, VecX e, const Active& a) {
   const int n = p.num_variables(), m = static_cast<int>(a.rows.size());
-  p.evaluate_objective(e, &g);
-  MatX Ja = rows_of(J, a.rows);
-  VecX y = Ja.transpose().colPivHouseholderQr().solve(-g);
-  MatX H;
-  double stationarity = INFINITY;
+  VecX c, g;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> J;
+  RitzEquilibrium r;
+  r.stationarity = INFINITY;
   for (int k = 0; k < kMaxNewton; ++k) {
-    H = lagrangian_hessian(p, e, a, y);
-    VecX r(n + m);
-    r.head(n) = g + Ja.transpose() * y;
-    for (int i = 0; i < m; ++i) r[n + i] = c[a.rows[i]];
-    const double previous = stationarity;
-    stationarity = r.cwiseAbs().maxCoeff();
-    if (stationarity > 0.5 * previous) break;  // at round-off (H is the last iterate's: fine for the count)
-    MatX K = MatX::Zero(n + m, n + m);
-    K.topLeftCorner(n, n) = H;
-    K.topRightCorner(n, m) = Ja.transpose();
-    K.bottomLeftCorner(m, n) = Ja;
-    const VecX step = K.partialPivLu().solve(-r);
-    e += step.head(n);
-    y += step.tail(m);
     p.evaluate_residuals_and_jacobian(e, c, J);
     p.evaluate_objective(e, &g);
-    Ja = rows_of(J, a.rows);
+    r.Ja = rows_of(J, a.rows);
+    if (k == 0) r.y = r.Ja.transpose().colPivHouseholderQr().solve(-g);
+    r.H = lagrangian_hessian(p, e, a, r.y);
+    VecX residual(n + m);
+    residual.head(n) = g + r.Ja.transpose() * r.y;
+    for (int i = 0; i < m; ++i) residual[n + i] = c[a.rows[i]];
+    const double previous = r.stationarity;
+    r.stationarity = residual.cwiseAbs().maxCoeff();
+    if (r.stationarity > 0.5 * previous) break;  // at round-off: this iterate's H is as good for the count
+    MatX K = MatX::Zero(n + m, n + m);
+    K.topLeftCorner(n, n) = r.H;
+    K.topRightCorner(n, m) = r.Ja.transpose();
+    K.bottomLeftCorner(m, n) = r.Ja;
+    const VecX step = K.partialPivLu().solve(-residual);
+    e += step.head(n);
+    r.y += step.tail(m);
   }
-  if (!(stationarity <= kStationary)) {
-    std::ostringstream msg;
-    msg << touching << "; the energy's Ritz form has no equilibrium next to it (stationarity " << stationarity
-        << ")";
-    return unknown_stability(msg.str());
-  }
-  // Every touching gap pushes (a strictly active contact: V = V_min + mu g, mu > 0, i.e. y < 0).
-  for (int i : a.gaps)
-    if (!(y[i] < -kStationary))
-      return unknown_stability(touching + "; a contact there carries no force (at the border of activity)");
-  // Inertia of the Lagrangian's Hessian on the tangent space {J_a de = 0}: Z an orthonormal basis of it in
-  // the scaled coordinates (D de), from the QR of (J_a D)^T.
-  const VecX D = coordinate_scale(p, assembly.length_scale());
-  const MatX Hs = D.asDiagonal() * H * D.asDiagonal();
-  const MatX JsT = (Ja * D.asDiagonal()).transpose();
-  const Eigen::ColPivHouseholderQR<MatX> qr(JsT);
+  return r;
+}
+
+/// The counts of the Lagrangian's Hessian on the tangent space {J_a de = 0}: Z an orthonormal basis of it
+/// in the scaled coordinates (D de), from the QR of (J_a D)^T; its eigenvalues zero within the accuracy
+/// of the Hessian (differences of the exact gradient: about 1e-10 of its size, energy_hessian.hpp; the
+/// stiff axial terms set the largest eigenvalue, 1e8 at planar_three_rod's default state, whose smallest
+/// are -1.41 and 0.27).
+void count_on_tangent_space(const RitzEquilibrium& r, const VecX& D, Stability& s) {
+  const MatX Hs = D.asDiagonal() * r.H * D.asDiagonal();
+  const Eigen::ColPivHouseholderQR<MatX> qr((r.Ja * D.asDiagonal()).transpose());
   const MatX Q = qr.householderQ();
-  const MatX Z = Q.rightCols(n - qr.rank());
+  const MatX Z = Q.rightCols(Hs.rows() - qr.rank());
   const VecX lambda = symmetric_eigenvalues(Z.transpose() * Hs * Z);
-  Stability s;
-  // Zero within the accuracy of the Hessian (differences of the exact gradient: about 1e-10 of its size,
-  // energy_hessian.hpp); the stiff axial terms set the largest eigenvalue (1e8 at planar_three_rod's
-  // default state, whose smallest are -1.41 and 0.27).
   const double tolerance = 1e-10 * lambda.cwiseAbs().maxCoeff();
   for (int i = 0; i < lambda.size(); ++i) {
     if (lambda[i] < -tolerance)
@@ -137,6 +127,30 @@ Stability contact_stability(const RobotAssembly& assembly, const VecX& x, const 
   }
   s.verdict = verdict_of(s.unstable_modes, s.neutral_modes);
   s.margin = lambda.size() ? lambda[0] : 0.0;
+}
+
+}  // namespace
+
+Stability contact_stability(const RobotAssembly& assembly, const VecX& x, const std::string& touching) {
+  const EnergyModel energy(assembly, x);
+  const Problem& p = energy.problem();
+  const VecX e = energy.from_state(x);
+  VecX c;
+  p.evaluate_residuals(e, c);
+  const Active a = active_rows(p, c);
+  const RitzEquilibrium r = ritz_equilibrium(p, e, a);
+  if (!(r.stationarity <= kStationary)) {
+    std::ostringstream msg;
+    msg << touching << "; the energy's Ritz form has no equilibrium next to it (stationarity "
+        << r.stationarity << ")";
+    return unknown_stability(msg.str());
+  }
+  // Every touching gap pushes (a strictly active contact: grad V = mu grad g with mu > 0, i.e. y < 0).
+  for (int i : a.gaps)
+    if (!(r.y[i] < -kStationary))
+      return unknown_stability(touching + "; a contact there carries no force (at the border of activity)");
+  Stability s;
+  count_on_tangent_space(r, coordinate_scale(p, assembly.length_scale()), s);
   s.length_scale = assembly.length_scale();
   s.energy_scale = energy.energy_scale();
   s.reason = "counted with the touching contacts held, on the energy's Ritz form (" + touching + ")";
