@@ -387,9 +387,9 @@ void sweep(const std::string& name, unsigned seed, long ci_solves) {
 
 /// The shipped models with actuation inputs (models/*.urdf; cantilever has none).
 const char* const kShippedModels[] = {
-    "passive_hinge", "planar_pinned",   "planar_post",      "planar_three_rod",
-    "six_rus",       "slider_actuated", "stewart_gough",    "stewart_gough_teleop",
-    "two_stage",     "universal_pair",  "universal_passive"};
+    "passive_hinge", "planar_pinned",   "planar_post",       "planar_three_rod",
+    "six_rus",       "slider_actuated", "stewart_gough",     "stewart_gough_teleop",
+    "two_stage",     "universal_pair",  "universal_passive", "planar_rollers"};
 
 }  // namespace
 

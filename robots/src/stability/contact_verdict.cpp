@@ -22,7 +22,7 @@ constexpr double kTouching = 1e-6;
 /// iterations from the collocation's equilibrium); beyond this the state is not next to a Ritz
 /// equilibrium.
 constexpr double kStationary = 1e-6;
-constexpr int kMaxNewton = 10;
+constexpr int kMaxNewton = 40;
 
 /// D: L0 for the positions of control points and platforms (the first 3 of each 7-block), 1 for the
 /// rest, so that D H D is the Hessian against displacements / L0 (dimensionless as the border's K_hat).
@@ -76,34 +76,57 @@ struct RitzEquilibrium {
   double stationarity = 0.0;  ///< max |(grad V + J_a^T y, c_a)| reached
 };
 
-/// Newton on the stationarity conditions from e (the collocation state's unknowns) and the least-squares
-/// multipliers, until the residual stops halving (round-off).
-RitzEquilibrium ritz_equilibrium(const Problem& p, VecX e, const Active& a) {
-  const int n = p.num_variables(), m = static_cast<int>(a.rows.size());
+/// The stationarity residual (grad V + J_a^T y, c_a) at (e, y), with J_a and grad V there.
+VecX stationarity_residual(const Problem& p, const VecX& e, const VecX& y, const Active& a, MatX& Ja) {
   VecX c, g;
   Eigen::SparseMatrix<double, Eigen::RowMajor> J;
+  p.evaluate_residuals_and_jacobian(e, c, J);
+  p.evaluate_objective(e, &g);
+  Ja = rows_of(J, a.rows);
+  const int n = p.num_variables(), m = static_cast<int>(a.rows.size());
+  VecX r(n + m);
+  r.head(n) = g + Ja.transpose() * (y.size() == m ? y : VecX::Zero(m));
+  for (int i = 0; i < m; ++i) r[n + i] = c[a.rows[i]];
+  return r;
+}
+
+/// Newton on the stationarity conditions from e (the collocation state's unknowns) and the least-squares
+/// multipliers, with backtracking on max |residual| (the Ritz equilibrium of a rod pressed hard on an
+/// obstacle lies farther from the collocation's: its constraints hold at points, the collocation's
+/// densities spread over cells), until the residual, below kStationary, stops halving (round-off), or no
+/// step decreases it.
+RitzEquilibrium ritz_equilibrium(const Problem& p, VecX e, const Active& a) {
+  const int n = p.num_variables(), m = static_cast<int>(a.rows.size());
   RitzEquilibrium r;
-  r.stationarity = INFINITY;
+  VecX residual = stationarity_residual(p, e, VecX(), a, r.Ja);
+  r.y = r.Ja.transpose().colPivHouseholderQr().solve(-residual.head(n));
+  residual.head(n) += r.Ja.transpose() * r.y;
+  r.stationarity = residual.cwiseAbs().maxCoeff();
   for (int k = 0; k < kMaxNewton; ++k) {
-    p.evaluate_residuals_and_jacobian(e, c, J);
-    p.evaluate_objective(e, &g);
-    r.Ja = rows_of(J, a.rows);
-    if (k == 0) r.y = r.Ja.transpose().colPivHouseholderQr().solve(-g);
     r.H = lagrangian_hessian(p, e, a, r.y);
-    VecX residual(n + m);
-    residual.head(n) = g + r.Ja.transpose() * r.y;
-    for (int i = 0; i < m; ++i) residual[n + i] = c[a.rows[i]];
-    const double previous = r.stationarity;
-    r.stationarity = residual.cwiseAbs().maxCoeff();
-    if (r.stationarity > 0.5 * previous) break;  // at round-off: this iterate's H is as good for the count
     MatX K = MatX::Zero(n + m, n + m);
     K.topLeftCorner(n, n) = r.H;
     K.topRightCorner(n, m) = r.Ja.transpose();
     K.bottomLeftCorner(m, n) = r.Ja;
     const VecX step = K.partialPivLu().solve(-residual);
-    e += step.head(n);
-    r.y += step.tail(m);
+    bool decreased = false;
+    for (double alpha = 1.0; alpha >= 1.0 / 64 && !decreased; alpha /= 2) {
+      MatX Ja;
+      const VecX trial_e = e + alpha * step.head(n), trial_y = r.y + alpha * step.tail(m);
+      const VecX trial = stationarity_residual(p, trial_e, trial_y, a, Ja);
+      const double s = trial.cwiseAbs().maxCoeff();
+      if (!(s < r.stationarity)) continue;
+      decreased = true;
+      const bool halved = s <= 0.5 * r.stationarity;
+      e = trial_e, r.y = trial_y, r.Ja = Ja, residual = trial, r.stationarity = s;
+      if (!halved && s <= kStationary) {  // at round-off: the Hessian there is as good for the count
+        r.H = lagrangian_hessian(p, e, a, r.y);
+        return r;
+      }
+    }
+    if (!decreased) return r;
   }
+  r.H = lagrangian_hessian(p, e, a, r.y);
   return r;
 }
 
