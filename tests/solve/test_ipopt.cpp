@@ -65,6 +65,29 @@ BOOST_AUTO_TEST_CASE(hs071_exact_hessian) {
   check_hs071(x, ipopt.solve(x));
 }
 
+// The constraint multipliers (Ipopt's sign: Lagrangian f + lambda . c) at HS071's optimum: the values the
+// Ipopt distribution's C++ example prints (lambda = -0.5522937 for the product row at its lower bound 25,
+// 0.1614686 for the sphere row), to 1e-6 (their 7 digits and Ipopt's tol); and stationarity in the free
+// components x2, x3, x4 (x1 is at its bound 1), grad f + J^T lambda = 0, to 1e-6 (tol times the problem's
+// scale).
+BOOST_AUTO_TEST_CASE(hs071_constraint_multipliers) {
+  Problem p = hs071_problem();
+  IpoptSolver ipopt(p);
+  BOOST_TEST(ipopt.constraint_multipliers().size() == 0);  // none before a solve
+  VecX x = p.initial_values();
+  check_hs071(x, ipopt.solve(x));
+  const VecX lambda = ipopt.constraint_multipliers();
+  BOOST_TEST_REQUIRE(lambda.size() == 2);
+  BOOST_TEST(std::abs(lambda[0] - (-0.5522937)) <= 1e-6);
+  BOOST_TEST(std::abs(lambda[1] - 0.1614686) <= 1e-6);
+  VecX c, g;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> J;
+  p.evaluate_residuals_and_jacobian(x, c, J);
+  p.evaluate_objective(x, &g);
+  const VecX stationarity = g + J.transpose() * lambda;
+  for (int i = 1; i < 4; ++i) BOOST_TEST(std::abs(stationarity[i]) <= 1e-6, "x" << i + 1);
+}
+
 BOOST_AUTO_TEST_CASE(hs071_limited_memory) {
   Problem p = hs071_problem();
   IpoptOptions options;

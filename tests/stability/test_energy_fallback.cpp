@@ -310,9 +310,8 @@ BOOST_AUTO_TEST_CASE(obstacle_gap_rows_against_finite_differences) {
 // inputs of the random sweep on which every other strategy fails (the continuations stop at 0.7-0.86 of
 // the line from the default inputs, the fold-aware one with steps below 1e-8). From the default equilibrium
 // Ipopt minimises the energy with the gap rows at the middle rod's 24 midpoints, and Newton on the
-// collocation equations (the semismooth contact rows) converges from the minimiser (the second input only
-// with the force started on both cells the minimiser touches, its gaps there 2.3e-7 and 4.7e-7 m: from one,
-// Newton lands on another equilibrium, at 0.352 J against the minimum's 0.262 J). Checked without the code
+// collocation equations (the semismooth contact rows) converges from the minimiser, its contact densities
+// started from the minimiser's point forces (the gap rows' multipliers). Checked without the code
 // that found it: the residual recomputed; at every midpoint the complementarity of gap and density (gap >=
 // -1e-9 L0, density >= -1e-8 F0 / L0: the residual tolerance's scale, and no density where the gap is open);
 // the middle rod on the post; the verdict computed again.

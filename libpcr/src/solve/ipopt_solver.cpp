@@ -202,6 +202,9 @@ const IpoptOptions& IpoptSolver::options() const {
 void IpoptSolver::reset_warm_start() {
   impl_->nlp->have_multipliers = false;
 }
+VecX IpoptSolver::constraint_multipliers() const {
+  return impl_->nlp->have_multipliers ? impl_->nlp->lambda : VecX();
+}
 
 SolveSummary IpoptSolver::solve(VecX& x) {
   const auto start_time = std::chrono::steady_clock::now();

@@ -141,10 +141,12 @@ bool from_start(FkData& data, const VecX& inputs, const EnergyStart& start, VecX
   // a saddle of the full energy (passive_hinge's default equilibrium has 1 unstable mode).
   VecX e = energy.perturbed(energy.from_state(xs), 1e-3);
   SolveSummary minimised;
+  VecX row_multipliers;  // the contact forces of the minimiser (EnergyModel::to_state)
   {
     const std::lock_guard<std::mutex> lock(ipopt_mutex());
     IpoptSolver ipopt(energy.problem(), energy_ipopt_options());
     minimised = ipopt.solve(e);
+    row_multipliers = ipopt.constraint_multipliers();
   }
   out.iterations += minimised.iterations;
   out.jacobians += minimised.jacobian_evaluations;
@@ -152,7 +154,7 @@ bool from_start(FkData& data, const VecX& inputs, const EnergyStart& start, VecX
          std::to_string(minimised.iterations) + " iterations, energy " + format("%.6g", energy.energy(e)) +
          " J";
   if (!e.allFinite()) return false;
-  energy.to_state(e, xs);
+  energy.to_state(e, xs, row_multipliers);
   const VecX minimiser = xs;
   SolveSummary summary;
   Stability verdict;

@@ -168,6 +168,7 @@ void EnergyModel::add_obstacle_gaps(const VecX& x) {
   const VecX q = joint_values_of(assembly_, x);
   const std::vector<Pose> poses = platform_poses_of(assembly_, x);
   rod_obstacles_.resize(assembly_.num_rods());
+  gap_rows_.resize(assembly_.num_rods());
   for (int i = 0; i < assembly_.num_rods(); ++i) {
     const RodContactVariables* contact = assembly_.rod_contact(i);
     if (!contact) continue;
@@ -180,8 +181,8 @@ void EnergyModel::add_obstacle_gaps(const VecX& x) {
       const VecX basis = d.values.row(0).transpose();
       const std::vector<VariableId> points(rod_points_[i].begin() + d.first,
                                            rod_points_[i].begin() + d.first + basis.size());
-      problem_.add_residual_block(std::make_shared<ObstacleGapRows>(obstacles, contact->options.radius, basis,
-                                                                    points, assembly_.length_scale()));
+      gap_rows_[i].push_back(problem_.add_residual_block(std::make_shared<ObstacleGapRows>(
+          obstacles, contact->options.radius, basis, points, assembly_.length_scale())));
     }
   }
 }
@@ -213,46 +214,34 @@ VecX EnergyModel::from_state(const VecX& x) const {
   return e;
 }
 
-void EnergyModel::to_state(const VecX& e, VecX& x) const {
+void EnergyModel::to_state(const VecX& e, VecX& x, const VecX& row_multipliers) const {
   for (const SharedSlice& s : shared_) x.segment(s.state_offset, s.size) = e.segment(s.energy_offset, s.size);
   for (int i = 0; i < assembly_.num_rods(); ++i) {
     write_rod_forces(i, e, x);
-    write_contact_forces(i, x);
+    write_contact_forces(i, row_multipliers, x);
   }
 }
 
-void EnergyModel::write_contact_forces(int i, VecX& x) const {
+void EnergyModel::write_contact_forces(int i, const VecX& row_multipliers, VecX& x) const {
   const RodContactVariables* contact = assembly_.rod_contact(i);
   if (!contact) return;
   const CollocationRod& rod = assembly_.rod(i);
   const RodVariables& v = assembly_.rod_variables(i);
-  const collocation::PointLayout& layout = rod.point_layout();
   const Problem& state = assembly_.problem();
-  // Ipopt's interior point stops with the active gaps at a few 1e-7 m (its barrier's slack: 2.3e-7 and
-  // 4.7e-7 m on planar_post at 0.1821 0.2269 0.1597 m, where Newton from a force on one cell lands on
-  // another equilibrium):
-  // a centerline within 1e-4 L0 counts as touching. A force given to a cell that is open is removed by
-  // Newton's complementarity rows.
-  const double L = rod.length(x, v), touching = 1e-4 * assembly_.length_scale();
-  const Vec3 f = rod.model().distributed_force();
+  const double L = rod.length(x, v), L0 = assembly_.length_scale();
+  const std::vector<double> tau = rod.knots().greville();
   for (std::size_t j = 0; j < contact->midpoints.size(); ++j) {
-    // The density the force balance n' + f + F = 0 asks for, with n' of the N just written.
-    const BasisDerivatives d = basis_derivatives(rod.knots(), contact->midpoints[j], 1);
-    Vec3 p = Vec3::Zero(), n_s = Vec3::Zero();
-    for (int a = 0; a < d.values.cols(); ++a) {
-      const int o = v.control_point_offset + (d.first + a) * rod.control_point_size();
-      p += d.values(0, a) * x.segment<3>(o + layout.p);
-      n_s += d.values(1, a) / L * x.segment<3>(o + layout.n);
-    }
-    const Vec3 wanted = -(n_s + f);
-    // Its compressive normal part on each touching obstacle, nothing on the others.
+    const Vec3 p = rod.state_at(x, v, contact->midpoints[j] * L).position;
+    const int row = row_multipliers.size() ? problem_.row_offset(gap_rows_[i][j]) : -1;
     Vec3 F = Vec3::Zero();
-    const int K = static_cast<int>(rod_obstacles_[i].size());
-    for (int k = 0; k < K; ++k) {
-      const ObstacleGap g = obstacle_gap(rod_obstacles_[i][k], p, contact->options.radius);
-      const double lambda = g.gap < touching ? std::max(0.0, wanted.dot(g.normal)) : 0.0;
-      x[state.variable(contact->multipliers[j]).offset + k] = lambda;
-      F += lambda * g.normal;
+    for (std::size_t k = 0; k < rod_obstacles_[i].size(); ++k) {
+      // The minimiser's point force on the midpoint, (M0 L0 / L0) |multiplier of g / L0| nu, spread over
+      // the midpoint's cell L (tau_{j+1} - tau_j) as the collocation's density.
+      const double lambda = row < 0 ? 0.0
+                                    : std::max(0.0, -row_multipliers[row + static_cast<int>(k)]) *
+                                          energy_scale_ / L0 / (L * (tau[j + 1] - tau[j]));
+      x[state.variable(contact->multipliers[j]).offset + static_cast<int>(k)] = lambda;
+      F += lambda * obstacle_gap(rod_obstacles_[i][k], p, contact->options.radius).normal;
     }
     x.segment<3>(state.variable(v.contact_forces[j]).offset) = F;
   }

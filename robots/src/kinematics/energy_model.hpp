@@ -44,9 +44,9 @@ class EnergyModel {
   /// Writes the energy unknowns e into the collocation state x (which holds the inputs): control points'
   /// P, Q; mixed rods' N, M interpolating the constitutive forces and moments at the Greville points;
   /// condensed rods' constant wrench and running integrals; platforms; passive joints; per contact
-  /// midpoint the density F = -(n' + f) of the force balance, its compressive normal part on each
-  /// obstacle the centerline touches (gap < 1e-4 L0) as that obstacle's multiplier, 0 elsewhere.
-  void to_state(const VecX& e, VecX& x) const;
+  /// midpoint and obstacle the density of the gap row's point force (row_multipliers: the minimiser's,
+  /// IpoptSolver's sign) spread over the midpoint's cell (0 without row_multipliers).
+  void to_state(const VecX& e, VecX& x, const VecX& row_multipliers = VecX()) const;
   /// e moved off any symmetry plane of the robot: control point and platform positions by up to
   /// size L0, their quaternions and the passive joint values by up to size, in a fixed pattern (a
   /// minimiser started on a symmetric state stays on it by symmetry, where the equilibrium may be a saddle
@@ -62,6 +62,7 @@ class EnergyModel {
   std::vector<std::vector<VariableId>> rod_points_;  // per rod: its control points [P, Q]
   std::vector<VariableId> platforms_, passive_;
   std::vector<std::vector<Obstacle>> rod_obstacles_;  // per rod: its distributed obstacles, placed
+  std::vector<std::vector<ResidualId>> gap_rows_;      // per rod: its gap rows per contact midpoint
   double energy_scale_ = 1.0;
   /// A run of unknowns the collocation state and the energy unknowns share (a control point's P or Q, a
   /// platform pose, a passive joint value): from_state and to_state copy them one way and the other.
@@ -74,7 +75,7 @@ class EnergyModel {
   void add_platforms_and_passive_joints(const VecX& x);
   void add_couplings(const VecX& x);
   void add_obstacle_gaps(const VecX& x);
-  void write_contact_forces(int rod, VecX& x) const;
+  void write_contact_forces(int rod, const VecX& row_multipliers, VecX& x) const;
   void write_rod_forces(int rod, const VecX& e, VecX& x) const;
   void find_shared_slices();
 };

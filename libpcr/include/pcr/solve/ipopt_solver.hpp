@@ -61,6 +61,10 @@ class IpoptSolver {
   /// Forgets the stored multipliers: the next solve is a cold start.
   void reset_warm_start();
   const IpoptOptions& options() const;
+  /// The constraint rows' multipliers at the last solve's end, in Ipopt's sign (its Lagrangian is
+  /// f + lambda . c: a row held at its lower bound has lambda <= 0); empty before the first solve or when
+  /// they were not finite.
+  VecX constraint_multipliers() const;
 
  private:
   struct Impl;
