@@ -385,7 +385,7 @@ void sweep(const std::string& name, unsigned seed, long ci_solves) {
   BOOST_TEST(ws.converged > 0, name << ": no warm solve converged");
 }
 
-/// The shipped models with actuation inputs (models/*.urdf; cantilever has none).
+/// The shipped models with actuation inputs (models/*.urdf; cantilever and adhesive_roller have none).
 const char* const kShippedModels[] = {
     "passive_hinge", "planar_pinned",   "planar_post",       "planar_three_rod",
     "six_rus",       "slider_actuated", "stewart_gough",     "stewart_gough_teleop",
