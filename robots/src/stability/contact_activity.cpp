@@ -6,19 +6,8 @@
 
 namespace pcr::stability {
 
-namespace {
-
-/// A contact row is open when its gap g exceeds this fraction of L0, the gap at which read_rod_contact
-/// counts a cell as touching. There the complementarity row phi(a, b) (a = g / L0 >= 1e-6, b = lambda L0 /
-/// F0 at the solver's residual tolerance, ~1e-10) has d phi / d a ~ b^2 / (2 a^2) < 1e-8 (Fischer-
-/// Burmeister) or 0 (min): it reads d lambda = 0 and decouples from the rod's variation, and variations
-/// small enough for the second variation keep the contact open.
-constexpr double kOpenGap = 1e-6;
-
-}  // namespace
-
 std::string touching_contact(const RobotAssembly& assembly, const VecX& x) {
-  const double open = kOpenGap * assembly.length_scale();
+  const double open = kTouchingGap * assembly.length_scale();
   for (int i = 0; i < assembly.num_rods(); ++i) {
     const RodContactVariables* contact = assembly.rod_contact(i);
     if (!contact) continue;

@@ -14,8 +14,6 @@ namespace {
 
 using kinematics::EnergyModel;
 
-/// A gap row counts as touching below this (in L0), as in touching_contact.
-constexpr double kTouching = 1e-6;
 /// Newton on the Ritz form's stationarity conditions (the energy scaled by energy_scale(), positions in
 /// m) runs until its residual stops halving, at the round-off of the stiff axial and shear terms (1e-8 -
 /// 6e-8 at the default states of planar_three_rod, stewart_gough and passive_hinge, reached in 1-2
@@ -43,7 +41,7 @@ Active active_rows(const Problem& p, const VecX& c) {
   const VecX lower = p.row_lower(), upper = p.row_upper();
   for (int i = 0; i < c.size(); ++i) {
     const bool inequality = upper[i] > lower[i];
-    if (inequality && c[i] > kTouching) continue;
+    if (inequality && c[i] > kTouchingGap) continue;  // gap rows are g / L0
     if (inequality) a.gaps.push_back(static_cast<int>(a.rows.size()));
     a.rows.push_back(i);
   }
@@ -51,9 +49,10 @@ Active active_rows(const Problem& p, const VecX& c) {
 }
 
 MatX rows_of(const Eigen::SparseMatrix<double, Eigen::RowMajor>& J, const std::vector<int>& rows) {
-  MatX out(rows.size(), J.cols());
-  const MatX dense(J);
-  for (std::size_t r = 0; r < rows.size(); ++r) out.row(r) = dense.row(rows[r]);
+  MatX out = MatX::Zero(rows.size(), J.cols());
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(J, rows[r]); it; ++it)
+      out(r, it.col()) = it.value();
   return out;
 }
 
@@ -63,10 +62,7 @@ MatX lagrangian_hessian(const Problem& p, const VecX& e, const Active& a, const 
   for (std::size_t r = 0; r < a.rows.size(); ++r) multipliers[a.rows[r]] = y[r];
   Eigen::SparseMatrix<double, Eigen::RowMajor> H;
   p.evaluate_hessian(e, 1.0, multipliers, H);
-  const MatX lower(H);
-  MatX full = lower + lower.transpose();
-  full.diagonal() = lower.diagonal();
-  return full;
+  return MatX(MatX(H).selfadjointView<Eigen::Lower>());
 }
 
 /// The Ritz form's equilibrium next to the state: grad V + J_a^T y = 0, c_a = 0 (L = V + y . c_a).

@@ -16,8 +16,15 @@ namespace pcr::stability {
 /// passive joints).
 std::string robot_assumption_failure(const RobotModel& model);
 
-/// The first rod touching an obstacle at one of its contact rows at the state x (gap below 1e-6 L0,
-/// read_rod_contact's threshold): "rod 'a' touches obstacle 'b' (gap g m at s = s m)", or "" when every
+/// A contact row touches when its gap is below this fraction of L0 (read_rod_contact's threshold). Above
+/// it the complementarity row phi(a, b) (a = g / L0, b = lambda L0 / F0 at the solver's residual
+/// tolerance, ~1e-10) has d phi / d a ~ b^2 / (2 a^2) < 1e-8 (Fischer-Burmeister) or 0 (min): it reads
+/// d lambda = 0 and decouples from the rod's variation, and variations small enough for the second
+/// variation keep the contact open.
+inline constexpr double kTouchingGap = 1e-6;
+
+/// The first rod touching an obstacle at one of its contact rows at the state x (gap below kTouchingGap
+/// L0): "rod 'a' touches obstacle 'b' (gap g m at s = s m)", or "" when every
 /// contact is open. Then the equilibrium is one of the robot without obstacles, and variations small
 /// enough for the second variation keep the contacts open: the criterion applies unchanged.
 std::string touching_contact(const RobotAssembly& assembly, const VecX& x);

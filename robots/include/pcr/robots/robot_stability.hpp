@@ -19,7 +19,8 @@
 // contact open the equilibrium is one of the robot without obstacles (small variations keep it so);
 // where a rod touches an obstacle the count is taken on the energy's Ritz form with the touching contacts
 // held (docs/design.md §4; `unknown` where one carries no force, or for contact the energy does not
-// describe: sharp obstacles, point contact, adhesion, obstacles on a platform). Passive joints are border coordinates beside the platform poses (docs/design.md §4).
+// describe: sharp obstacles, point contact, adhesion, obstacles on a platform). Passive joints are border
+// coordinates beside the platform poses (docs/design.md §4).
 #include <string>
 
 #include "pcr/robots/robot_assembly.hpp"
