@@ -8,8 +8,10 @@
 #include <cmath>
 #include <string>
 
+#include "kinematics/coarse_continuation.hpp"
 #include "pcr/robots/kinematics.hpp"
 #include "pcr/robots/robot_stability.hpp"
+#include "pcr/solve/newton_solver.hpp"
 #include "robot_fixtures.hpp"
 #include "stability/energy_minimum.hpp"
 #include "stability/robot_stability_parts.hpp"
@@ -51,4 +53,57 @@ BOOST_AUTO_TEST_CASE(planar_post_default_pose_on_the_post_is_unstable) {
   const double lower = test::energy_minimised_from(fk.assembly(), fk.state(), 1e-4, platform);
   BOOST_TEST_MESSAGE("planar_post default: V " << V << " J, minimised " << lower << " J");
   BOOST_TEST(lower < V - 1e-3 * std::abs(V));
+}
+
+namespace {
+
+/// planar_post's equilibrium x of `from` carried to `elements` per rod (the middle rod keeps the 24 its
+/// model gives: its contact rows stay where they were) and solved there by Newton.
+VecX carried_to(const RobotAssembly& from, const VecX& x, const RobotAssembly& to) {
+  const kinematics::MeshTransfer transfer(from, to);
+  BOOST_TEST_REQUIRE(transfer.valid());
+  VecX xf = transfer.apply(x);
+  NewtonSolver newton(to.problem());
+  BOOST_TEST_REQUIRE(newton.solve(xf, 30).converged());
+  return xf;
+}
+
+}  // namespace
+
+// A random planar_post input (sweep seed 700) whose cold FK equilibrium the requested mesh cannot count:
+// the middle rod on the post, and the 8-element left rod curled so that the energy's Ritz form of the same
+// knots has no equilibrium next to it (stationarity 5.9e3). On 16 elements per rod the count is 1
+// unstable mode (refined_verdict.hpp). Checked there independently: an energy minimisation started 1e-4 L0
+// off it reaches a lower energy (by more than 1e-3 of it, as the default pose's test), and the same
+// equilibrium solved on 32 elements per rod has the same count.
+BOOST_AUTO_TEST_CASE(planar_post_curled_rod_counted_on_a_refined_mesh) {
+  const auto model = load_model("planar_post");
+  KinematicsOptions o;
+  o.stability_verdict = true;
+  ForwardKinematics fk(model, o);
+  const VecX u = (VecX(3) << 0.4868196105184055, 0.15896481929513556, 0.19642387449847692).finished();
+  const RobotSolution s = fk.solve(u);
+  BOOST_TEST_REQUIRE(s.summary.converged(), s.summary.message);
+  const Stability& v = s.stability_verdict;
+  BOOST_TEST_MESSAGE("planar_post at 0.487 0.159 0.196 m: " << to_string(v.verdict) << ", " << v.reason);
+  BOOST_TEST(to_string(v.verdict) == std::string("unstable"), v.reason);
+  BOOST_TEST(v.unstable_modes == 1);
+  BOOST_TEST(v.reason.find("counted on 16 elements per rod") != std::string::npos, v.reason);
+  for (const int elements : {16, 32}) {
+    KinematicsOptions fine_options = o;
+    fine_options.assembly.discretization.elements = elements;
+    const RobotAssembly fine(model, fine_options.assembly);
+    const VecX x = carried_to(fk.assembly(), fk.state(), fine);
+    BOOST_TEST((fine.platform_pose(x, 0).position - s.platforms[0].position).norm() < 1e-3, elements);
+    if (elements == 32) {
+      const Stability v32 = robot_stability(fine, x);
+      BOOST_TEST(v32.unstable_modes == 1, v32.reason);
+      continue;
+    }
+    const double V = test::energy_at(fine, x);
+    Vec3 platform;
+    const double lower = test::energy_minimised_from(fine, x, 1e-4, platform);
+    BOOST_TEST_MESSAGE("on 16 elements: V " << V << " J, minimised " << lower << " J");
+    BOOST_TEST(lower < V - 1e-3 * std::abs(V));
+  }
 }

@@ -18,7 +18,12 @@ MeshTransfer::MeshTransfer(const RobotAssembly& from, const RobotAssembly& to) {
   std::vector<bool> covered(static_cast<size_t>(to_size_), false);
   for (int i = 0; i < from.num_rods(); ++i) {
     const CollocationRod &a = from.rod(i), &b = to.rod(i);
-    if (a.control_point_size() != b.control_point_size() || from.rod_contact(i) || to.rod_contact(i) ||
+    // A rod with contact only on the same knots (its contact rows hold at the knot spans' midpoints): its
+    // contact multipliers are then copied by name below.
+    const bool same_knots =
+        a.knots().degree() == b.knots().degree() && a.knots().knots() == b.knots().knots();
+    if (a.control_point_size() != b.control_point_size() ||
+        ((from.rod_contact(i) || to.rod_contact(i)) && !same_knots) ||
         a.discretization().formulation != b.discretization().formulation)
       return;
     // Control points of b interpolating a's curve at b's Greville abscissae tau: B_b(tau) P_b = B_a(tau) P_a.

@@ -30,7 +30,8 @@ constexpr double kCoarseMaxVariableShare = 0.6;
 /// A state of one assembly carried to another of the same model (another mesh of the same rods): per rod
 /// the control points interpolated at the target's Greville abscissae (the same curve where the target's
 /// spline space contains the source's), every other variable block copied by name (platform poses,
-/// joints, inputs, rod lengths, a condensed rod's wrench).
+/// joints, inputs, rod lengths, a condensed rod's wrench, contact multipliers). A rod with obstacles must
+/// keep its knots (its contact rows sit at the knot spans' midpoints).
 class MeshTransfer {
  public:
   MeshTransfer() = default;

@@ -142,7 +142,7 @@ RobotSolution ForwardKinematics::solve(const VecX& inputs) {
       out.stability_verdict = *verdict;
     else if (m.options.stability_verdict)
       kinematics::add_stability_verdict(*m.assembly, d.x, out);
-    kinematics::refine_asymmetric_verdict(*m.assembly, d.x, m.options.tolerance, out.stability_verdict);
+    kinematics::refine_unknown_verdict(*m.assembly, d.x, m.options.tolerance, out.stability_verdict);
     d.last_unstable_modes = kinematics::definite_unstable_modes(out.stability_verdict);
   }
   return out;

@@ -1,22 +1,45 @@
-// The verdict of an asymmetric equilibrium on a refined mesh (refined_verdict.hpp).
+// The verdict of an equilibrium the requested mesh cannot count, on a refined mesh (refined_verdict.hpp).
 #include "refined_verdict.hpp"
 
 #include <cstdio>
 #include <memory>
+#include <string>
 
+#include "../stability/robot_stability_parts.hpp"
 #include "coarse_continuation.hpp"
 #include "pcr/core/error.hpp"
 #include "pcr/solve/newton_solver.hpp"
 
 namespace pcr::kinematics {
 
+namespace {
+
 bool unknown_by_asymmetry(const Stability& s) {
-  return s.verdict == StabilityVerdict::Unknown &&
-         s.reason.rfind("reduced stiffness of the platforms and passive joints not symmetric", 0) == 0;
+  return s.verdict == StabilityVerdict::Unknown && s.reason.rfind(stability::kAsymmetricBorder, 0) == 0;
 }
 
-void refine_asymmetric_verdict(const RobotAssembly& assembly, const VecX& x, double tolerance, Stability& s) {
-  if (!unknown_by_asymmetry(s)) return;
+/// Why the requested mesh gave no count, for the refined verdict's reason.
+std::string requested_mesh_note(const Stability& s, const Stability& refined, int elements) {
+  char note[200];
+  if (unknown_by_asymmetry(s))
+    std::snprintf(note, sizeof note,
+                  "counted on %d elements per rod (asymmetry %.3g; %.3g on the requested mesh, not counted)",
+                  elements, refined.asymmetry, s.asymmetry);
+  else
+    std::snprintf(note, sizeof note, "counted on %d elements per rod (on the requested mesh %s)", elements,
+                  stability::kNoRitzEquilibrium);
+  return note;
+}
+
+}  // namespace
+
+bool unknown_on_this_mesh(const Stability& s) {
+  return unknown_by_asymmetry(s) || (s.verdict == StabilityVerdict::Unknown &&
+                                     s.reason.find(stability::kNoRitzEquilibrium) != std::string::npos);
+}
+
+void refine_unknown_verdict(const RobotAssembly& assembly, const VecX& x, double tolerance, Stability& s) {
+  if (!unknown_on_this_mesh(s)) return;
   AssemblyOptions o = assembly.options();
   o.discretization.elements *= 2;
   std::shared_ptr<const RobotAssembly> fine;
@@ -39,10 +62,7 @@ void refine_asymmetric_verdict(const RobotAssembly& assembly, const VecX& x, dou
     if ((fine->platform_pose(xf, p).position - assembly.platform_pose(x, p).position).norm() > near) return;
   Stability refined = robot_stability(*fine, xf);
   if (refined.verdict == StabilityVerdict::Unknown || refined.verdict == StabilityVerdict::NotChecked) return;
-  char note[200];
-  std::snprintf(note, sizeof note,
-                "counted on %d elements per rod (asymmetry %.3g; %.3g on the requested mesh, not counted)",
-                o.discretization.elements, refined.asymmetry, s.asymmetry);
+  const std::string note = requested_mesh_note(s, refined, o.discretization.elements);
   refined.reason = refined.reason.empty() ? note : refined.reason + "; " + note;
   s = refined;
 }

@@ -160,8 +160,7 @@ Stability contact_stability(const RobotAssembly& assembly, const VecX& x, const 
   const RitzEquilibrium r = ritz_equilibrium(p, e, a);
   if (!(r.stationarity <= kStationary)) {
     std::ostringstream msg;
-    msg << touching << "; the energy's Ritz form has no equilibrium next to it (stationarity "
-        << r.stationarity << ")";
+    msg << touching << "; " << kNoRitzEquilibrium << " (stationarity " << r.stationarity << ")";
     return unknown_stability(msg.str());
   }
   // Every touching gap pushes (a strictly active contact: grad V = mu grad g with mu > 0, i.e. y < 0).

@@ -61,8 +61,8 @@ std::string asymmetry_failure(double asymmetry, const MatX& Ks) {
   const bool clear = lambda.size() == 0 || lambda.cwiseAbs().minCoeff() > n * asymmetry;
   if (asymmetry <= kMaxClearAsymmetry && clear) return "";
   std::ostringstream msg;
-  msg << "reduced stiffness of the platforms and passive joints not symmetric: relative asymmetry "
-      << asymmetry << " > " << (asymmetry > kMaxClearAsymmetry ? kMaxClearAsymmetry : kMaxAsymmetry);
+  msg << stability::kAsymmetricBorder << ": relative asymmetry " << asymmetry << " > "
+      << (asymmetry > kMaxClearAsymmetry ? kMaxClearAsymmetry : kMaxAsymmetry);
   if (asymmetry <= kMaxClearAsymmetry)
     msg << " with an eigenvalue within " << n << " x that of zero (" << lambda.cwiseAbs().minCoeff() << ")";
   return msg.str();

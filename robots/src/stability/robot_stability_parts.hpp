@@ -23,6 +23,13 @@ std::string robot_assumption_failure(const RobotModel& model);
 /// variation keep the contact open.
 inline constexpr double kTouchingGap = 1e-6;
 
+/// The reasons of the two `unknown` verdicts a finer mesh can resolve (refined_verdict.hpp): the border's
+/// reduced stiffness too asymmetric (the reason starts with it), and a touching rod whose Ritz form has no
+/// equilibrium next to the state (the reason contains it).
+inline constexpr const char* kAsymmetricBorder =
+    "reduced stiffness of the platforms and passive joints not symmetric";
+inline constexpr const char* kNoRitzEquilibrium = "the energy's Ritz form has no equilibrium next to it";
+
 /// The first rod touching an obstacle at one of its contact rows at the state x (gap below kTouchingGap
 /// L0): "rod 'a' touches obstacle 'b' (gap g m at s = s m)", or "" when every
 /// contact is open. Then the equilibrium is one of the robot without obstacles, and variations small
