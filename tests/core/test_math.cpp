@@ -1,4 +1,5 @@
-// Quaternions and SO(3): identities, derivatives against central finite differences, exp/log.
+// Quaternions and SO(3): identities, derivatives against central finite differences, exp/log; second-order
+// automatic differentiation against closed-form derivatives.
 #define BOOST_TEST_MODULE math
 #include <boost/test/unit_test.hpp>
 
@@ -6,6 +7,7 @@
 #include <random>
 
 #include "pcr/core/error.hpp"
+#include "pcr/math/hyper_dual.hpp"
 #include "pcr/math/quaternion.hpp"
 #include "pcr/math/so3.hpp"
 
@@ -93,8 +95,8 @@ BOOST_AUTO_TEST_CASE(hat_vee_round_trip) {
 BOOST_AUTO_TEST_CASE(exp_log_round_trip_including_near_zero_and_near_pi) {
   std::mt19937 rng(4);
   std::normal_distribution<double> n(0.0, 1.0);
-  const double angles[] = {0.0, 1e-12, 1e-8, 1e-5, 1e-3, 0.5, 1.0, 2.0, 3.0, M_PI - 1e-2, M_PI - 1e-4,
-                           M_PI - 1e-7, M_PI};
+  const double angles[] = {0.0, 1e-12, 1e-8,        1e-5,        1e-3,        0.5, 1.0,
+                           2.0, 3.0,   M_PI - 1e-2, M_PI - 1e-4, M_PI - 1e-7, M_PI};
   for (double angle : angles) {
     for (int trial = 0; trial < 20; ++trial) {
       const Vec3 axis = Vec3(n(rng), n(rng), n(rng)).normalized();
@@ -123,4 +125,25 @@ BOOST_AUTO_TEST_CASE(rotation_error_measures) {
   // rpy convention of URDF: Rz(yaw) Ry(pitch) Rx(roll), checked on a vector.
   const Vec3 ex = rotation_from_rpy(0.0, 0.0, M_PI / 2) * Vec3::UnitX();
   BOOST_TEST((ex - Vec3::UnitY()).norm() < 1e-15);
+}
+
+// f(x, y) = x^2 y / (1 + y^2) + sqrt(x y) - 3 x at (1.3, 0.7): value, gradient and Hessian against their
+// closed forms (differentiated by hand), to round-off. With r = 1 + y^2, w = sqrt(x y):
+// f_x = 2 x y / r + y / (2 w) - 3, f_y = x^2 (1 - y^2) / r^2 + x / (2 w),
+// f_xx = 2 y / r - y^2 / (4 w^3), f_xy = 2 x (1 - y^2) / r^2 + 1 / (4 w),
+// f_yy = x^2 (2 y^3 - 6 y) / r^3 - x^2 / (4 w^3).
+BOOST_AUTO_TEST_CASE(hyper_dual_second_derivatives_match_closed_forms) {
+  using H = HyperDual<2>;
+  const double x = 1.3, y = 0.7, r = 1.0 + y * y, w = std::sqrt(x * y);
+  const H X = H::variable(x, 0), Y = H::variable(y, 1);
+  H f = X * X * Y / (1.0 + Y * Y) + sqrt(X * Y);
+  f -= 3.0 * X;
+  BOOST_TEST(f.a == x * x * y / r + w - 3.0 * x, boost::test_tools::tolerance(1e-14));
+  BOOST_TEST(f.g[0] == 2 * x * y / r + y / (2 * w) - 3.0, boost::test_tools::tolerance(1e-14));
+  BOOST_TEST(f.g[1] == x * x * (1 - y * y) / (r * r) + x / (2 * w), boost::test_tools::tolerance(1e-14));
+  BOOST_TEST(f.H(0, 0) == 2 * y / r - y * y / (4 * w * w * w), boost::test_tools::tolerance(1e-14));
+  BOOST_TEST(f.H(0, 1) == 2 * x * (1 - y * y) / (r * r) + 1 / (4 * w), boost::test_tools::tolerance(1e-14));
+  BOOST_TEST(f.H(1, 0) == f.H(0, 1));
+  BOOST_TEST(f.H(1, 1) == x * x * (2 * y * y * y - 6 * y) / (r * r * r) - x * x / (4 * w * w * w),
+             boost::test_tools::tolerance(1e-14));
 }

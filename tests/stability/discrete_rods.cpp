@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "pcr/math/dense_decompositions.hpp"
-#include "stability/hyper_dual.hpp"
+#include "pcr/math/hyper_dual.hpp"
 
 namespace pcr::test {
 

@@ -72,9 +72,9 @@ BOOST_AUTO_TEST_CASE(gradient_and_jacobians_against_finite_differences) {
     const JacobianCheckResult h = check_block_hessian(block, block_values(p, block.variables(), e), weights);
     BOOST_TEST(h.passed, block.kind() + ": " + h.to_string());
   }
-  // The rod's Hessian (differences of the exact gradient per quadrature node) against differences of the
-  // whole gradient: entries within 1e-5 of the largest (both are differences with steps 1e-6: errors
-  // ~1e-10 relative to the gradient's size, amplified by the stiff axial terms' 1e5 range of scales).
+  // The rod's Hessian (exact: second-order forward mode per quadrature node) against differences of the
+  // whole gradient: entries within 1e-5 of the largest (differences with steps 1e-6: errors ~1e-10
+  // relative to the gradient's size, amplified by the stiff axial terms' 1e5 range of scales).
   const CollocationRod& rod = fk.assembly->rod(0);
   std::vector<VariableId> points;
   for (int k = 0; k < rod.num_control_points(); ++k) points.push_back(k);  // rod 0's blocks come first
@@ -86,7 +86,10 @@ BOOST_AUTO_TEST_CASE(gradient_and_jacobians_against_finite_differences) {
   MatX exact(n, n), differences(n, n);
   term.evaluate_hessian(pointers.data(), exact.data());
   gradient_difference_hessian(term, std::vector<int>(points.size(), 7), pointers.data(), differences.data());
-  BOOST_TEST((exact - differences).cwiseAbs().maxCoeff() <= 1e-5 * exact.cwiseAbs().maxCoeff());
+  const double largest = exact.cwiseAbs().maxCoeff();
+  BOOST_TEST_MESSAGE("rod Hessian against differences: "
+                     << (exact - differences).cwiseAbs().maxCoeff() / largest << " of the largest entry");
+  BOOST_TEST((exact - differences).cwiseAbs().maxCoeff() <= 1e-5 * largest);
 }
 
 // The coupling rows of the other kinds (revolute: planar_pinned, universal on links moved by actuated
@@ -239,8 +242,7 @@ BOOST_AUTO_TEST_CASE(universal_passive_input_reached_by_the_damped_motion_from_t
   const EnergyFallback r =
       minimise_energy_then_newton(fk.data, inputs, {{&start.x, "the default equilibrium"}});
   BOOST_TEST_REQUIRE(r.converged, r.message);
-  BOOST_TEST(r.message.find("Newton 29 iterations; the equilibrium is unstable") != std::string::npos,
-             r.message);
+  BOOST_TEST(r.message.find(" iterations; the equilibrium is unstable") != std::string::npos, r.message);
   BOOST_TEST(r.message.find("damped motion from the minimiser") != std::string::npos, r.message);
   const Problem& problem = fk.assembly->problem();
   const double tolerance = KinematicsOptions{}.tolerance;
@@ -306,9 +308,11 @@ BOOST_AUTO_TEST_CASE(obstacle_gap_rows_against_finite_differences) {
   BOOST_TEST(std::isinf(rows.row_upper().minCoeff()));
 }
 
-// planar_post at 0.177198 0.184144 0.182836 m and at 0.182100 0.226888 0.159735 m (17 digits below), cold
-// inputs of the random sweep on which every other strategy fails (the continuations stop at 0.7-0.86 of
-// the line from the default inputs, the fold-aware one with steps below 1e-8). From the default equilibrium
+// planar_post at 0.177198 0.184144 0.182836 m, 0.182100 0.226888 0.159735 m and 0.445277 0.366498
+// 0.297536 m (17 digits below), cold inputs of the random sweep on which every other strategy fails (the
+// continuations stop at 0.7-0.86 of the line from the default inputs, the fold-aware one with steps below
+// 1e-8); the third is a nearly critical minimum (margin 5.5e-4, counted as positive since the rods' energy
+// Hessians are exact: contact_verdict.cpp's zero tolerance is then ~3e-5). From the default equilibrium
 // Ipopt minimises the energy with the gap rows at the middle rod's 24 midpoints, and Newton on the
 // collocation equations (the semismooth contact rows) converges from the minimiser, its contact densities
 // started from the minimiser's point forces (the gap rows' multipliers). Checked without the code
@@ -325,7 +329,8 @@ BOOST_AUTO_TEST_CASE(planar_post_inputs_that_all_other_strategies_fail_on) {
   const int middle = 1;
   for (const VecX& inputs :
        {(VecX(3) << 0.17719782674187728, 0.18414384786537918, 0.1828360524710973).finished(),
-        (VecX(3) << 0.18210049270634937, 0.2268877454652834, 0.15973475140950516).finished()}) {
+        (VecX(3) << 0.18210049270634937, 0.2268877454652834, 0.15973475140950516).finished(),
+        (VecX(3) << 0.44527699973051293, 0.36649806730711199, 0.29753558740694563).finished()}) {
     const EnergyFallback r =
         minimise_energy_then_newton(fk.data, inputs, {{&start.x, "the default equilibrium"}});
     BOOST_TEST_REQUIRE(r.converged, r.message);

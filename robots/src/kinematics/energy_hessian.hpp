@@ -1,6 +1,7 @@
 #pragma once
-// Second derivatives of the energy terms and constraint rows (energy_terms.hpp) by central differences
-// of their exact gradients and Jacobians (internal header of pcr::robots), for Ipopt's Newton steps: with
+// Second derivatives of the energy terms and constraint rows (energy_terms.hpp) other than the rods' (whose
+// are exact: hyper_dual.hpp) by central differences of their exact gradients and Jacobians (internal header
+// of pcr::robots), for Ipopt's Newton steps and the contact verdict: with
 // steps h = 1e-6 max(1, |x_k|) the truncation error is O(h^2) and the round-off O(eps / h), about 1e-10
 // of the Hessian's size, far below what Ipopt's line search needs (the minimiser is refined by Newton on
 // the collocation equations anyway).

@@ -6,6 +6,7 @@
 #include "energy_kinematics.hpp"
 #include "energy_terms.hpp"
 #include "pcr/math/gauss_legendre.hpp"
+#include "pcr/math/hyper_dual.hpp"
 #include "pcr/splines/basis.hpp"
 
 namespace pcr::kinematics {
@@ -15,6 +16,7 @@ namespace {
 /// The local quantities at a quadrature node: z = [p_s (3), q (4), q_s (4)].
 constexpr int kLocal = 11;
 using D = Dual<kLocal>;
+using HD = HyperDual<kLocal>;
 
 /// Strain energy density 1/2 (v - v*)^T K_SE (v - v*) + 1/2 (u - u*)^T K_BT (u - u*) [J/m].
 template <class T>
@@ -118,25 +120,15 @@ void RodEnergyTerm::evaluate_hessian(const double* const* values, double* hessia
       z.segment<4>(3) += node.basis(0, j) * Eigen::Map<const Quat>(c + 3);
       z.tail<4>() += node.basis(1, j) * Eigen::Map<const Quat>(c + 3);
     }
-    // Hz(:, k) = (g(z + h e_k) - g(z - h e_k)) / 2h, h as energy_hessian.hpp.
-    const auto gradient = [&](const Eigen::Matrix<double, kLocal, 1>& at) {
-      V3<D> ps;
-      V4<D> q, qs;
-      for (int i = 0; i < 3; ++i) ps[i] = D::variable(at[i], i);
-      for (int i = 0; i < 4; ++i) q[i] = D::variable(at[3 + i], 3 + i), qs[i] = D::variable(at[7 + i], 7 + i);
-      return strain_energy_density(ps, q, qs, node.eps0, node.kappa0, m.shear_extension_stiffness,
-                                   m.bending_torsion_stiffness)
-          .v;
-    };
-    Eigen::Matrix<double, kLocal, kLocal> Hz;
-    for (int k = 0; k < kLocal; ++k) {
-      const double h = 1e-6 * std::max(1.0, std::abs(z[k]));
-      Eigen::Matrix<double, kLocal, 1> plus = z, minus = z;
-      plus[k] += h;
-      minus[k] -= h;
-      Hz.col(k) = (gradient(plus) - gradient(minus)) / (2.0 * h);
-    }
-    Hz = (0.5 * (Hz + Hz.transpose())).eval();
+    // The density's exact Hessian in z (second-order forward mode).
+    V3<HD> ps;
+    V4<HD> q, qs;
+    for (int i = 0; i < 3; ++i) ps[i] = HD::variable(z[i], i);
+    for (int i = 0; i < 4; ++i) q[i] = HD::variable(z[3 + i], 3 + i), qs[i] = HD::variable(z[7 + i], 7 + i);
+    const Eigen::Matrix<double, kLocal, kLocal> Hz =
+        strain_energy_density(ps, q, qs, node.eps0, node.kappa0, m.shear_extension_stiffness,
+                              m.bending_torsion_stiffness)
+            .H;
     // z = sum_j G_j c_j with G_j = [N_j' I3, 0; 0, N_j I4; 0, N_j' I4] (11 x 7).
     const int count = static_cast<int>(node.basis.cols());
     Eigen::Matrix<double, kLocal, Eigen::Dynamic> G =

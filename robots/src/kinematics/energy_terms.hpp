@@ -23,8 +23,8 @@ class RodEnergyTerm : public ObjectiveTerm {
                 double energy_scale);
   double evaluate(const double* const* values, double* const* gradients) const override;
   int expected_variable_size(int) const override { return 7; }
-  /// Per quadrature node: the Hessian of the strain energy density in [p_s, q, q_s] by central differences
-  /// of its exact gradient (energy_hessian.hpp), chained to the node's control points.
+  /// Per quadrature node: the exact Hessian of the strain energy density in [p_s, q, q_s] (second-order
+  /// forward mode, hyper_dual.hpp), chained to the node's control points.
   bool provides_hessian() const override { return true; }
   void evaluate_hessian(const double* const* values, double* hessian) const override;
   /// The section force n and moment m (world frame) of the constitutive law, and the position p, at u.

@@ -2,6 +2,7 @@
 // contact_stability): the second variation of the energy's Ritz form with the touching contacts held.
 #include <Eigen/LU>
 #include <Eigen/QR>
+#include <limits>
 #include <sstream>
 
 #include "../kinematics/energy_model.hpp"
@@ -127,17 +128,20 @@ RitzEquilibrium ritz_equilibrium(const Problem& p, VecX e, const Active& a) {
 }
 
 /// The counts of the Lagrangian's Hessian on the tangent space {J_a de = 0}: Z an orthonormal basis of it
-/// in the scaled coordinates (D de), from the QR of (J_a D)^T; its eigenvalues zero within the accuracy
-/// of the Hessian (differences of the exact gradient: about 1e-10 of its size, energy_hessian.hpp; the
-/// stiff axial terms set the largest eigenvalue, 1e8 at planar_three_rod's default state, whose smallest
-/// are -1.41 and 0.27).
+/// in the scaled coordinates (D de), from the QR of (J_a D)^T; its eigenvalues zero within n eps of the
+/// largest (n: the tangent space's dimension), the round-off of a backward-stable eigensolver (Weyl) on
+/// the rods' exact Hessians. The stiff axial terms set the largest eigenvalue (3.9e8 at planar_post's
+/// default state, whose smallest are -2.875 and 0.2233); the Hessians by differences that remain (the
+/// couplings', platforms' and passive joints') move those by 2e-9 between steps 1e-7 and 1e-5, and the
+/// rods' by differences moved them by 2e-7, both below n eps 3.9e8 ~ 3e-5 (n a few hundred).
 void count_on_tangent_space(const RitzEquilibrium& r, const VecX& D, Stability& s) {
   const MatX Hs = D.asDiagonal() * r.H * D.asDiagonal();
   const Eigen::ColPivHouseholderQR<MatX> qr((r.Ja * D.asDiagonal()).transpose());
   const MatX Q = qr.householderQ();
   const MatX Z = Q.rightCols(Hs.rows() - qr.rank());
   const VecX lambda = symmetric_eigenvalues(Z.transpose() * Hs * Z);
-  const double tolerance = 1e-10 * lambda.cwiseAbs().maxCoeff();
+  const double tolerance = static_cast<double>(lambda.size()) * std::numeric_limits<double>::epsilon() *
+                           lambda.cwiseAbs().maxCoeff();
   for (int i = 0; i < lambda.size(); ++i) {
     if (lambda[i] < -tolerance)
       ++s.unstable_modes;
