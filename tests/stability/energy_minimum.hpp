@@ -1,10 +1,13 @@
 #pragma once
 // Energy minimisations next to an equilibrium (the tests' check of contact verdicts): Ipopt on the
-// energy's Ritz form with the gap constraints (robots/src/kinematics/energy_model.hpp).
+// energy's Ritz form with the gap constraints (robots/src/kinematics/energy_model.hpp); and the same
+// equilibrium on a refined mesh (the check of verdicts against the discretisation).
 #include <boost/test/unit_test.hpp>
 
+#include "kinematics/coarse_continuation.hpp"
 #include "kinematics/energy_model.hpp"
 #include "pcr/solve/ipopt_solver.hpp"
+#include "pcr/solve/newton_solver.hpp"
 
 namespace pcr::test {
 
@@ -29,6 +32,17 @@ inline double energy_minimised_from(const RobotAssembly& a, const VecX& x, doubl
 inline double energy_at(const RobotAssembly& a, const VecX& x) {
   const kinematics::EnergyModel energy(a, x);
   return energy.energy(energy.from_state(x));
+}
+
+/// The equilibrium x of `from` carried to the assembly `to` of the same model on another mesh (MeshTransfer:
+/// the same curves; rods with obstacles must keep their knots) and solved there by Newton.
+inline VecX carried_to(const RobotAssembly& from, const VecX& x, const RobotAssembly& to) {
+  const kinematics::MeshTransfer transfer(from, to);
+  BOOST_TEST_REQUIRE(transfer.valid());
+  VecX xf = transfer.apply(x);
+  NewtonSolver newton(to.problem());
+  BOOST_TEST_REQUIRE(newton.solve(xf, 30).converged());
+  return xf;
 }
 
 }  // namespace pcr::test

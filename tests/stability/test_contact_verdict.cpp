@@ -8,10 +8,8 @@
 #include <cmath>
 #include <string>
 
-#include "kinematics/coarse_continuation.hpp"
 #include "pcr/robots/kinematics.hpp"
 #include "pcr/robots/robot_stability.hpp"
-#include "pcr/solve/newton_solver.hpp"
 #include "robot_fixtures.hpp"
 #include "stability/energy_minimum.hpp"
 #include "stability/robot_stability_parts.hpp"
@@ -55,21 +53,6 @@ BOOST_AUTO_TEST_CASE(planar_post_default_pose_on_the_post_is_unstable) {
   BOOST_TEST(lower < V - 1e-3 * std::abs(V));
 }
 
-namespace {
-
-/// planar_post's equilibrium x of `from` carried to `elements` per rod (the middle rod keeps the 24 its
-/// model gives: its contact rows stay where they were) and solved there by Newton.
-VecX carried_to(const RobotAssembly& from, const VecX& x, const RobotAssembly& to) {
-  const kinematics::MeshTransfer transfer(from, to);
-  BOOST_TEST_REQUIRE(transfer.valid());
-  VecX xf = transfer.apply(x);
-  NewtonSolver newton(to.problem());
-  BOOST_TEST_REQUIRE(newton.solve(xf, 30).converged());
-  return xf;
-}
-
-}  // namespace
-
 // A random planar_post input (sweep seed 700) whose cold FK equilibrium the requested mesh cannot count:
 // the middle rod on the post, and the 8-element left rod curled so that the energy's Ritz form of the same
 // knots has no equilibrium next to it (stationarity 5.9e3). On 16 elements per rod the count is 1
@@ -93,7 +76,7 @@ BOOST_AUTO_TEST_CASE(planar_post_curled_rod_counted_on_a_refined_mesh) {
     KinematicsOptions fine_options = o;
     fine_options.assembly.discretization.elements = elements;
     const RobotAssembly fine(model, fine_options.assembly);
-    const VecX x = carried_to(fk.assembly(), fk.state(), fine);
+    const VecX x = test::carried_to(fk.assembly(), fk.state(), fine);
     BOOST_TEST((fine.platform_pose(x, 0).position - s.platforms[0].position).norm() < 1e-3, elements);
     if (elements == 32) {
       const Stability v32 = robot_stability(fine, x);

@@ -367,6 +367,48 @@ BOOST_AUTO_TEST_CASE(planar_post_inputs_that_all_other_strategies_fail_on) {
   }
 }
 
+// planar_post at 0.455351 0.171345 0.180950 m (17 digits below), a warm input of the random sweep (after
+// 0.358801 0.323430 0.369945 m) on which every other strategy fails. The energy's minimum (0.241784 J)
+// lies in the robot's plane; Newton from it lands on the collocation's in-plane equilibrium, which has 1
+// unstable mode (the platform leaving the plane: a pitchfork the two discretisations place on either side
+// of this input), and the damped motion from the in-plane minimiser stays in the plane. Pushed along the
+// unstable mode the damped motion reaches an equilibrium 0.57 mm off the plane, stable (the cold solve of
+// the sweep reached its mirror image). Checked without the code that found it: the residual, the inputs,
+// the verdict computed again; and on refined meshes (16 and 32 elements per rod, the same equilibrium
+// carried and solved there): still off the plane by more than 0.1 mm and stable (measured 0.614 mm, margin
+// 3.74e-4 at both; 0.572 mm and 3.25e-4 at 8): the off-plane equilibrium is the rods', not the mesh's.
+BOOST_AUTO_TEST_CASE(planar_post_pitchfork_descended_along_the_unstable_mode) {
+  const auto model = load_model("planar_post");
+  Fk fk(model);
+  const DefaultEquilibrium& start = fk.data.model->default_equilibrium();
+  BOOST_TEST_REQUIRE(start.converged);
+  const RobotAssembly& a = *fk.assembly;
+  const VecX inputs = (VecX(3) << 0.45535090075211382, 0.17134479274337425, 0.18095039817943706).finished();
+  const EnergyFallback r =
+      minimise_energy_then_newton(fk.data, inputs, {{&start.x, "the default equilibrium"}});
+  BOOST_TEST_REQUIRE(r.converged, r.message);
+  BOOST_TEST_MESSAGE("planar_post: " << r.message);
+  BOOST_TEST(r.message.find("damped motion along the unstable mode") != std::string::npos, r.message);
+  VecX c;
+  a.problem().evaluate_residuals(r.x, c);
+  BOOST_TEST(c.cwiseAbs().maxCoeff() <= KinematicsOptions{}.tolerance);
+  BOOST_TEST((a.inputs(r.x) - inputs).cwiseAbs().maxCoeff() == 0.0);
+  const Stability verdict = robot_stability(a, r.x);
+  BOOST_TEST(to_string(verdict.verdict) == std::string("stable"), verdict.reason);
+  BOOST_TEST(std::abs(a.platform_pose(r.x, 0).position.y()) > 1e-4);
+  for (const int elements : {16, 32}) {
+    AssemblyOptions o = a.options();
+    o.discretization.elements = elements;
+    const RobotAssembly fine(model, o);
+    const VecX off = test::carried_to(a, r.x, fine);
+    const Stability v = robot_stability(fine, off);
+    BOOST_TEST_MESSAGE(elements << " elements: off the plane by " << fine.platform_pose(off, 0).position.y()
+                                << " m, " << to_string(v.verdict) << " (margin " << v.margin << ")");
+    BOOST_TEST(std::abs(fine.platform_pose(off, 0).position.y()) > 1e-4, elements);
+    BOOST_TEST(to_string(v.verdict) == std::string("stable"), elements << ": " << v.reason);
+  }
+}
+
 // A model the energy does not describe (the adhesive roller's contact at one prescribed section): the
 // strategy is skipped, saying why.
 BOOST_AUTO_TEST_CASE(refuses_a_contact_at_one_section) {

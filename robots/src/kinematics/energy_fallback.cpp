@@ -128,6 +128,45 @@ bool damped_to_stable(FkData& data, const Minimum& minimum, const VecX& inputs, 
   return false;
 }
 
+/// Pushes along the unstable mode (pushed_along_border_mode: the largest border coordinate moved by 1 % and
+/// 5 % of L0 or 0.01 and 0.05 rad, both ways): small enough to stay in the valley the mode descends into,
+/// as the fold snap's (fold_snap.cpp kDampedPushes).
+constexpr double kModePushes[] = {0.01, -0.01, 0.05, -0.05};
+
+/// Where Newton from the minimiser lands on an unstable equilibrium (`landed`) and the damped motion from
+/// the minimiser stays on it: the damped motion from `landed` pushed along its border's unstable mode. A
+/// planar robot's minimiser lies in its plane where the Ritz form's in-plane equilibrium is still stable
+/// and the collocation's, just past a pitchfork, is not: the stable equilibria lie off the plane, which
+/// no motion from an in-plane start reaches by symmetry (planar_post at 0.455351 0.171345 0.180950 m).
+bool descended_along_unstable_mode(FkData& data, const Minimum& minimum, const VecX& inputs,
+                                   const VecX& landed, VecX& xs, EnergyFallback& out, std::string& note,
+                                   SolveSummary& summary, Stability& v) {
+  const RobotAssembly& assembly = *data.model->assembly;
+  for (double amplitude : kModePushes) {
+    VecX start;
+    if (!pushed_along_border_mode(assembly, landed, amplitude, start)) return false;
+    const PseudoTransientResult r =
+        pseudo_transient_equilibrium(assembly, start, data.model->options.tolerance);
+    out.iterations += r.iterations;
+    out.jacobians += r.jacobian_evaluations;
+    note += "; damped motion along the unstable mode (" + format("%+.2f", amplitude) + "): ";
+    if (!r.converged) {
+      note += r.stopped;
+      continue;
+    }
+    v = robot_stability(assembly, r.x);
+    note += std::to_string(r.steps) + " steps";
+    if (!accepted(assembly, minimum, r.x, v, note)) {
+      note += not_stable(v);
+      continue;
+    }
+    xs = r.x;
+    summary = data.solve_at(inputs, xs);
+    return summary.converged();
+  }
+  return false;
+}
+
 /// One start: Ipopt from it, then Newton, then the damped motion; true when either reached a stable
 /// equilibrium (in xs).
 bool from_start(FkData& data, const VecX& inputs, const EnergyStart& start, VecX& xs, EnergyFallback& out,
@@ -159,9 +198,14 @@ bool from_start(FkData& data, const VecX& inputs, const EnergyStart& start, VecX
   SolveSummary summary;
   Stability verdict;
   const Minimum minimum{energy, energy.energy(e)};
-  if (!newton_to_stable(data, minimum, inputs, xs, out, note, summary, verdict) &&
-      !damped_to_stable(data, minimum, inputs, minimiser, xs, out, note, summary, verdict))
-    return false;
+  if (!newton_to_stable(data, minimum, inputs, xs, out, note, summary, verdict)) {
+    const bool landed = summary.converged() && xs.allFinite();
+    const VecX newton_x = xs;
+    if (!damped_to_stable(data, minimum, inputs, minimiser, xs, out, note, summary, verdict) &&
+        !(landed &&
+          descended_along_unstable_mode(data, minimum, inputs, newton_x, xs, out, note, summary, verdict)))
+      return false;
+  }
   note += (verdict.verdict == StabilityVerdict::Stable ? "; stable, margin " + format("%.3g", verdict.margin)
                                                        : "; verdict unknown (" + verdict.reason + ")") +
           ", " + format("%.2f", seconds_since(t0)) + " s";
