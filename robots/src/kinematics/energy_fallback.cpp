@@ -96,35 +96,45 @@ bool newton_to_stable(FkData& data, const Minimum& minimum, const VecX& inputs, 
   return false;
 }
 
+/// The damped motion of the platforms and passive joints from `start` (pseudo_transient_snap.hpp; `label`
+/// names it in the note), judged as Newton's result is: true at an accepted equilibrium (xs, v, summary:
+/// the FK Newton solver's at it).
+bool damped_motion(FkData& data, const Minimum& minimum, const VecX& inputs, const VecX& start, double shift,
+                   const std::string& label, VecX& xs, EnergyFallback& out, std::string& note,
+                   SolveSummary& summary, Stability& v) {
+  const RobotAssembly& assembly = *data.model->assembly;
+  const PseudoTransientResult r =
+      pseudo_transient_equilibrium(assembly, start, data.model->options.tolerance, shift);
+  out.iterations += r.iterations;
+  out.jacobians += r.jacobian_evaluations;
+  note += "; " + label + ": ";
+  if (!r.converged) {
+    note += r.stopped;
+    return false;
+  }
+  v = robot_stability(assembly, r.x);
+  note += std::to_string(r.steps) + " steps";
+  if (!accepted(assembly, minimum, r.x, v, note)) {
+    note += not_stable(v);
+    return false;
+  }
+  xs = r.x;
+  summary = data.solve_at(inputs, xs);  // at the equilibrium: its residual, in the solver's summary
+  return summary.converged();
+}
+
 /// Where Newton from the minimiser lands on an unstable equilibrium or none (the energy model's minimiser
 /// lies off the collocation's equilibria by the difference of the two discretisations, and Newton's
-/// first steps can cross a ridge), the damped motion of the platforms and passive joints from the
-/// minimiser (pseudo_transient_snap.hpp; with the shift on the rods' unknowns where the platforms alone
-/// stall, as the snap does) follows the robot's descent instead: true at a stable equilibrium (xs, v,
-/// summary: the FK Newton solver's at it).
+/// first steps can cross a ridge), the damped motion from the minimiser (with the shift on the rods'
+/// unknowns where the platforms alone stall, as the snap does) follows the robot's descent instead.
 bool damped_to_stable(FkData& data, const Minimum& minimum, const VecX& inputs, const VecX& minimiser,
                       VecX& xs, EnergyFallback& out, std::string& note, SolveSummary& summary, Stability& v) {
-  const RobotAssembly& assembly = *data.model->assembly;
-  for (double shift : {0.0, 1e-3}) {
-    const PseudoTransientResult r =
-        pseudo_transient_equilibrium(assembly, minimiser, data.model->options.tolerance, shift);
-    out.iterations += r.iterations;
-    out.jacobians += r.jacobian_evaluations;
-    note += std::string("; damped motion from the minimiser") + (shift > 0.0 ? " (shifted)" : "") + ": ";
-    if (!r.converged) {
-      note += r.stopped;
-      continue;
-    }
-    v = robot_stability(assembly, r.x);
-    note += std::to_string(r.steps) + " steps";
-    if (!accepted(assembly, minimum, r.x, v, note)) {
-      note += not_stable(v);
-      continue;
-    }
-    xs = r.x;
-    summary = data.solve_at(inputs, xs);  // at the equilibrium: its residual, in the solver's summary
-    return summary.converged();
-  }
+  for (double shift : {0.0, 1e-3})
+    if (damped_motion(
+            data, minimum, inputs, minimiser, shift,
+            shift > 0.0 ? "damped motion from the minimiser (shifted)" : "damped motion from the minimiser",
+            xs, out, note, summary, v))
+      return true;
   return false;
 }
 
@@ -141,28 +151,13 @@ constexpr double kModePushes[] = {0.01, -0.01, 0.05, -0.05};
 bool descended_along_unstable_mode(FkData& data, const Minimum& minimum, const VecX& inputs,
                                    const VecX& landed, VecX& xs, EnergyFallback& out, std::string& note,
                                    SolveSummary& summary, Stability& v) {
-  const RobotAssembly& assembly = *data.model->assembly;
   for (double amplitude : kModePushes) {
     VecX start;
-    if (!pushed_along_border_mode(assembly, landed, amplitude, start)) return false;
-    const PseudoTransientResult r =
-        pseudo_transient_equilibrium(assembly, start, data.model->options.tolerance);
-    out.iterations += r.iterations;
-    out.jacobians += r.jacobian_evaluations;
-    note += "; damped motion along the unstable mode (" + format("%+.2f", amplitude) + "): ";
-    if (!r.converged) {
-      note += r.stopped;
-      continue;
-    }
-    v = robot_stability(assembly, r.x);
-    note += std::to_string(r.steps) + " steps";
-    if (!accepted(assembly, minimum, r.x, v, note)) {
-      note += not_stable(v);
-      continue;
-    }
-    xs = r.x;
-    summary = data.solve_at(inputs, xs);
-    return summary.converged();
+    if (!pushed_along_border_mode(*data.model->assembly, landed, amplitude, start)) return false;
+    if (damped_motion(data, minimum, inputs, start, 0.0,
+                      "damped motion along the unstable mode (" + format("%+.2f", amplitude) + ")", xs, out,
+                      note, summary, v))
+      return true;
   }
   return false;
 }
