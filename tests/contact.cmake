@@ -10,3 +10,7 @@ pcr_add_test(NAME test_contact LABELS rods robots ARGS ${contact_args}
                      ${CMAKE_CURRENT_LIST_DIR}/contact/test_contact_references.cpp
                      ${CMAKE_CURRENT_LIST_DIR}/contact/test_contact_models.cpp
                      ${CMAKE_CURRENT_LIST_DIR}/contact/contact_fixtures.cpp)
+# The complementarity function (rods/src/contact/edge_contact.hpp, internal) is tested directly.
+if(TARGET test_contact)
+  target_include_directories(test_contact PRIVATE ${PROJECT_SOURCE_DIR}/rods/src)
+endif()

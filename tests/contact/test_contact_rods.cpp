@@ -1,11 +1,13 @@
-// Obstacles and frictionless contact of collocation rods (rod_contact.hpp): gap functions, Jacobians of
-// the new residual blocks against finite differences, inactive contact, and rejected input.
+// Obstacles and frictionless contact of collocation rods (rod_contact.hpp): gap functions, the
+// complementarity function, Jacobians of the new residual blocks against finite differences, inactive
+// contact, and rejected input.
 #define BOOST_TEST_MODULE contact
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
 #include <random>
 
+#include "contact/edge_contact.hpp"
 #include "contact_fixtures.hpp"
 #include "pcr/core/error.hpp"
 #include "pcr/solve/jacobian_check.hpp"
@@ -76,6 +78,28 @@ BOOST_AUTO_TEST_CASE(gap_functions_match_their_geometry) {
       BOOST_TEST(std::abs(g.normal.norm() - 1.0) < 1e-14);
     }
   }
+}
+
+// Fischer-Burmeister phi(a, b) = a + b - sqrt(a^2 + b^2) to full relative precision where one argument
+// dwarfs the other (a touching contact under a large force: a ~ 0, b >> 1), against its series
+// a (1 - a / (2 b) + ...) for b >> a > 0 and the closed form at (3, 4) and (-3, 4) (rho = 5); the
+// derivatives 1 - a / rho, 1 - b / rho.
+BOOST_AUTO_TEST_CASE(fischer_burmeister_without_cancellation) {
+  const auto fb = ComplementarityFunction::FischerBurmeister;
+  double phi, phi_a, phi_b;
+  for (const double b : {1e3, 1e6, 1e9}) {
+    const double a = 1e-12;
+    contact::complementarity(fb, a, b, phi, phi_a, phi_b);
+    BOOST_TEST(phi == a * (1.0 - a / (2.0 * b)), boost::test_tools::tolerance(1e-15));
+    contact::complementarity(fb, b, a, phi, phi_a, phi_b);  // symmetric
+    BOOST_TEST(phi == a * (1.0 - a / (2.0 * b)), boost::test_tools::tolerance(1e-15));
+  }
+  contact::complementarity(fb, 3.0, 4.0, phi, phi_a, phi_b);
+  BOOST_TEST(phi == 2.0, boost::test_tools::tolerance(1e-15));
+  BOOST_TEST(phi_a == 1.0 - 3.0 / 5.0, boost::test_tools::tolerance(1e-15));
+  BOOST_TEST(phi_b == 1.0 - 4.0 / 5.0, boost::test_tools::tolerance(1e-15));
+  contact::complementarity(fb, -3.0, 4.0, phi, phi_a, phi_b);
+  BOOST_TEST(phi == -4.0, boost::test_tools::tolerance(1e-15));
 }
 
 BOOST_AUTO_TEST_CASE(contact_blocks_jacobian_match_finite_differences) {
