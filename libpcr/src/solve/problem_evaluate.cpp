@@ -173,7 +173,7 @@ void Problem::evaluate_hessian(const VecX& x, double objective_factor, const Vec
           m.num_variables);
   require(multipliers.size() == m.rows.num_rows, "evaluate_hessian: multipliers have size ",
           multipliers.size(), ", expected ", m.rows.num_rows);
-  const HessianStructure& p = m.hessian;
+  const HessianStructure& p = m.hessian_pattern();
   if (!has_pattern(H, m.num_variables, m.num_variables, p.outer, p.inner))
     H = make_pattern(m.num_variables, m.num_variables, p.outer, p.inner);
   double* H_values = H.valuePtr();

@@ -43,8 +43,12 @@ struct JacobianStructure {
 
 /// Lower triangle (col <= row) of the union of the dense touched-variable squares of the active blocks
 /// and objective terms; kept only while every one of them provides its Hessian (Problem::provides_hessian).
+/// A block whose entries cannot be appended (they come before existing ones in row-major order, as a
+/// coupling between a rod and a platform added after both) marks it stale: it is rebuilt from all blocks
+/// when first used (Impl::hessian_pattern), once, instead of at every such addition.
 struct HessianStructure {
   bool current = true;        // an empty problem provides its (empty) Hessian
+  bool stale = false;         // outer, inner and the maps must be rebuilt before use
   std::vector<int> outer{0};  // row pointers, num_variables + 1
   std::vector<int> inner;
   // Per residual block / objective term: position in H of each local (i, j) entry of its dense square,
@@ -83,6 +87,14 @@ struct SolverAnalysesRef {
   }
 };
 
+/// A mutex that a copy of its owner does not share (a copied Problem starts with its own).
+struct OwnMutex {
+  std::mutex mutex;
+  OwnMutex() = default;
+  OwnMutex(const OwnMutex&) {}
+  OwnMutex& operator=(const OwnMutex&) { return *this; }
+};
+
 struct Problem::Impl {
   // ---- Description. ----
   std::vector<VariableBlock> variables;
@@ -93,10 +105,11 @@ struct Problem::Impl {
   std::vector<std::shared_ptr<const ObjectiveTerm>> objectives;
   std::uint64_t version = 1;  // bumped by every structural change
 
-  // ---- Derived structure (current after every non-const call). ----
+  // ---- Derived structure (current after every non-const call; the Hessian's when first used). ----
   RowLayout rows;
   JacobianStructure jacobian;
   HessianStructure hessian;
+  mutable OwnMutex hessian_mutex;  // const evaluations in several threads may find it stale
   int blocks_without_hessian = 0;  // active residual blocks and objective terms that provide none
   // Scratch sizes an evaluation needs: touched variable blocks, dense Jacobian / gradient entries and
   // dense Hessian squares of the largest block.
@@ -127,6 +140,8 @@ struct Problem::Impl {
   void append_objective(int t);
   /// After an activity change: everything derived, from scratch.
   void rebuild();
+  /// The Hessian pattern, rebuilt first if stale (thread-safe; Problem::provides_hessian() assumed).
+  const HessianStructure& hessian_pattern() const;
 
  private:
   void add_rows(ResidualId b);

@@ -3,7 +3,8 @@
 // to the structure in O(size of the block): the Jacobian rows of a new block come after all others,
 // and the Hessian entries a new block adds are appended too when they come after every existing one in
 // row-major order (blocks added in variable order, e.g. a banded system); otherwise, and after an
-// activity change, everything is rebuilt from the blocks.
+// activity change, the Hessian pattern is marked stale and rebuilt from the blocks when first used (a
+// rebuild at every such addition made building an energy model with couplings quadratic in its blocks).
 #include <algorithm>
 #include <numeric>
 
@@ -45,7 +46,8 @@ void Problem::Impl::note_scratch(const std::vector<VariableId>& ids, size_t dens
 }
 
 void Problem::Impl::extend_variables() {
-  if (hessian.current) hessian.outer.resize(num_variables + 1, static_cast<int>(hessian.inner.size()));
+  if (hessian.current && !hessian.stale)
+    hessian.outer.resize(num_variables + 1, static_cast<int>(hessian.inner.size()));
 }
 
 // Appends the rows of active block b (its row offset already set) to the Jacobian pattern: per row its
@@ -147,10 +149,14 @@ void Problem::Impl::rebuild() {
     if (!t->provides_hessian()) ++blocks_without_hessian;
   }
   hessian = HessianStructure();
-  if (blocks_without_hessian == 0)
-    rebuild_hessian();
-  else
-    hessian.current = false;
+  hessian.current = blocks_without_hessian == 0;
+  hessian.stale = hessian.current;
+}
+
+const HessianStructure& Problem::Impl::hessian_pattern() const {
+  const std::lock_guard<std::mutex> lock(hessian_mutex.mutex);
+  if (hessian.stale) const_cast<Impl*>(this)->rebuild_hessian();  // derived data only, under the lock
+  return hessian;
 }
 
 // The Hessian pattern from scratch: the lower-triangle entries of every active square, sorted and
@@ -176,6 +182,7 @@ void Problem::Impl::rebuild_hessian() {
   }
   std::partial_sum(hessian.outer.begin(), hessian.outer.end(), hessian.outer.begin());
   hessian.current = true;
+  hessian.stale = false;
   hessian.residual_map.assign(residuals.size(), {});
   for (size_t b = 0; b < residuals.size(); ++b)
     if (active[b]) append_hessian_square(residuals[b]->variables(), hessian.residual_map[b]);
@@ -224,7 +231,7 @@ bool Problem::Impl::append_hessian_square(const std::vector<VariableId>& ids, st
 }
 
 void Problem::Impl::update_hessian_after_addition(const std::vector<VariableId>& ids, std::vector<int>& map) {
-  if (!hessian.current || !append_hessian_square(ids, map)) rebuild_hessian();
+  if (!hessian.current || hessian.stale || !append_hessian_square(ids, map)) hessian.stale = true;
 }
 
 }  // namespace pcr

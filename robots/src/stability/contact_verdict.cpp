@@ -1,12 +1,12 @@
 // The verdict of an equilibrium on which rods touch obstacles (robot_stability_parts.hpp
 // contact_stability): the second variation of the energy's Ritz form with the touching contacts held.
-#include <Eigen/LU>
 #include <Eigen/QR>
 #include <limits>
 #include <sstream>
 
 #include "../kinematics/energy_model.hpp"
 #include "pcr/math/dense_decompositions.hpp"
+#include "pcr/solve/sparse_lu.hpp"
 #include "robot_stability_parts.hpp"
 
 namespace pcr::stability {
@@ -14,6 +14,7 @@ namespace pcr::stability {
 namespace {
 
 using kinematics::EnergyModel;
+using SpMat = Eigen::SparseMatrix<double>;
 
 /// Newton on the Ritz form's stationarity conditions (the energy scaled by energy_scale(), positions in
 /// m) runs until its residual stops halving, at the round-off of the stiff axial and shear terms (1e-8 -
@@ -49,32 +50,52 @@ Active active_rows(const Problem& p, const VecX& c) {
   return a;
 }
 
-MatX rows_of(const Eigen::SparseMatrix<double, Eigen::RowMajor>& J, const std::vector<int>& rows) {
-  MatX out = MatX::Zero(rows.size(), J.cols());
+/// The rows of J listed in `rows`, in that order.
+SpMat rows_of(const Eigen::SparseMatrix<double, Eigen::RowMajor>& J, const std::vector<int>& rows) {
+  std::vector<Eigen::Triplet<double>> t;
   for (std::size_t r = 0; r < rows.size(); ++r)
     for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(J, rows[r]); it; ++it)
-      out(r, it.col()) = it.value();
+      t.emplace_back(static_cast<int>(r), static_cast<int>(it.col()), it.value());
+  SpMat out(static_cast<int>(rows.size()), J.cols());
+  out.setFromTriplets(t.begin(), t.end());
   return out;
 }
 
 /// The Lagrangian's Hessian (both triangles) at e with the multipliers y of the active rows.
-MatX lagrangian_hessian(const Problem& p, const VecX& e, const Active& a, const VecX& y) {
+SpMat lagrangian_hessian(const Problem& p, const VecX& e, const Active& a, const VecX& y) {
   VecX multipliers = VecX::Zero(p.num_rows());
   for (std::size_t r = 0; r < a.rows.size(); ++r) multipliers[a.rows[r]] = y[r];
   Eigen::SparseMatrix<double, Eigen::RowMajor> H;
   p.evaluate_hessian(e, 1.0, multipliers, H);
-  return MatX(MatX(H).selfadjointView<Eigen::Lower>());
+  return SpMat(SpMat(H).selfadjointView<Eigen::Lower>());
+}
+
+/// The KKT matrix [H J_a^T; J_a 0] of Newton on the stationarity conditions.
+SpMat kkt_matrix(const SpMat& H, const SpMat& Ja) {
+  const int n = static_cast<int>(H.rows()), m = static_cast<int>(Ja.rows());
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(static_cast<std::size_t>(H.nonZeros() + 2 * Ja.nonZeros()));
+  for (int c = 0; c < n; ++c)
+    for (SpMat::InnerIterator it(H, c); it; ++it) t.emplace_back(static_cast<int>(it.row()), c, it.value());
+  for (int c = 0; c < n; ++c)
+    for (SpMat::InnerIterator it(Ja, c); it; ++it) {
+      t.emplace_back(n + static_cast<int>(it.row()), c, it.value());
+      t.emplace_back(c, n + static_cast<int>(it.row()), it.value());
+    }
+  SpMat K(n + m, n + m);
+  K.setFromTriplets(t.begin(), t.end());
+  return K;
 }
 
 /// The Ritz form's equilibrium next to the state: grad V + J_a^T y = 0, c_a = 0 (L = V + y . c_a).
 struct RitzEquilibrium {
   VecX y;                     ///< the active rows' multipliers
-  MatX H, Ja;                 ///< the Lagrangian's Hessian and the active rows' Jacobian there
+  SpMat H, Ja;                ///< the Lagrangian's Hessian and the active rows' Jacobian there
   double stationarity = 0.0;  ///< max |(grad V + J_a^T y, c_a)| reached
 };
 
 /// The stationarity residual (grad V + J_a^T y, c_a) at (e, y), with J_a and grad V there.
-VecX stationarity_residual(const Problem& p, const VecX& e, const VecX& y, const Active& a, MatX& Ja) {
+VecX stationarity_residual(const Problem& p, const VecX& e, const VecX& y, const Active& a, SpMat& Ja) {
   VecX c, g;
   Eigen::SparseMatrix<double, Eigen::RowMajor> J;
   p.evaluate_residuals_and_jacobian(e, c, J);
@@ -96,19 +117,19 @@ RitzEquilibrium ritz_equilibrium(const Problem& p, VecX e, const Active& a) {
   const int n = p.num_variables(), m = static_cast<int>(a.rows.size());
   RitzEquilibrium r;
   VecX residual = stationarity_residual(p, e, VecX(), a, r.Ja);
-  r.y = r.Ja.transpose().colPivHouseholderQr().solve(-residual.head(n));
+  r.y = MatX(r.Ja.transpose()).colPivHouseholderQr().solve(-residual.head(n));
   residual.head(n) += r.Ja.transpose() * r.y;
   r.stationarity = residual.cwiseAbs().maxCoeff();
+  SparseLu kkt;  // one pattern for every iteration (the rows' and Hessian's patterns are fixed)
   for (int k = 0; k < kMaxNewton; ++k) {
     r.H = lagrangian_hessian(p, e, a, r.y);
-    MatX K = MatX::Zero(n + m, n + m);
-    K.topLeftCorner(n, n) = r.H;
-    K.topRightCorner(n, m) = r.Ja.transpose();
-    K.bottomLeftCorner(m, n) = r.Ja;
-    const VecX step = K.partialPivLu().solve(-residual);
+    const SpMat K = kkt_matrix(r.H, r.Ja);
+    if (k == 0) kkt.analyze_pattern(K);
+    if (!kkt.factorize(K)) return r;
+    const VecX step = kkt.solve(VecX(-residual));
     bool decreased = false;
     for (double alpha = 1.0; alpha >= 1.0 / 64 && !decreased; alpha /= 2) {
-      MatX Ja;
+      SpMat Ja;
       const VecX trial_e = e + alpha * step.head(n), trial_y = r.y + alpha * step.tail(m);
       const VecX trial = stationarity_residual(p, trial_e, trial_y, a, Ja);
       const double s = trial.cwiseAbs().maxCoeff();
@@ -135,11 +156,12 @@ RitzEquilibrium ritz_equilibrium(const Problem& p, VecX e, const Active& a) {
 /// couplings', platforms' and passive joints') move those by 2e-9 between steps 1e-7 and 1e-5, and the
 /// rods' by differences moved them by 2e-7, both below n eps 3.9e8 ~ 3e-5 (n a few hundred).
 void count_on_tangent_space(const RitzEquilibrium& r, const VecX& D, Stability& s) {
-  const MatX Hs = D.asDiagonal() * r.H * D.asDiagonal();
-  const Eigen::ColPivHouseholderQR<MatX> qr((r.Ja * D.asDiagonal()).transpose());
+  const SpMat Hs = D.asDiagonal() * r.H * D.asDiagonal();
+  const Eigen::ColPivHouseholderQR<MatX> qr(MatX(r.Ja * D.asDiagonal()).transpose());
   const MatX Q = qr.householderQ();
   const MatX Z = Q.rightCols(Hs.rows() - qr.rank());
-  const VecX lambda = symmetric_eigenvalues(Z.transpose() * Hs * Z);
+  const MatX HsZ = Hs * Z;
+  const VecX lambda = symmetric_eigenvalues(Z.transpose() * HsZ);
   const double tolerance = static_cast<double>(lambda.size()) * std::numeric_limits<double>::epsilon() *
                            lambda.cwiseAbs().maxCoeff();
   for (int i = 0; i < lambda.size(); ++i) {
