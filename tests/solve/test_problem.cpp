@@ -326,6 +326,51 @@ BOOST_AUTO_TEST_CASE(hessian_matches_finite_differences_of_the_lagrangian_gradie
   }
 }
 
+namespace {
+
+/// c = (sum of the entries of its variable blocks)^2: Hessian 2 w 1 1^T over them.
+class SquaredSum : public ResidualBlock {
+ public:
+  explicit SquaredSum(std::vector<VariableId> ids)
+      : ResidualBlock("test.squared_sum", "squared_sum", 1, ids) {}
+  void evaluate(const double* const* v, double* c, double* const* J) const override {
+    double sum = 0.0;
+    for (std::size_t k = 0; k < variables().size(); ++k) sum += v[k][0] + v[k][1];
+    c[0] = sum * sum;
+    for (std::size_t k = 0; J && k < variables().size(); ++k)
+      if (J[k]) J[k][0] = J[k][1] = 2.0 * sum;
+  }
+  bool provides_hessian() const override { return true; }
+  void evaluate_hessian(const double* const*, const double* w, double* H) const override {
+    const int n = 2 * static_cast<int>(variables().size());
+    std::fill(H, H + n * n, 2.0 * w[0]);
+  }
+};
+
+}  // namespace
+
+// Blocks whose Hessian entries come before existing ones in row-major order (a block over v, then one
+// over u and v, then one over u: u's rows come first) mark the pattern stale; it is rebuilt when the
+// Hessian is first evaluated. Every lower entry against the closed form: H_ij = 2 sum of the weights of
+// the blocks touching both i and j.
+BOOST_AUTO_TEST_CASE(hessian_pattern_after_blocks_added_out_of_order) {
+  Problem p;
+  const VariableId u = p.add_variable_block("u", VecX::Zero(2)), v = p.add_variable_block("v", VecX::Zero(2));
+  p.add_residual_block(std::make_shared<SquaredSum>(std::vector<VariableId>{v}));
+  p.add_residual_block(std::make_shared<SquaredSum>(std::vector<VariableId>{u, v}));
+  p.add_residual_block(std::make_shared<SquaredSum>(std::vector<VariableId>{u}));
+  const VecX w = (VecX(3) << 1.0, 2.0, 3.0).finished();
+  SparseRowMajor H;
+  p.evaluate_hessian(VecX::Zero(4), 1.0, w, H);
+  BOOST_TEST(H.nonZeros() == 10);  // the whole lower triangle of 4 x 4
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j <= i; ++j) {
+      const bool both_u = i < 2 && j < 2, both_v = i >= 2 && j >= 2;
+      const double expected = 2.0 * (w[1] + (both_u ? w[2] : 0.0) + (both_v ? w[0] : 0.0));
+      BOOST_TEST(H.coeff(i, j) == expected, "H(" << i << "," << j << ")");
+    }
+}
+
 BOOST_AUTO_TEST_CASE(broyden_problem_has_a_tridiagonal_pattern_and_right_jacobian) {
   Problem p = pcr::test::broyden_problem(50);
   BOOST_TEST(p.num_rows() == 50);
