@@ -36,13 +36,6 @@ VecX joint_values_of(const RobotAssembly& assembly, const VecX& x) {
   return q;
 }
 
-std::vector<Pose> platform_poses_of(const RobotAssembly& assembly, const VecX& x) {
-  std::vector<Pose> poses;
-  for (std::size_t p = 0; p < assembly.model().platforms().size(); ++p)
-    poses.push_back(assembly.platform_pose(x, static_cast<int>(p)));
-  return poses;
-}
-
 /// Why the obstacle's contact is not among the energy's gap rows, or "".
 std::string contact_refusal(const RobotModel& model, const RodElement& rod, const ObstacleElement& e) {
   const std::string which = "rod '" + rod.name + "' and obstacle '" + e.obstacle.name + "': ";
@@ -83,10 +76,13 @@ std::string energy_model_refusal(const RobotModel& model) {
 
 EnergyModel::EnergyModel(const RobotAssembly& assembly, const VecX& x)
     : assembly_(assembly), energy_scale_(assembly.moment_scale() * assembly.length_scale()) {
+  LinkState links{joint_values_of(assembly, x), {}};
+  for (std::size_t p = 0; p < assembly.model().platforms().size(); ++p)
+    links.platform_poses.push_back(assembly.platform_pose(x, static_cast<int>(p)));
   add_rods(x);
-  add_platforms_and_passive_joints(x);
-  add_couplings(x);
-  add_obstacle_gaps(x);
+  add_platforms_and_passive_joints(links);
+  add_couplings(links);
+  add_obstacle_gaps(links);
   find_shared_slices();
 }
 
@@ -105,10 +101,10 @@ void EnergyModel::add_rods(const VecX& x) {
   }
 }
 
-void EnergyModel::add_platforms_and_passive_joints(const VecX& x) {
+void EnergyModel::add_platforms_and_passive_joints(const LinkState& links) {
   const RobotModel& m = assembly_.model();
-  const VecX q = joint_values_of(assembly_, x);
-  const std::vector<Pose> poses = platform_poses_of(assembly_, x);
+  const VecX& q = links.joint_values;
+  const std::vector<Pose>& poses = links.platform_poses;
   for (std::size_t p = 0; p < m.platforms().size(); ++p) {
     const Platform& platform = m.platforms()[p];
     platforms_.push_back(problem_.add_variable_block("platform." + platform.name, VecX::Zero(7)));
@@ -134,10 +130,10 @@ void EnergyModel::add_platforms_and_passive_joints(const VecX& x) {
     problem_.add_objective_term(std::make_shared<PassiveJointTerm>(m, q, passive_, energy_scale_));
 }
 
-void EnergyModel::add_couplings(const VecX& x) {
+void EnergyModel::add_couplings(const LinkState& links) {
   const RobotModel& m = assembly_.model();
-  const VecX q = joint_values_of(assembly_, x);
-  const std::vector<Pose> poses = platform_poses_of(assembly_, x);
+  const VecX& q = links.joint_values;
+  const std::vector<Pose>& poses = links.platform_poses;
   for (int i = 0; i < assembly_.num_rods(); ++i) {
     const RodElement& rod = m.rods()[i];
     for (const bool at_tip : {false, true}) {
@@ -163,10 +159,10 @@ void EnergyModel::add_couplings(const VecX& x) {
   }
 }
 
-void EnergyModel::add_obstacle_gaps(const VecX& x) {
+void EnergyModel::add_obstacle_gaps(const LinkState& links) {
   const RobotModel& m = assembly_.model();
-  const VecX q = joint_values_of(assembly_, x);
-  const std::vector<Pose> poses = platform_poses_of(assembly_, x);
+  const VecX& q = links.joint_values;
+  const std::vector<Pose>& poses = links.platform_poses;
   rod_obstacles_.resize(assembly_.num_rods());
   gap_rows_.resize(assembly_.num_rods());
   for (int i = 0; i < assembly_.num_rods(); ++i) {

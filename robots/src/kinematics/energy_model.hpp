@@ -62,7 +62,7 @@ class EnergyModel {
   std::vector<std::vector<VariableId>> rod_points_;  // per rod: its control points [P, Q]
   std::vector<VariableId> platforms_, passive_;
   std::vector<std::vector<Obstacle>> rod_obstacles_;  // per rod: its distributed obstacles, placed
-  std::vector<std::vector<ResidualId>> gap_rows_;      // per rod: its gap rows per contact midpoint
+  std::vector<std::vector<ResidualId>> gap_rows_;     // per rod: its gap rows per contact midpoint
   double energy_scale_ = 1.0;
   /// A run of unknowns the collocation state and the energy unknowns share (a control point's P or Q, a
   /// platform pose, a passive joint value): from_state and to_state copy them one way and the other.
@@ -71,10 +71,16 @@ class EnergyModel {
   };
   std::vector<SharedSlice> shared_;
 
+  /// The links' configuration at the state the model is built at: the joint values (inputs and passive
+  /// joints) and the platform poses, which place loads, attachments and obstacles in the link frames.
+  struct LinkState {
+    VecX joint_values;
+    std::vector<Pose> platform_poses;
+  };
   void add_rods(const VecX& x);
-  void add_platforms_and_passive_joints(const VecX& x);
-  void add_couplings(const VecX& x);
-  void add_obstacle_gaps(const VecX& x);
+  void add_platforms_and_passive_joints(const LinkState& links);
+  void add_couplings(const LinkState& links);
+  void add_obstacle_gaps(const LinkState& links);
   void write_contact_forces(int rod, const VecX& row_multipliers, VecX& x) const;
   void write_rod_forces(int rod, const VecX& e, VecX& x) const;
   void find_shared_slices();
