@@ -90,3 +90,34 @@ BOOST_AUTO_TEST_CASE(planar_post_curled_rod_counted_on_a_refined_mesh) {
     BOOST_TEST(lower < V - 1e-3 * std::abs(V));
   }
 }
+
+// A random planar_three_rod input (sweep seed 0) whose cold FK equilibrium has its middle rod at a
+// conjugate point with its links held (a neutral mode of the held rod): the split into held rods and
+// border does not apply there, so the whole robot is counted on the energy's Ritz form: 1 unstable mode.
+// Checked independently: an energy minimisation started 1e-4 L0 off it reaches a lower energy (by more
+// than 1e-3 of it), and the same equilibrium solved on 16 elements per rod, where the held rod is off its
+// conjugate point, gets the collocation verdict (held rods and border) with the same count.
+BOOST_AUTO_TEST_CASE(rod_at_a_conjugate_point_counted_on_the_ritz_form) {
+  const auto model = load_model("planar_three_rod");
+  ForwardKinematics fk(model);
+  const VecX u = (VecX(3) << 0.2887221199587191, 0.49857334146269616, 0.37253948393101582).finished();
+  BOOST_TEST_REQUIRE(fk.solve(u).summary.converged());
+  const Stability v = robot_stability(fk.assembly(), fk.state());
+  BOOST_TEST_MESSAGE("planar_three_rod at 0.289 0.499 0.373 m: " << to_string(v.verdict) << ", " << v.reason);
+  BOOST_TEST(to_string(v.verdict) == std::string("unstable"), v.reason);
+  BOOST_TEST(v.unstable_modes == 1);
+  BOOST_TEST(v.reason.find("conjugate point with its links held") != std::string::npos, v.reason);
+  const double V = test::energy_at(fk.assembly(), fk.state());
+  Vec3 platform;
+  const double lower = test::energy_minimised_from(fk.assembly(), fk.state(), 1e-4, platform);
+  BOOST_TEST_MESSAGE("V " << V << " J, minimised " << lower << " J");
+  BOOST_TEST(lower < V - 1e-3 * std::abs(V));
+  KinematicsOptions fine_options;
+  fine_options.assembly.discretization.elements = 16;
+  const RobotAssembly fine(model, fine_options.assembly);
+  const VecX x = test::carried_to(fk.assembly(), fk.state(), fine);
+  const Stability v16 = robot_stability(fine, x);
+  BOOST_TEST_MESSAGE("16 elements: " << to_string(v16.verdict) << ", " << v16.reason);
+  BOOST_TEST(v16.reason.find("Ritz") == std::string::npos, v16.reason);
+  BOOST_TEST(v16.unstable_modes == 1, v16.reason);
+}

@@ -197,7 +197,8 @@ Stability contact_stability(const RobotAssembly& assembly, const VecX& x, const 
   count_on_tangent_space(r, coordinate_scale(p, assembly.length_scale()), s);
   s.length_scale = assembly.length_scale();
   s.energy_scale = energy.energy_scale();
-  s.reason = "counted with the touching contacts held, on the energy's Ritz form (" + touching + ")";
+  s.reason = std::string(a.gaps.empty() ? "counted" : "counted with the touching contacts held") +
+             ", on the energy's Ritz form (" + touching + ")";
   return s;
 }
 

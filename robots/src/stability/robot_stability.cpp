@@ -68,6 +68,14 @@ std::string asymmetry_failure(double asymmetry, const MatX& Ks) {
   return msg.str();
 }
 
+/// Where the split into held rods and border does not apply (why): the count of the whole robot on the
+/// energy's Ritz form (contact_stability, nothing touching), where the energy describes the model.
+Stability whole_count(const RobotAssembly& assembly, const VecX& x, const std::string& why) {
+  const std::string refusal = kinematics::energy_model_refusal(assembly.model());
+  if (!refusal.empty()) return unknown_stability(why + " (" + refusal + ")");
+  return stability::contact_stability(assembly, x, why);
+}
+
 /// Adds the border's count and margin to s (stability::count_border), with the scales; false with s
 /// Unknown on failure.
 bool add_border(const RobotAssembly& assembly, const VecX& x, Stability& s) {
@@ -126,8 +134,8 @@ Stability robot_stability(const RobotAssembly& assembly, const VecX& x) {
     const HeldRodIndex rod = stability::held_rod_in_robot(assembly, x, i);
     const std::string& name = assembly.model().rods()[i].name;
     if (!rod.ok) return unknown_stability("rod '" + name + "': " + rod.failure);
-    if (rod.neutral_modes > 0)  // A singular: Haynsworth's split does not apply
-      return unknown_stability("rod '" + name + "' is at a conjugate point with its links held");
+    if (rod.neutral_modes > 0)  // A singular: Haynsworth's split does not apply; the whole count does
+      return whole_count(assembly, x, "rod '" + name + "' is at a conjugate point with its links held");
     s.rod_unstable_modes.push_back(rod.unstable_modes);
     s.asymmetry = std::max(s.asymmetry, rod.asymmetry);
     if (rod.margin < rod_margin) weakest = rod;
