@@ -26,7 +26,7 @@ BOOST_AUTO_TEST_CASE(ritz_count_equals_the_collocation_verdict_without_contact) 
     ForwardKinematics fk(model);
     BOOST_TEST_REQUIRE(fk.solve(model->default_input_values()).summary.converged());
     const Stability collocation = robot_stability(fk.assembly(), fk.state());
-    const Stability ritz = stability::contact_stability(fk.assembly(), fk.state(), "nothing touches");
+    const Stability ritz = stability::ritz_stability(fk.assembly(), fk.state(), "nothing touches");
     BOOST_TEST(collocation.unstable_modes == modes, name);
     BOOST_TEST(to_string(ritz.verdict) == to_string(collocation.verdict), name << ": " << ritz.reason);
     BOOST_TEST(ritz.unstable_modes == modes, name);

@@ -1,5 +1,6 @@
-// The verdict of an equilibrium on which rods touch obstacles (robot_stability_parts.hpp
-// contact_stability): the second variation of the energy's Ritz form with the touching contacts held.
+// The verdict counted on the second variation of the energy's Ritz form (robot_stability_parts.hpp
+// ritz_stability): for rods touching obstacles (the touching contacts held), and for a rod at a conjugate
+// point with its links held.
 #include <Eigen/QR>
 #include <limits>
 #include <sstream>
@@ -176,7 +177,7 @@ void count_on_tangent_space(const RitzEquilibrium& r, const VecX& D, Stability& 
 
 }  // namespace
 
-Stability contact_stability(const RobotAssembly& assembly, const VecX& x, const std::string& touching) {
+Stability ritz_stability(const RobotAssembly& assembly, const VecX& x, const std::string& why) {
   const EnergyModel energy(assembly, x);
   const Problem& p = energy.problem();
   const VecX e = energy.from_state(x);
@@ -186,19 +187,19 @@ Stability contact_stability(const RobotAssembly& assembly, const VecX& x, const 
   const RitzEquilibrium r = ritz_equilibrium(p, e, a);
   if (!(r.stationarity <= kStationary)) {
     std::ostringstream msg;
-    msg << touching << "; " << kNoRitzEquilibrium << " (stationarity " << r.stationarity << ")";
+    msg << why << "; " << kNoRitzEquilibrium << " (stationarity " << r.stationarity << ")";
     return unknown_stability(msg.str());
   }
   // Every touching gap pushes (a strictly active contact: grad V = mu grad g with mu > 0, i.e. y < 0).
   for (int i : a.gaps)
     if (!(r.y[i] < -kStationary))
-      return unknown_stability(touching + "; a contact there carries no force (at the border of activity)");
+      return unknown_stability(why + "; a contact there carries no force (at the border of activity)");
   Stability s;
   count_on_tangent_space(r, coordinate_scale(p, assembly.length_scale()), s);
   s.length_scale = assembly.length_scale();
   s.energy_scale = energy.energy_scale();
   s.reason = std::string(a.gaps.empty() ? "counted" : "counted with the touching contacts held") +
-             ", on the energy's Ritz form (" + touching + ")";
+             ", on the energy's Ritz form (" + why + ")";
   return s;
 }
 

@@ -69,11 +69,11 @@ std::string asymmetry_failure(double asymmetry, const MatX& Ks) {
 }
 
 /// Where the split into held rods and border does not apply (why): the count of the whole robot on the
-/// energy's Ritz form (contact_stability, nothing touching), where the energy describes the model.
+/// energy's Ritz form (ritz_stability, nothing touching), where the energy describes the model.
 Stability whole_count(const RobotAssembly& assembly, const VecX& x, const std::string& why) {
   const std::string refusal = kinematics::energy_model_refusal(assembly.model());
   if (!refusal.empty()) return unknown_stability(why + " (" + refusal + ")");
-  return stability::contact_stability(assembly, x, why);
+  return stability::ritz_stability(assembly, x, why);
 }
 
 /// Adds the border's count and margin to s (stability::count_border), with the scales; false with s
@@ -125,7 +125,7 @@ Stability robot_stability(const RobotAssembly& assembly, const VecX& x) {
     if (!refusal.empty())
       return unknown_stability(touching + ": contact is counted on the energy's Ritz form, which does not " +
                                "describe this model (" + refusal + ")");
-    return stability::contact_stability(assembly, x, touching);
+    return stability::ritz_stability(assembly, x, touching);
   }
   Stability s;
   double rod_margin = INFINITY;

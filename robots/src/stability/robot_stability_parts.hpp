@@ -36,10 +36,11 @@ inline constexpr const char* kNoRitzEquilibrium = "the energy's Ritz form has no
 /// enough for the second variation keep the contacts open: the criterion applies unchanged.
 std::string touching_contact(const RobotAssembly& assembly, const VecX& x);
 
-/// The verdict at a state x on which rods touch obstacles (touching: which, for the reason): the second
-/// variation of the energy's Ritz form (energy_model.hpp) at its equilibrium next to x, with the
-/// touching contacts held, on the tangent space of the held constraints (docs/design.md §4).
-Stability contact_stability(const RobotAssembly& assembly, const VecX& x, const std::string& touching);
+/// The verdict at a state x counted on the energy's Ritz form (energy_model.hpp): the second variation at
+/// its equilibrium next to x, with the touching contacts held, on the tangent space of the held
+/// constraints (docs/design.md §4). For rods touching obstacles, and for a rod at a conjugate point with
+/// its links held (where the split into held rods and border does not apply); why: which, for the reason.
+Stability ritz_stability(const RobotAssembly& assembly, const VecX& x, const std::string& why);
 
 /// Rod i's Morse index with its couplings held in their link frames at the state x (the link poses at the
 /// state's inputs, passive joint values and platform poses).
