@@ -15,7 +15,9 @@
 // its discretisation error, reported as the asymmetry).
 // Assumptions (else the verdict is `unknown` with the reason): conservative loads (dead forces and
 // gravity; no dead couple on a platform or at a rod end that can turn, no distributed couple, no dead
-// torque on a link), no rod at a conjugate point with its links held (A singular). Contact: with every
+// torque on a link). Where a rod is at a conjugate point with its links held (A singular) the whole robot
+// is counted on the energy's Ritz form instead (docs/design.md §4; `unknown` where the energy does not
+// describe the model). Contact: with every
 // contact open the equilibrium is one of the robot without obstacles (small variations keep it so);
 // where a rod touches an obstacle the count is taken on the energy's Ritz form with the touching contacts
 // held (docs/design.md §4; `unknown` where one carries no force, or for contact the energy does not
