@@ -94,6 +94,35 @@ BOOST_AUTO_TEST_CASE(path_over_inputs_gives_fk_at_every_row) {
   BOOST_CHECK_EQUAL(rows, 3);
 }
 
+// With --stability the CSV carries each point's verdict after the message (stability, unstable_modes,
+// stability_margin, stability_reason), the same as the JSON of the same run; without it, no such columns.
+// planar_three_rod near its defaults: 1 unstable mode (the tilt out of the plane; test_stability_verdict).
+BOOST_AUTO_TEST_CASE(path_csv_carries_the_stability_verdict) {
+  const std::string inputs = write_file("planar_inputs_verdict.csv", kPlanarInputs);
+  const fs::path csv = work_directory() / "path_verdict.csv";
+  const Run run = run_pcr("path " + model("planar_three_rod.urdf") + " --inputs " + inputs +
+                          " --stability --json --csv '" + csv.string() + "'");
+  BOOST_REQUIRE_EQUAL(run.exit_code, 0);
+  const test_json::Value j = test_json::parse(run.out);
+  std::istringstream lines(read_text(csv));
+  std::string header, row;
+  std::getline(lines, header);
+  BOOST_CHECK(contains(header, ",message,stability,unstable_modes,stability_margin,stability_reason"));
+  for (size_t k = 0; k < 3; ++k) {
+    BOOST_REQUIRE(std::getline(lines, row));
+    const test_json::Value& v = j["results"][k]["stability"];
+    BOOST_CHECK_EQUAL(v["verdict"].text, "unstable");
+    BOOST_CHECK_EQUAL(v["unstable_modes"].number, 1);
+    BOOST_CHECK_MESSAGE(contains(row, ",unstable,1," + number(v["margin"].number)), row);
+  }
+  const Run plain = run_pcr("path " + model("planar_three_rod.urdf") + " --inputs " + inputs + " --csv '" +
+                            csv.string() + "'");
+  BOOST_REQUIRE_EQUAL(plain.exit_code, 0);
+  std::istringstream plain_lines(read_text(csv));
+  std::getline(plain_lines, header);
+  BOOST_CHECK(!contains(header, "stability"));
+}
+
 BOOST_AUTO_TEST_CASE(path_inputs_not_in_the_file_take_input_options_or_defaults) {
   const std::string inputs = write_file("middle_only.csv", "middle\n0.2902\n");
   const Run run = run_pcr("path " + model("planar_three_rod.urdf") + " --inputs " + inputs +

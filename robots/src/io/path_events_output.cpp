@@ -1,13 +1,15 @@
 // The events of a path through folds in CSV and JSON (path_events_output.hpp).
 #include "path_events_output.hpp"
 
+#include <string>
+
 #include "csv_fields.hpp"
 #include "pose_output.hpp"
 
 namespace pcr::io_detail {
 
 void write_event_row(std::ostream& out, const RobotModel& model, const PathEvent& event, size_t links,
-                     size_t targets) {
+                     size_t targets, size_t trailing) {
   out << to_string(event.kind);
   for (size_t i = 0; i < model.inputs().size(); ++i)
     out << ','
@@ -16,7 +18,8 @@ void write_event_row(std::ostream& out, const RobotModel& model, const PathEvent
     out << (p < event.platforms.size() ? csv_pose(event.platforms[p]) : ",,,,,,");
   for (size_t l = 0; l < links; ++l) out << ",,,,,,,";
   for (size_t t = 0; t < targets; ++t) out << ",,";
-  out << ',' << to_string(event.kind) << ",,,," << csv_quote(event.description) << '\n';
+  out << ',' << to_string(event.kind) << ",,,," << csv_quote(event.description) << std::string(trailing, ',')
+      << '\n';
 }
 
 void write_events_json(JsonWriter& json, const RobotModel& model, const std::vector<PathEvent>& events) {

@@ -1,5 +1,7 @@
 #include "pcr/robots/io/path_writers.hpp"
 
+#include <string>
+
 #include "csv_fields.hpp"
 #include "path_events_output.hpp"
 #include "pcr/math/so3.hpp"
@@ -27,13 +29,21 @@ void write_path_csv(std::ostream& out, const RobotModel& model, const std::vecto
   for (const LinkPose& link : links) out << csv_pose_header(link.link);
   for (const LinkTarget& target : targets)
     out << ',' << target.link << ".position_error," << target.link << ".orientation_error";
-  out << ",status,iterations,residual_max_abs,wall_time_seconds,message\n";
+  // With the verdict asked for (any point carries one): its columns after the message.
+  bool verdicts = false;
+  for (const PathPoint& point : points)
+    verdicts = verdicts || point.solution.stability_verdict.verdict != StabilityVerdict::NotChecked;
+  out << ",status,iterations,residual_max_abs,wall_time_seconds,message"
+      << (verdicts ? ",stability,unstable_modes,stability_margin,stability_reason" : "") << '\n';
+  const auto event_row = [&](const PathEvent& event) {
+    io_detail::write_event_row(out, model, event, links.size(), targets.size(), verdicts ? 4 : 0);
+  };
   size_t next_event = 0;
   for (size_t k = 0; k < points.size(); ++k) {
     // Events on the way to point k (path parameter up to k) come before its row.
     for (; next_event < events.size() && events[next_event].path_parameter <= static_cast<double>(k);
          ++next_event)
-      io_detail::write_event_row(out, model, events[next_event], links.size(), targets.size());
+      event_row(events[next_event]);
     const RobotSolution& s = points[k].solution;
     out << k;
     for (size_t i = 0; i < model.inputs().size(); ++i)
@@ -53,10 +63,17 @@ void write_path_csv(std::ostream& out, const RobotModel& model, const std::vecto
     }
     out << ',' << to_string(s.summary.status) << ',' << s.summary.iterations << ','
         << csv_number(s.summary.residual_max_abs) << ',' << csv_number(s.summary.wall_time_seconds) << ','
-        << io_detail::csv_quote(s.summary.message) << '\n';
+        << io_detail::csv_quote(s.summary.message);
+    if (verdicts) {
+      const Stability& v = s.stability_verdict;
+      const bool counted = v.verdict == StabilityVerdict::Stable || v.verdict == StabilityVerdict::Unstable ||
+                           v.verdict == StabilityVerdict::Critical;
+      out << ',' << to_string(v.verdict) << ',' << (counted ? std::to_string(v.unstable_modes) : "") << ','
+          << (counted ? csv_number(v.margin) : "") << ',' << io_detail::csv_quote(v.reason);
+    }
+    out << '\n';
   }
-  for (; next_event < events.size(); ++next_event)
-    io_detail::write_event_row(out, model, events[next_event], links.size(), targets.size());
+  for (; next_event < events.size(); ++next_event) event_row(events[next_event]);
 }
 
 int write_path_json(std::ostream& out, const RobotModel& model, const std::vector<PathPoint>& points) {
