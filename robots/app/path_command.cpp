@@ -85,12 +85,23 @@ std::vector<pcr::PathPoint> ik_path(const SolveArguments& args,
   return points;
 }
 
-/// One line per point: status, iterations, residual, time, platform positions [mm].
+/// The verdict in the table: "stable", "unstable (2)" (unstable modes), "critical", "unknown".
+std::string verdict_text(const pcr::Stability& v) {
+  const bool unstable = v.verdict == pcr::StabilityVerdict::Unstable;
+  return std::string(pcr::to_string(v.verdict)) +
+         (unstable ? " (" + std::to_string(v.unstable_modes) + ")" : "");
+}
+
+/// One line per point: status, iterations, residual, time, platform positions [mm], and with --stability
+/// the verdict.
 void write_path_table(std::ostream& out, const pcr::RobotModel& model,
                       const std::vector<pcr::PathPoint>& points, const std::vector<pcr::PathEvent>* events) {
+  bool verdicts = false;
+  for (const pcr::PathPoint& point : points)
+    verdicts = verdicts || point.solution.stability_verdict.verdict != pcr::StabilityVerdict::NotChecked;
   out << "point  status          iterations  residual   time [ms]";
   for (const pcr::Platform& platform : model.platforms()) out << "  " << platform.name << " x, y, z [mm]";
-  out << "\n";
+  out << (verdicts ? "  stability" : "") << "\n";
   double seconds = 0.0;
   int iterations = 0, failed = 0;
   for (size_t k = 0; k < points.size(); ++k) {
@@ -104,6 +115,7 @@ void write_path_table(std::ostream& out, const pcr::RobotModel& model,
                     pose.position[2] * 1e3);
       out << line;
     }
+    if (verdicts) out << "  " << verdict_text(points[k].solution.stability_verdict);
     out << "\n";
     seconds += s.wall_time_seconds;
     iterations += s.iterations;

@@ -95,7 +95,8 @@ BOOST_AUTO_TEST_CASE(path_over_inputs_gives_fk_at_every_row) {
 }
 
 // With --stability the CSV carries each point's verdict after the message (stability, unstable_modes,
-// stability_margin, stability_reason), the same as the JSON of the same run; without it, no such columns.
+// stability_margin, stability_reason), the same as the JSON of the same run, and the table a column of it;
+// without it, no such columns.
 // planar_three_rod near its defaults: 1 unstable mode (the tilt out of the plane; test_stability_verdict).
 BOOST_AUTO_TEST_CASE(path_csv_carries_the_stability_verdict) {
   const std::string inputs = write_file("planar_inputs_verdict.csv", kPlanarInputs);
@@ -115,6 +116,16 @@ BOOST_AUTO_TEST_CASE(path_csv_carries_the_stability_verdict) {
     BOOST_CHECK_EQUAL(v["unstable_modes"].number, 1);
     BOOST_CHECK_MESSAGE(contains(row, ",unstable,1," + number(v["margin"].number)), row);
   }
+  // The table on stdout: a stability column, "unstable (1)" on every point.
+  const Run table =
+      run_pcr("path " + model("planar_three_rod.urdf") + " --inputs " + inputs + " --stability");
+  BOOST_REQUIRE_EQUAL(table.exit_code, 0);
+  BOOST_CHECK_MESSAGE(contains(table.out, "[mm]  stability\n"), table.out);
+  std::size_t unstable_points = 0;
+  for (std::size_t at = table.out.find("unstable (1)\n"); at != std::string::npos;
+       at = table.out.find("unstable (1)\n", at + 1))
+    ++unstable_points;
+  BOOST_CHECK_EQUAL(unstable_points, 3u);
   const Run plain = run_pcr("path " + model("planar_three_rod.urdf") + " --inputs " + inputs + " --csv '" +
                             csv.string() + "'");
   BOOST_REQUIRE_EQUAL(plain.exit_code, 0);
