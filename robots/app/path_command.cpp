@@ -2,6 +2,7 @@
 // the rows of a file, one kinematics object warm-started from point to point.
 #include <algorithm>
 #include <cstdio>
+#include <string>
 
 #include "pcr/core/error.hpp"
 
