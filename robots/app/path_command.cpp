@@ -97,9 +97,7 @@ std::string verdict_text(const pcr::Stability& v) {
 /// the verdict.
 void write_path_table(std::ostream& out, const pcr::RobotModel& model,
                       const std::vector<pcr::PathPoint>& points, const std::vector<pcr::PathEvent>* events) {
-  bool verdicts = false;
-  for (const pcr::PathPoint& point : points)
-    verdicts = verdicts || point.solution.stability_verdict.verdict != pcr::StabilityVerdict::NotChecked;
+  const bool verdicts = pcr::has_stability_verdicts(points);
   out << "point  status          iterations  residual   time [ms]";
   for (const pcr::Platform& platform : model.platforms()) out << "  " << platform.name << " x, y, z [mm]";
   out << (verdicts ? "  stability" : "") << "\n";

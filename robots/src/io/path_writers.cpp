@@ -13,6 +13,12 @@ using io_detail::csv_number;
 using io_detail::csv_pose;
 using io_detail::csv_pose_header;
 
+bool has_stability_verdicts(const std::vector<PathPoint>& points) {
+  for (const PathPoint& point : points)
+    if (point.solution.stability_verdict.verdict != StabilityVerdict::NotChecked) return true;
+  return false;
+}
+
 void write_path_csv(std::ostream& out, const RobotModel& model, const std::vector<PathPoint>& points) {
   write_path_csv(out, model, points, {});
 }
@@ -29,10 +35,7 @@ void write_path_csv(std::ostream& out, const RobotModel& model, const std::vecto
   for (const LinkPose& link : links) out << csv_pose_header(link.link);
   for (const LinkTarget& target : targets)
     out << ',' << target.link << ".position_error," << target.link << ".orientation_error";
-  // With the verdict asked for (any point carries one): its columns after the message.
-  bool verdicts = false;
-  for (const PathPoint& point : points)
-    verdicts = verdicts || point.solution.stability_verdict.verdict != StabilityVerdict::NotChecked;
+  const bool verdicts = has_stability_verdicts(points);  // their columns after the message
   out << ",status,iterations,residual_max_abs,wall_time_seconds,message"
       << (verdicts ? ",stability,unstable_modes,stability_margin,stability_reason" : "") << '\n';
   const auto event_row = [&](const PathEvent& event) {

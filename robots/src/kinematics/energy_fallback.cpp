@@ -151,9 +151,11 @@ constexpr double kModePushes[] = {0.01, -0.01, 0.05, -0.05};
 bool descended_along_unstable_mode(FkData& data, const Minimum& minimum, const VecX& inputs,
                                    const VecX& landed, VecX& xs, EnergyFallback& out, std::string& note,
                                    SolveSummary& summary, Stability& v) {
+  const RobotAssembly& assembly = *data.model->assembly;
+  const VecX mode = border_unstable_mode(assembly, landed);
+  if (mode.size() == 0) return false;
   for (double amplitude : kModePushes) {
-    VecX start;
-    if (!pushed_along_border_mode(*data.model->assembly, landed, amplitude, start)) return false;
+    const VecX start = pushed_along_border_mode(assembly, landed, mode, amplitude);
     if (damped_motion(data, minimum, inputs, start, 0.0,
                       "damped motion along the unstable mode (" + format("%+.2f", amplitude) + ")", xs, out,
                       note, summary, v))

@@ -162,12 +162,12 @@ void RodEnergyTerm::evaluate_hessian(const double* const* values, double* hessia
     // q_s. The (j, k) block of G^T Hz G is N_j N_k H00 + N_j N_k' H01 + N_j' N_k H10 + N_j' N_k' H11 with
     // Hab = Ea^T Hz Eb (7 x 7, once per node); the (k, j) block its transpose.
     using M7 = Eigen::Matrix<double, 7, 7>;
-    const Eigen::Matrix<double, kLocal, 7> E0 = [] {
+    static const Eigen::Matrix<double, kLocal, 7> E0 = [] {
       Eigen::Matrix<double, kLocal, 7> e = Eigen::Matrix<double, kLocal, 7>::Zero();
       e.block<4, 4>(3, 3).setIdentity();
       return e;
     }();
-    const Eigen::Matrix<double, kLocal, 7> E1 = [] {
+    static const Eigen::Matrix<double, kLocal, 7> E1 = [] {
       Eigen::Matrix<double, kLocal, 7> e = Eigen::Matrix<double, kLocal, 7>::Zero();
       e.block<3, 3>(0, 0).setIdentity();
       e.block<4, 4>(7, 3).setIdentity();

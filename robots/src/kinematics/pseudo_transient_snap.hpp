@@ -38,11 +38,14 @@ struct PseudoTransientResult {
 PseudoTransientResult pseudo_transient_equilibrium(const RobotAssembly& assembly, const VecX& start,
                                                    double tolerance, double shift = 0.0);
 
-/// A start for the damped motion off an unstable equilibrium x: x moved along the eigenvector w of the
-/// most negative eigenvalue of its border's symmetrised reduced stiffness (robot_border_stiffness: per
-/// platform [dx / L0, dtheta], per passive joint dq / L0 or dq), scaled so that its largest coordinate is
-/// `amplitude` (its sign: the direction). False (pushed unspecified) where the border has no negative
+/// The unstable mode of an equilibrium x's border: the eigenvector w of the most negative eigenvalue of its
+/// symmetrised reduced stiffness (robot_border_stiffness: per platform [dx / L0, dtheta], per passive joint
+/// dq / L0 or dq), scaled so that its largest coordinate is 1; empty where the border has no negative
 /// eigenvalue or no count.
-bool pushed_along_border_mode(const RobotAssembly& assembly, const VecX& x, double amplitude, VecX& pushed);
+VecX border_unstable_mode(const RobotAssembly& assembly, const VecX& x);
+/// A start for the damped motion off x: x moved by amplitude x mode (border_unstable_mode; the sign of
+/// amplitude: the direction).
+VecX pushed_along_border_mode(const RobotAssembly& assembly, const VecX& x, const VecX& mode,
+                              double amplitude);
 
 }  // namespace pcr::kinematics

@@ -31,12 +31,13 @@ std::string requested_mesh_note(const Stability& s, const Stability& refined, in
   return note;
 }
 
-}  // namespace
-
+/// Whether `s` is unknown for a reason a finer mesh can resolve (refined_verdict.hpp).
 bool unknown_on_this_mesh(const Stability& s) {
   return unknown_by_asymmetry(s) || (s.verdict == StabilityVerdict::Unknown &&
                                      s.reason.find(stability::kNoRitzEquilibrium) != std::string::npos);
 }
+
+}  // namespace
 
 void refine_unknown_verdict(const RobotAssembly& assembly, const VecX& x, double tolerance, Stability& s) {
   if (!unknown_on_this_mesh(s)) return;

@@ -17,11 +17,9 @@
 
 namespace pcr::kinematics {
 
-/// Whether `s` is unknown for a reason a finer mesh can resolve (above).
-bool unknown_on_this_mesh(const Stability& s);
-
-/// The verdict of the equilibrium x of `assembly` (at its inputs) on 2x the elements per rod where
-/// unknown_on_this_mesh(s); `s` unchanged where the refined solve or its verdict does not give a count.
+/// The verdict of the equilibrium x of `assembly` (at its inputs) on 2x the elements per rod where `s` is
+/// unknown for a reason a finer mesh can resolve (above); `s` unchanged where the refined solve or its
+/// verdict does not give a count.
 /// tolerance: Newton's there.
 void refine_unknown_verdict(const RobotAssembly& assembly, const VecX& x, double tolerance, Stability& s);
 

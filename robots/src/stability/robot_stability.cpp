@@ -68,11 +68,15 @@ std::string asymmetry_failure(double asymmetry, const MatX& Ks) {
   return msg.str();
 }
 
-/// Where the split into held rods and border does not apply (why): the count of the whole robot on the
-/// energy's Ritz form (ritz_stability, nothing touching), where the energy describes the model.
+/// Where the split into held rods and border does not apply (why: a rod touching an obstacle, or at a
+/// conjugate point with its links held): the count of the whole robot on the energy's Ritz form
+/// (ritz_stability), where the energy describes the model.
 Stability whole_count(const RobotAssembly& assembly, const VecX& x, const std::string& why) {
   const std::string refusal = kinematics::energy_model_refusal(assembly.model());
-  if (!refusal.empty()) return unknown_stability(why + " (" + refusal + ")");
+  if (!refusal.empty())
+    return unknown_stability(why +
+                             ": it is counted on the energy's Ritz form, which does not describe this " +
+                             "model (" + refusal + ")");
   return stability::ritz_stability(assembly, x, why);
 }
 
@@ -120,13 +124,7 @@ Stability robot_stability(const RobotAssembly& assembly, const VecX& x) {
   const std::string failure = stability::robot_assumption_failure(assembly.model());
   if (!failure.empty()) return unknown_stability(failure);
   const std::string touching = stability::touching_contact(assembly, x);
-  if (!touching.empty()) {
-    const std::string refusal = kinematics::energy_model_refusal(assembly.model());
-    if (!refusal.empty())
-      return unknown_stability(touching + ": contact is counted on the energy's Ritz form, which does not " +
-                               "describe this model (" + refusal + ")");
-    return stability::ritz_stability(assembly, x, touching);
-  }
+  if (!touching.empty()) return whole_count(assembly, x, touching);
   Stability s;
   double rod_margin = INFINITY;
   HeldRodIndex weakest;

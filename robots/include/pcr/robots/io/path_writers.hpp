@@ -15,10 +15,14 @@ struct PathPoint {
   SolutionExtras extras;
 };
 
+/// Whether any point carries a stability verdict (the verdict was asked for).
+bool has_stability_verdicts(const std::vector<PathPoint>& points);
+
 /// CSV, one row per point: point (from 0), the inputs by name, NAME.x, .y, .z, .qw, .qx, .qy, .qz per
 /// platform and per link of the first point's extras.links, LINK.position_error and
 /// LINK.orientation_error per target of the first point, then status, iterations, residual_max_abs,
-/// wall_time_seconds and message (quoted). Non-finite numbers are empty fields.
+/// wall_time_seconds and message (quoted), and where has_stability_verdicts: stability, unstable_modes,
+/// stability_margin, stability_reason (quoted). Non-finite numbers are empty fields.
 void write_path_csv(std::ostream& out, const RobotModel& model, const std::vector<PathPoint>& points);
 /// The same with the events of a path through folds as rows of their own, in path order before the
 /// point they lead to: point = fold, snap or bifurcation, the inputs and platform poses at the event
