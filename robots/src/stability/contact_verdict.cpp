@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "../kinematics/energy_model.hpp"
-#include "pcr/math/dense_decompositions.hpp"
+#include "pcr/math/tangent_space_spectrum.hpp"
 #include "pcr/solve/sparse_lu.hpp"
 #include "robot_stability_parts.hpp"
 
@@ -136,9 +136,12 @@ RitzEquilibrium ritz_equilibrium(const Problem& p, VecX e, const Active& a) {
       const double s = trial.cwiseAbs().maxCoeff();
       if (!(s < r.stationarity)) continue;
       decreased = true;
+      // At round-off (the step no longer halves the residual): the state before it is as good for the
+      // count, and its Hessian is at hand.
+      if (s > 0.5 * r.stationarity && r.stationarity <= kStationary) return r;
       const bool halved = s <= 0.5 * r.stationarity;
       e = trial_e, r.y = trial_y, r.Ja = Ja, residual = trial, r.stationarity = s;
-      if (!halved && s <= kStationary) {  // at round-off: the Hessian there is as good for the count
+      if (!halved && s <= kStationary) {
         r.H = lagrangian_hessian(p, e, a, r.y);
         return r;
       }
@@ -149,20 +152,20 @@ RitzEquilibrium ritz_equilibrium(const Problem& p, VecX e, const Active& a) {
   return r;
 }
 
-/// The counts of the Lagrangian's Hessian on the tangent space {J_a de = 0}: Z an orthonormal basis of it
-/// in the scaled coordinates (D de), from the QR of (J_a D)^T; its eigenvalues zero within n eps of the
-/// largest (n: the tangent space's dimension), the round-off of a backward-stable eigensolver (Weyl) on
-/// the rods' exact Hessians. The stiff axial terms set the largest eigenvalue (3.9e8 at planar_post's
-/// default state, whose smallest are -2.875 and 0.2233); the Hessians by differences that remain (the
-/// couplings', platforms' and passive joints') move those by 2e-9 between steps 1e-7 and 1e-5, and the
-/// rods' by differences moved them by 2e-7, both below n eps 3.9e8 ~ 3e-5 (n a few hundred).
-void count_on_tangent_space(const RitzEquilibrium& r, const VecX& D, Stability& s) {
+/// The counts of the Lagrangian's Hessian on the tangent space {J_a de = 0}: the eigenvalues of Z^T H Z
+/// for an orthonormal basis Z of it in the scaled coordinates (D de), built block by block
+/// (tangent_space_spectrum.hpp: the unit-quaternion rows per control point, then the couplings and gaps);
+/// eigenvalues zero within n eps of the largest (n: the tangent space's dimension), the round-off of a
+/// backward-stable eigensolver (Weyl) on the rods' exact Hessians. The stiff axial terms set the largest
+/// eigenvalue (3.9e8 at planar_post's default state, whose smallest are -2.875 and 0.2233); the Hessians
+/// by differences that remain (the couplings', platforms' and passive joints') move those by 2e-9
+/// between steps 1e-7 and 1e-5, and the rods' by differences moved them by 2e-7, both below
+/// n eps 3.9e8 ~ 3e-5 (n a few hundred).
+void count_on_tangent_space(const Problem& p, const RitzEquilibrium& r, const VecX& D, Stability& s) {
+  std::vector<VariableRange> blocks;
+  for (int b = 0; b < p.num_variable_blocks(); ++b) blocks.push_back({p.variable(b).offset, p.variable(b).size});
   const SpMat Hs = D.asDiagonal() * r.H * D.asDiagonal();
-  const Eigen::ColPivHouseholderQR<MatX> qr(MatX(r.Ja * D.asDiagonal()).transpose());
-  const MatX Q = qr.householderQ();
-  const MatX Z = Q.rightCols(Hs.rows() - qr.rank());
-  const MatX HsZ = Hs * Z;
-  const VecX lambda = symmetric_eigenvalues(Z.transpose() * HsZ);
+  const VecX lambda = tangent_space_eigenvalues(Hs, r.Ja * D.asDiagonal(), blocks);
   const double tolerance = static_cast<double>(lambda.size()) * std::numeric_limits<double>::epsilon() *
                            lambda.cwiseAbs().maxCoeff();
   for (int i = 0; i < lambda.size(); ++i) {
@@ -195,7 +198,7 @@ Stability ritz_stability(const RobotAssembly& assembly, const VecX& x, const std
     if (!(r.y[i] < -kStationary))
       return unknown_stability(why + "; a contact there carries no force (at the border of activity)");
   Stability s;
-  count_on_tangent_space(r, coordinate_scale(p, assembly.length_scale()), s);
+  count_on_tangent_space(p, r, coordinate_scale(p, assembly.length_scale()), s);
   s.length_scale = assembly.length_scale();
   s.energy_scale = energy.energy_scale();
   s.reason = std::string(a.gaps.empty() ? "counted" : "counted with the touching contacts held") +
