@@ -77,8 +77,8 @@ void print_solve_usage(std::ostream& out, const std::string& command) {
   out << "  --json             JSON to stdout instead of the table\n"
       << "  --json-file FILE   JSON to FILE (the table is still printed)\n";
   if (command == "fk" || command == "ik")
-    out << "  --csv DIR          DIR/platforms.csv, inputs.csv, rod_<name>.csv (obstacles.csv, "
-           "contacts.csv)\n"
+    out << "  --csv DIR          DIR/summary.csv (status, stability), platforms.csv, inputs.csv,\n"
+           "                     rod_<name>.csv (obstacles.csv, contacts.csv)\n"
         << "  --vtk FILE         legacy VTK polydata (rods, outlines, obstacles, contact forces) for "
            "ParaView\n"
         << "  --png FILE         3-D picture drawn by gnuplot\n";

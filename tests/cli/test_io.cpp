@@ -275,6 +275,19 @@ BOOST_AUTO_TEST_CASE(csv_files_per_rod_with_arc_length) {
   BOOST_CHECK_EQUAL(rows[0], "s,x,y,z");
   // s = L k / 4 with L = 0.32: the last row is s = L exactly, at (0.1, 0, 0.3).
   BOOST_CHECK_EQUAL(rows[5], "0.32000000000000001,0.10000000000000001,0,0.29999999999999999");
+  // The summary: status, iterations, residual, time, message (quoted, " doubled), then the verdict,
+  // not checked here (count and margin empty).
+  BOOST_CHECK_EQUAL(read_text(dir / "sub" / "summary.csv"),
+                    "status,iterations,residual_max_abs,wall_time_seconds,message,stability,unstable_modes,"
+                    "stability_margin,stability_reason\n"
+                    "converged,3,1.25e-13,0,\"ok \"\"quoted\"\"\",not_checked,,,\"\"\n");
+  s.stability_verdict.verdict = pcr::StabilityVerdict::Unstable;
+  s.stability_verdict.unstable_modes = 2;
+  s.stability_verdict.margin = -0.5;
+  s.stability_verdict.reason = "counted";
+  pcr::write_solution_csv((dir / "sub").string(), model, s);
+  const std::string summary = read_text(dir / "sub" / "summary.csv");
+  BOOST_CHECK_MESSAGE(summary.find(",unstable,2,-0.5,\"counted\"\n") != std::string::npos, summary);
   const std::string inputs = read_text(dir / "sub" / "inputs.csv");
   BOOST_CHECK(inputs.rfind("input,kind,value,lower,upper\nleft,rod_length,", 0) == 0);
   BOOST_CHECK_EQUAL(pcr::rod_csv_file_name("a/b c"), "rod_a_b_c.csv");

@@ -36,8 +36,8 @@ void write_path_csv(std::ostream& out, const RobotModel& model, const std::vecto
   for (const LinkTarget& target : targets)
     out << ',' << target.link << ".position_error," << target.link << ".orientation_error";
   const bool verdicts = has_stability_verdicts(points);  // their columns after the message
-  out << ",status,iterations,residual_max_abs,wall_time_seconds,message"
-      << (verdicts ? ",stability,unstable_modes,stability_margin,stability_reason" : "") << '\n';
+  out << ',' << io_detail::kCsvSummaryHeader
+      << (verdicts ? std::string(",") + io_detail::kCsvStabilityHeader : std::string()) << '\n';
   const auto event_row = [&](const PathEvent& event) {
     io_detail::write_event_row(out, model, event, links.size(), targets.size(), verdicts ? 4 : 0);
   };
@@ -64,16 +64,8 @@ void write_path_csv(std::ostream& out, const RobotModel& model, const std::vecto
           << (orientation ? csv_number(rotation_angle_between(reached.rotation(), target.pose.rotation()))
                           : "");
     }
-    out << ',' << to_string(s.summary.status) << ',' << s.summary.iterations << ','
-        << csv_number(s.summary.residual_max_abs) << ',' << csv_number(s.summary.wall_time_seconds) << ','
-        << io_detail::csv_quote(s.summary.message);
-    if (verdicts) {
-      const Stability& v = s.stability_verdict;
-      const bool counted = v.verdict == StabilityVerdict::Stable || v.verdict == StabilityVerdict::Unstable ||
-                           v.verdict == StabilityVerdict::Critical;
-      out << ',' << to_string(v.verdict) << ',' << (counted ? std::to_string(v.unstable_modes) : "") << ','
-          << (counted ? csv_number(v.margin) : "") << ',' << io_detail::csv_quote(v.reason);
-    }
+    out << ',' << io_detail::csv_summary(s.summary);
+    if (verdicts) out << ',' << io_detail::csv_stability(s.stability_verdict);
     out << '\n';
   }
   for (; next_event < events.size(); ++next_event) event_row(events[next_event]);

@@ -1,22 +1,16 @@
-#include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
 #include "contact_csv.hpp"
+#include "csv_fields.hpp"
 #include "pcr/core/error.hpp"
 #include "pcr/robots/io/solution_writers.hpp"
 
 namespace pcr {
 namespace {
 
-/// A CSV field: 17 significant digits, empty when not finite.
-std::string field(double value) {
-  if (!std::isfinite(value)) return "";
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.17g", value);
-  return buffer;
-}
+using io_detail::csv_number;
+
 
 std::ofstream open_file(const std::filesystem::path& path) {
   std::ofstream file(path);
@@ -50,14 +44,21 @@ void write_solution_csv(const std::string& directory, const RobotModel& model,
   require(fs::is_directory(dir), "write_solution_csv: cannot create directory '", directory, "'",
           error ? " (" + error.message() + ")" : std::string());
 
+  const fs::path summary_path = dir / "summary.csv";
+  std::ofstream summary = open_file(summary_path);
+  summary << io_detail::kCsvSummaryHeader << ',' << io_detail::kCsvStabilityHeader << '\n'
+          << io_detail::csv_summary(solution.summary) << ',' << io_detail::csv_stability(solution.stability_verdict)
+          << '\n';
+  close_file(summary, summary_path);
+
   const fs::path platforms_path = dir / "platforms.csv";
   std::ofstream platforms = open_file(platforms_path);
   platforms << "platform,x,y,z,qw,qx,qy,qz\n";
   for (size_t p = 0; p < solution.platforms.size() && p < model.platforms().size(); ++p) {
     const Pose& pose = solution.platforms[p];
     platforms << model.platforms()[p].name;
-    for (int k = 0; k < 3; ++k) platforms << ',' << field(pose.position[k]);
-    for (int k = 0; k < 4; ++k) platforms << ',' << field(pose.orientation[k]);
+    for (int k = 0; k < 3; ++k) platforms << ',' << csv_number(pose.position[k]);
+    for (int k = 0; k < 4; ++k) platforms << ',' << csv_number(pose.orientation[k]);
     platforms << '\n';
   }
   close_file(platforms, platforms_path);
@@ -69,8 +70,8 @@ void write_solution_csv(const std::string& directory, const RobotModel& model,
     const ActuationInput& input = model.inputs()[i];
     inputs << input.name << ','
            << (input.kind == ActuationInput::Kind::RodLength ? "rod_length" : "joint_value") << ','
-           << field(solution.inputs[static_cast<int>(i)]) << ',' << field(input.lower) << ','
-           << field(input.upper) << '\n';
+           << csv_number(solution.inputs[static_cast<int>(i)]) << ',' << csv_number(input.lower) << ','
+           << csv_number(input.upper) << '\n';
   }
   close_file(inputs, inputs_path);
 
@@ -82,8 +83,8 @@ void write_solution_csv(const std::string& directory, const RobotModel& model,
     for (size_t k = 0; k < n; ++k) {
       // RodResult::centerline is sampled at equally spaced arc lengths from 0 to L.
       const double s = n > 1 ? rod.length * static_cast<double>(k) / static_cast<double>(n - 1) : 0.0;
-      file << field(s);
-      for (int c = 0; c < 3; ++c) file << ',' << field(rod.centerline[k][c]);
+      file << csv_number(s);
+      for (int c = 0; c < 3; ++c) file << ',' << csv_number(rod.centerline[k][c]);
       file << '\n';
     }
     close_file(file, path);

@@ -63,6 +63,7 @@ void write_link_table(std::ostream& out, const std::vector<LinkPose>& links);
 /// replaced by '_'.
 std::string rod_csv_file_name(const std::string& rod_name);
 
+/// DIR/summary.csv (the solve's status, iterations, residual, time, message and stability verdict),
 /// DIR/platforms.csv, DIR/inputs.csv and one DIR/rod_<name>.csv (s,x,y,z) per rod; creates DIR.
 /// Non-finite numbers are written as empty fields.
 void write_solution_csv(const std::string& directory, const RobotModel& model, const RobotSolution& solution);
