@@ -7,17 +7,21 @@
 // region; with --shooting rk4|dormand_prince by pcr's shooting solver at bench_all's settings, for
 // load-independent instruction ratios against collocation), r5a_fk / r5a_ik (one cold FK / IK, assembly
 // included; r5a_ik also --shooting), R1 / R2 / R3 / spring (one cold solve_rod; --start stress_free for
-// RodSolveOptions::shooting_start = false). Prints the wall time of the
+// RodSolveOptions::shooting_start = false), fk_jump (a warm FK solve of --model FILE with the default
+// KinematicsOptions from the inputs --from a,b,.. to --to c,d,..: a step of a random sweep; the solve at
+// --from, which also solves the model's default equilibrium, outside the region). Prints the wall time of the
 // region, the iterations and the status.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "common/robot_scenes.hpp"
 #include "common/rod_scenes.hpp"
 #include "pcr/robots/kinematics.hpp"
+#include "pcr/robots/urdf_loader.hpp"
 #include "pcr/robots/shooting/shooting_robot_solver.hpp"
 
 using namespace pcr;
@@ -34,7 +38,20 @@ struct Settings {
   int rk4_steps = 40;
   bool shooting_start = true;  ///< single rods: RodSolveOptions::shooting_start (--start stress_free: false)
   double integration_tolerance = 1e-8;
+  std::string model_file;  ///< fk_jump: the model, and the inputs of the two solves
+  VecX from, to;
 };
+
+VecX parse_inputs(const std::string& text) {
+  std::vector<double> values;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    values.push_back(std::stod(text.substr(start, comma - start)));
+    start = comma + 1;
+  }
+  return Eigen::Map<const VecX>(values.data(), static_cast<Eigen::Index>(values.size()));
+}
 
 struct Outcome {
   int iterations = 0, solves = 0;
@@ -125,6 +142,16 @@ __attribute__((noinline)) Outcome measured_region(const std::shared_ptr<const Ro
   return out.stop();
 }
 
+// One warm FK solve (the one at its last inputs made before, outside the region).
+__attribute__((noinline)) Outcome measured_region(ForwardKinematics& fk, const VecX& inputs) {
+  Outcome out;
+  const RobotSolution s = fk.solve(inputs);
+  out.iterations = s.summary.iterations;
+  out.converged = s.summary.converged();
+  out.solves = 1;
+  return out.stop();
+}
+
 // Cold IK by the shooting solver (a new solver per solve, as bench_all).
 __attribute__((noinline)) Outcome measured_region(const std::shared_ptr<const RobotModel>& model,
                                                   const Settings& settings, const Pose& target) {
@@ -165,6 +192,11 @@ Outcome run(const Settings& s) {
     ik.solve({path[0]});
     return measured_region(ik, path);
   }
+  if (s.workload == "fk_jump") {
+    ForwardKinematics fk(std::make_shared<const RobotModel>(load_robot_model(s.model_file)), KinematicsOptions{});
+    if (!fk.solve(s.from).summary.converged()) std::fprintf(stderr, "bench_time_split: the --from solve failed\n");
+    return measured_region(fk, s.to);
+  }
   if (s.workload == "r5a_fk") {
     const std::shared_ptr<const RobotModel> model = load_r5a();
     return measured_region(model, robot_options(s), r5a_moved_inputs(*model), s.solves);
@@ -191,9 +223,10 @@ int main(int argc, char** argv) {
   if (argc < 2) {
     std::fprintf(
         stderr,
-        "usage: bench_time_split r5b_path|r5b_helix|r5a_fk|r5a_ik|R1|R2|R3|spring [--formulation "
+        "usage: bench_time_split r5b_path|r5b_helix|r5a_fk|r5a_ik|R1|R2|R3|spring|fk_jump [--formulation "
         "mixed|condensed|primal] [--degree P] [--elements E] [--tolerance T] [--solves N] [--shooting "
-        "rk4|dormand_prince [--rk4-steps N] [--integration-tolerance T]] [--start shooting|stress_free]\n");
+        "rk4|dormand_prince [--rk4-steps N] [--integration-tolerance T]] [--start shooting|stress_free] "
+        "[--model FILE --from a,b,.. --to c,d,..]\n");
     return 2;
   }
   Settings s;
@@ -220,6 +253,12 @@ int main(int argc, char** argv) {
       s.integration_tolerance = std::stod(value);
     else if (key == "--start")
       s.shooting_start = value != "stress_free";
+    else if (key == "--model")
+      s.model_file = value;
+    else if (key == "--from")
+      s.from = parse_inputs(value);
+    else if (key == "--to")
+      s.to = parse_inputs(value);
   }
   const Outcome out = run(s);
   if (s.shooting.empty())
