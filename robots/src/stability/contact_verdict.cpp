@@ -113,7 +113,9 @@ VecX stationarity_residual(const Problem& p, const VecX& e, const VecX& y, const
 /// multipliers, with backtracking on max |residual| (the Ritz equilibrium of a rod pressed hard on an
 /// obstacle lies farther from the collocation's: its constraints hold at points, the collocation's
 /// densities spread over cells), until the residual, below kStationary, stops halving (round-off), or no
-/// step decreases it.
+/// step decreases it. Chord steps: the KKT matrix is factorised again only where a step with the last
+/// factors did not halve the residual (from the collocation state one matrix usually takes it to
+/// round-off); the Hessian of the returned state is computed there, for the count.
 RitzEquilibrium ritz_equilibrium(const Problem& p, VecX e, const Active& a) {
   const int n = p.num_variables(), m = static_cast<int>(a.rows.size());
   RitzEquilibrium r;
@@ -121,12 +123,22 @@ RitzEquilibrium ritz_equilibrium(const Problem& p, VecX e, const Active& a) {
   r.y = MatX(r.Ja.transpose()).colPivHouseholderQr().solve(-residual.head(n));
   residual.head(n) += r.Ja.transpose() * r.y;
   r.stationarity = residual.cwiseAbs().maxCoeff();
-  SparseLu kkt;  // one pattern for every iteration (the rows' and Hessian's patterns are fixed)
+  SparseLu kkt;  // one pattern for every factorisation (the rows' and Hessian's patterns are fixed)
+  bool analyzed = false, factors = false, hessian_at_e = false;
+  const auto finish = [&]() -> RitzEquilibrium& {
+    if (!hessian_at_e) r.H = lagrangian_hessian(p, e, a, r.y);
+    return r;
+  };
   for (int k = 0; k < kMaxNewton; ++k) {
-    r.H = lagrangian_hessian(p, e, a, r.y);
-    const SpMat K = kkt_matrix(r.H, r.Ja);
-    if (k == 0) kkt.analyze_pattern(K);
-    if (!kkt.factorize(K)) return r;
+    if (!factors) {
+      r.H = lagrangian_hessian(p, e, a, r.y);
+      hessian_at_e = true;
+      const SpMat K = kkt_matrix(r.H, r.Ja);
+      if (!analyzed) kkt.analyze_pattern(K), analyzed = true;
+      if (!kkt.factorize(K)) return r;
+      factors = true;
+    }
+    const bool chord = !hessian_at_e;
     const VecX step = kkt.solve(VecX(-residual));
     bool decreased = false;
     for (double alpha = 1.0; alpha >= 1.0 / 64 && !decreased; alpha /= 2) {
@@ -136,20 +148,19 @@ RitzEquilibrium ritz_equilibrium(const Problem& p, VecX e, const Active& a) {
       const double s = trial.cwiseAbs().maxCoeff();
       if (!(s < r.stationarity)) continue;
       decreased = true;
-      // At round-off (the step no longer halves the residual): the state before it is as good for the
-      // count, and its Hessian is at hand.
-      if (s > 0.5 * r.stationarity && r.stationarity <= kStationary) return r;
       const bool halved = s <= 0.5 * r.stationarity;
+      // At round-off (the step no longer halves the residual): the state before it.
+      if (!halved && r.stationarity <= kStationary) return finish();
       e = trial_e, r.y = trial_y, r.Ja = Ja, residual = trial, r.stationarity = s;
-      if (!halved && s <= kStationary) {
-        r.H = lagrangian_hessian(p, e, a, r.y);
-        return r;
-      }
+      hessian_at_e = false;
+      if (!halved) factors = false;  // the chord steps stopped contracting: fresh factors
     }
-    if (!decreased) return r;
+    if (!decreased) {
+      if (!chord) return r;  // no decrease along a step of fresh factors (the Hessian is at e)
+      factors = false;       // the old factors' step failed: once more with fresh ones
+    }
   }
-  r.H = lagrangian_hessian(p, e, a, r.y);
-  return r;
+  return finish();
 }
 
 /// The counts of the Lagrangian's Hessian on the tangent space {J_a de = 0}: the eigenvalues of Z^T H Z
