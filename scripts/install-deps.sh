@@ -8,12 +8,17 @@ packages=(
   cmake g++ make ninja-build pkg-config
   libeigen3-dev
   coinor-libipopt-dev
+  libopenblas0-serial
   liburdfdom-dev
   libboost-test-dev
   libbenchmark-dev
   gnuplot-nox
   python3-dev pybind11-dev python3-numpy python3-pytest python3-matplotlib python3-distributed
 )
+# libopenblas0-serial: the BLAS and LAPACK behind Ipopt's MUMPS (Debian's alternatives pick it over the
+# reference BLAS once installed; the serial build, so that it starts no threads of its own beside pcr's):
+# the dense kernels of MUMPS's fronts were a quarter of a planar_rollers FK solve that ends in the energy
+# minimisation (docs/design.md "Ipopt").
 # Optional extras: clang for the libFuzzer target (PCR_EXTRA_PACKAGES="clang").
 read -r -a extra <<< "${PCR_EXTRA_PACKAGES:-}"
 packages+=("${extra[@]}")
