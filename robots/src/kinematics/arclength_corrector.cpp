@@ -14,15 +14,17 @@ using RowJacobian = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 ArcCorrector::ArcCorrector(const RobotAssembly& assembly, const VecX& u_a, const VecX& u_b, double tolerance)
     : assembly_(assembly), u_a_(u_a), u_b_(u_b), tolerance_(tolerance) {
   const Problem& problem = assembly.problem();
+  std::vector<int> groups;  // variable group of each free column, -1 for lambda (border)
   for (int v = 0; v < problem.num_variable_blocks(); ++v) {
     if (problem.variable_fixed(v)) continue;
     const VariableBlock& b = problem.variable(v);
     for (int k = 0; k < b.size; ++k) {
       free_.push_back(b.offset + k);
-      groups_.push_back(b.group);
+      groups.push_back(b.group);
     }
   }
-  groups_.push_back(-1);  // lambda: a border column
+  groups.push_back(-1);  // lambda: a border column
+  lu_.set_column_groups(std::move(groups));
   for (int i = 0; i < static_cast<int>(u_a.size()); ++i)
     inputs_.push_back(problem.variable(assembly.input_variable(i)).offset);
   row_lower_ = problem.row_lower();
@@ -85,28 +87,9 @@ bool ArcCorrector::evaluate(const VecX& y, const VecX& normal, VecX& residual) {
   return Eigen::Map<const VecX>(matrix_.valuePtr(), matrix_.nonZeros()).allFinite();
 }
 
-bool ArcCorrector::factorize() {
-  if (!blocks_analyzed_) {
-    blocks_analyzed_ = true;
-    blocks_ok_ = blocks_.analyze_pattern(matrix_, groups_);
-  }
-  use_sparse_ = !(blocks_ok_ && blocks_.factorize(matrix_));
-  if (!use_sparse_) return true;
-  if (!sparse_analyzed_) {
-    sparse_analyzed_ = true;
-    sparse_.analyze_pattern(matrix_);
-  }
-  return sparse_.factorize(matrix_);
-}
+bool ArcCorrector::factorize() { return lu_.factorize(matrix_); }
 
-VecX ArcCorrector::solve(const VecX& rhs) const {
-  VecX out;
-  if (use_sparse_)
-    sparse_.solve(rhs, out);
-  else
-    blocks_.solve(rhs, out);
-  return out;
-}
+VecX ArcCorrector::solve(const VecX& rhs) const { return lu_.solve(rhs); }
 
 bool ArcCorrector::correct(const VecX& normal, const VecX& y0, double offset, VecX& y, VecX& tangent_out,
                            int max_iterations) {

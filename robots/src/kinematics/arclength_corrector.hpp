@@ -18,8 +18,7 @@
 #include <string>
 
 #include "pcr/robots/robot_assembly.hpp"
-#include "pcr/solve/bordered_block_lu.hpp"
-#include "pcr/solve/sparse_lu.hpp"
+#include "pcr/solve/grouped_lu.hpp"
 
 namespace pcr::kinematics {
 
@@ -78,14 +77,11 @@ class ArcCorrector {
   double tolerance_;
   VecX x_template_;                     // full state holding the fixed variables
   std::vector<int> free_;               // global index of each free column
-  std::vector<int> groups_;             // variable group of each free column, -1 for lambda (border)
   std::vector<int> inputs_;             // global index of each input variable
   VecX row_lower_;                      // c_l of the rows (equality rows: c(x) = c_l)
   VecX weights_;                        // W: free columns then lambda (size free + 1)
   Eigen::SparseMatrix<double> matrix_;  // the bordered matrix
-  BorderedBlockLu blocks_;
-  SparseLu sparse_;
-  bool blocks_ok_ = false, blocks_analyzed_ = false, sparse_analyzed_ = false, use_sparse_ = false;
+  GroupedLu lu_;  // columns grouped by variable group, lambda a border column
   int jacobians_ = 0, iterations_ = 0;
 };
 

@@ -7,10 +7,9 @@
 
 #include "pcr/math/quaternion.hpp"
 #include "pcr/math/so3.hpp"
-#include "pcr/solve/bordered_block_lu.hpp"
 #include "pcr/solve/free_jacobian.hpp"
+#include "pcr/solve/grouped_lu.hpp"
 #include "pcr/solve/newton_solver.hpp"
-#include "pcr/solve/sparse_lu.hpp"
 
 namespace pcr::kinematics {
 
@@ -49,13 +48,15 @@ class DampedSystem {
       : a_(a), row_lower_(a.problem().row_lower()), shift_(shift) {
     const Problem& p = a.problem();
     column_.assign(p.num_variables(), -1);
+    std::vector<int> groups;  // variable group of each free column (-1: border)
     for (int v = 0; v < p.num_variable_blocks(); ++v) {
       if (p.variable_fixed(v)) continue;
       for (int k = 0; k < p.variable(v).size; ++k) {
         column_[p.variable(v).offset + k] = free_++;
-        groups_.push_back(p.variable(v).group);
+        groups.push_back(p.variable(v).group);
       }
     }
+    lu_.set_column_groups(std::move(groups));
     const double L0 = a.length_scale();
     for (int i = 0; i < static_cast<int>(a.model().platforms().size()); ++i) {
       if (p.variable_fixed(a.platform_variable(i)) || p.row_offset(a.platform_balance(i)) < 0) continue;
@@ -105,29 +106,9 @@ class DampedSystem {
     return Eigen::Map<const VecX>(M_.valuePtr(), M_.nonZeros()).allFinite();
   }
   /// The structured LU of the FK Newton systems (the dampers and the shift keep the rods' bands and the
-  /// border), the sparse LU where it has no such structure or a block is singular; M's pattern is the
-  /// same at every evaluation.
-  bool factorize() {
-    if (!blocks_analyzed_) {
-      blocks_analyzed_ = true;
-      blocks_ok_ = blocks_.analyze_pattern(M_, groups_);
-    }
-    use_sparse_ = !(blocks_ok_ && blocks_.factorize(M_));
-    if (!use_sparse_) return true;
-    if (!sparse_analyzed_) {
-      sparse_analyzed_ = true;
-      lu_.analyze_pattern(M_);
-    }
-    return lu_.factorize(M_);
-  }
-  VecX solve(const VecX& rhs) const {
-    VecX out;
-    if (use_sparse_)
-      lu_.solve(rhs, out);
-    else
-      blocks_.solve(rhs, out);
-    return out;
-  }
+  /// border), the sparse LU where it has no such structure or a block is singular (grouped_lu.hpp).
+  bool factorize() { return lu_.factorize(M_); }
+  VecX solve(const VecX& rhs) const { return lu_.solve(rhs); }
   /// x + alpha dx on the free columns.
   VecX moved(const VecX& x, const VecX& dx, double alpha) const {
     VecX out = x;
@@ -185,11 +166,8 @@ class DampedSystem {
   std::vector<int> column_;   // free index of each global column, -1 when fixed
   int free_ = 0;
   std::vector<Damper> dampers_;
-  std::vector<int> groups_;  // variable group of each free column (-1: border)
   Eigen::SparseMatrix<double> M_;
-  BorderedBlockLu blocks_;
-  SparseLu lu_;
-  bool blocks_ok_ = false, blocks_analyzed_ = false, sparse_analyzed_ = false, use_sparse_ = false;
+  GroupedLu lu_;
   int jacobians_ = 0;
 };
 
