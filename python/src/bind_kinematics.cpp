@@ -115,7 +115,8 @@ void bind_workspace(py::module_& m) {
       .def_readonly("iterations", &WorkspaceSample::iterations)
       .def_readonly("residual_max_abs", &WorkspaceSample::residual_max_abs)
       .def_readonly("wall_time_seconds", &WorkspaceSample::wall_time_seconds)
-      .def_readonly("message", &WorkspaceSample::message);
+      .def_readonly("message", &WorkspaceSample::message)
+      .def_readonly("stability", &WorkspaceSample::stability);
   py::class_<WorkspaceResult>(m, "WorkspaceResult")
       .def_readonly("samples", &WorkspaceResult::samples)
       .def_readonly("failures", &WorkspaceResult::failures)

@@ -208,7 +208,8 @@ SolveArguments parse_solve_arguments(const std::string& command, int argc, const
       a.help = true;
     } else if (arg == "--json") {
       a.json = true;
-    } else if (arg == "--stability" && (command == "fk" || command == "ik" || command == "path")) {
+    } else if (arg == "--stability" &&
+               (command == "fk" || command == "ik" || command == "path" || command == "workspace")) {
       a.stability = true;
     } else if (arg.size() > 1 && arg[0] == '-') {
       if (!accepts(command, arg))

@@ -74,6 +74,9 @@ void print_solve_usage(std::ostream& out, const std::string& command) {
   if (command != "workspace")
     out << "  --stability        stability verdict of the result: stable, or unstable with the number\n"
         << "                     of unstable modes, and a margin (costs about one more cold solve)\n";
+  else
+    out << "  --stability        stability verdict of every converged sample (in the CSV and JSON; the\n"
+        << "                     summary counts them)\n";
   out << "  --json             JSON to stdout instead of the table\n"
       << "  --json-file FILE   JSON to FILE (the table is still printed)\n";
   if (command == "fk" || command == "ik")

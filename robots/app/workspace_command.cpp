@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <string>
 
 #include "pcr/core/error.hpp"
 #include "pcr/robots/io/workspace_writers.hpp"
@@ -11,6 +13,22 @@
 
 namespace pcr_app {
 namespace {
+
+/// "stability: 812 stable, 180 unstable, ..." over the checked samples (nothing when none was checked).
+void write_verdict_counts(std::ostream& out, const pcr::WorkspaceResult& r) {
+  std::map<std::string, std::int64_t> counts;
+  for (const pcr::WorkspaceSample& s : r.samples)
+    if (s.stability.verdict != pcr::StabilityVerdict::NotChecked) ++counts[to_string(s.stability.verdict)];
+  if (counts.empty()) return;
+  out << "stability:";
+  const char* separator = " ";
+  for (const char* verdict : {"stable", "unstable", "critical", "unknown"}) {
+    if (!counts.count(verdict)) continue;
+    out << separator << counts[verdict] << ' ' << verdict;
+    separator = ", ";
+  }
+  out << " (of the converged samples)\n";
+}
 
 /// Counts, time and per platform the box of the reached positions [mm] and the largest tilt [deg].
 void write_workspace_summary(std::ostream& out, const pcr::RobotModel& model, const pcr::WorkspaceResult& r) {
@@ -25,6 +43,7 @@ void write_workspace_summary(std::ostream& out, const pcr::RobotModel& model, co
       static_cast<long long>(r.failures), r.threads, r.threads == 1 ? "" : "s", r.wall_time_seconds);
   out << line;
   if (r.failures == n) return;
+  write_verdict_counts(out, r);
   out << "reached positions [mm]:   x from    to      y from    to      z from    to   max tilt [deg]\n";
   for (size_t p = 0; p < model.platforms().size(); ++p) {
     pcr::Vec3 lower = pcr::Vec3::Constant(1e300), upper = pcr::Vec3::Constant(-1e300);

@@ -288,6 +288,26 @@ BOOST_AUTO_TEST_CASE(workspace_samples_do_not_depend_on_the_threads) {
                  j["points"][0]["inputs"][0].number);
 }
 
+// --stability: a verdict per converged sample in the CSV's last four columns, counted in the summary.
+BOOST_AUTO_TEST_CASE(workspace_with_the_stability_verdict) {
+  const fs::path csv = work_directory() / "ws_stability.csv";
+  const Run run = run_pcr("workspace " + model("slider_actuated.urdf") + " --samples 3 --stability --csv '" +
+                          csv.string() + "'");
+  BOOST_REQUIRE_EQUAL(run.exit_code, 0);
+  // slider_actuated's samples within its bounds: all stable (its default state is, and no sample folds).
+  BOOST_CHECK_MESSAGE(contains(run.out, "stability: 3 stable"), run.out);
+  std::istringstream rows(read_text(csv));
+  std::string header, row;
+  std::getline(rows, header);
+  const std::string tail = ",message,stability,unstable_modes,stability_margin,stability_reason";
+  BOOST_CHECK_MESSAGE(
+      header.size() > tail.size() && header.compare(header.size() - tail.size(), tail.size(), tail) == 0,
+      header);
+  int stable = 0;
+  while (std::getline(rows, row)) stable += contains(row, ",stable,0,") ? 1 : 0;
+  BOOST_CHECK_EQUAL(stable, 3);
+}
+
 BOOST_AUTO_TEST_CASE(workspace_usage_errors_and_picture) {
   const std::string slider = model("slider_actuated.urdf");
   BOOST_CHECK_EQUAL(run_pcr("workspace " + slider).exit_code, 2);  // no --samples

@@ -180,3 +180,33 @@ BOOST_AUTO_TEST_CASE(ipopt_and_bad_counts_are_refused) {
   options.samples = 0;
   BOOST_CHECK(sample_workspace(assembly, options).samples.empty());
 }
+
+// With the verdict asked for, each converged sample carries the verdict forward kinematics gives for its
+// inputs (a fresh solve with the same options), and the verdicts do not depend on the threads (the
+// verdicts themselves are tested in tests/stability).
+BOOST_AUTO_TEST_CASE(samples_carry_the_stability_verdict_of_their_solve) {
+  const auto assembly = std::make_shared<const RobotAssembly>(load("slider_actuated.urdf"));
+  WorkspaceOptions options;
+  options.samples = 6;
+  options.seed = 5;
+  options.kinematics.stability_verdict = true;
+  const WorkspaceResult one = sample_workspace(assembly, options);
+  options.threads = 2;
+  const WorkspaceResult two = sample_workspace(assembly, options);
+  BOOST_REQUIRE_EQUAL(one.samples.size(), 6u);
+  const ForwardKinematics prototype(assembly, options.kinematics);
+  for (size_t k = 0; k < one.samples.size(); ++k) {
+    const WorkspaceSample& s = one.samples[k];
+    BOOST_REQUIRE_MESSAGE(s.converged(), "sample " << k << ": " << s.message);
+    ForwardKinematics fk = prototype.with_fresh_state();
+    const Stability reference = fk.solve(s.inputs).stability_verdict;
+    BOOST_REQUIRE(s.stability.verdict != StabilityVerdict::NotChecked);
+    BOOST_CHECK(s.stability.verdict == reference.verdict);
+    BOOST_CHECK_EQUAL(s.stability.unstable_modes, reference.unstable_modes);
+    BOOST_CHECK_EQUAL(s.stability.margin, reference.margin);  // the same computation: the same bits
+    BOOST_CHECK(two.samples[k].stability.verdict == s.stability.verdict);
+    BOOST_CHECK_EQUAL(two.samples[k].stability.margin, s.stability.margin);
+  }
+  // Not asked for: not checked.
+  BOOST_CHECK(run(assembly, 0, 1, 1, 5).samples[0].stability.verdict == StabilityVerdict::NotChecked);
+}

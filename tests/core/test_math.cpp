@@ -206,7 +206,8 @@ BOOST_AUTO_TEST_CASE(tangent_space_eigenvalues_reject_overlapping_blocks) {
   const MatX H = MatX::Identity(4, 4), A = MatX::Ones(1, 4);
   BOOST_CHECK_THROW(tangent_space_eigenvalues(H.sparseView(), A.sparseView(), {{0, 3}, {2, 2}}),
                     std::invalid_argument);
-  BOOST_CHECK_THROW(tangent_space_eigenvalues(H.sparseView(), A.sparseView(), {{3, 2}}), std::invalid_argument);
+  BOOST_CHECK_THROW(tangent_space_eigenvalues(H.sparseView(), A.sparseView(), {{3, 2}}),
+                    std::invalid_argument);
   // Without constraints the spectrum of H itself (the identity's).
   const VecX free = tangent_space_eigenvalues(H.sparseView(), MatX(0, 4).sparseView(), {{0, 4}});
   BOOST_TEST(free.size() == 4);

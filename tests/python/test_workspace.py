@@ -31,6 +31,20 @@ def test_samples_equal_the_tool_and_do_not_depend_on_threads(planar):
             assert sample.platforms[0].position.tolist() == point["platforms"]["platform"]["position"]
 
 
+def test_samples_carry_the_tools_verdicts(planar):
+    got = pcr.sample_workspace(planar, samples=2, seed=3, stability_verdict=True)
+    ref = run_tool("workspace", model_path("planar_three_rod"), "--samples", "2", "--seed", "3",
+                   "--stability")
+    for point in ref["points"]:
+        sample = got.samples[point["index"]]
+        if point["status"] == "converged":
+            assert sample.stability.verdict == point["stability"]["verdict"]
+            assert sample.stability.margin == point["stability"]["margin"]
+        else:
+            assert sample.stability.verdict == "not_checked"
+    assert pcr.sample_workspace(planar, samples=1, seed=3).samples[0].stability.verdict == "not_checked"
+
+
 def test_split_runs_give_the_same_samples(planar):
     whole = pcr.sample_workspace(planar, samples=4, seed=5)
     tail = pcr.sample_workspace(planar, samples=2, seed=5, first_sample=2)

@@ -41,8 +41,10 @@ inline std::string csv_pose_header(const std::string& name) {
 }
 
 /// The columns of a solve's summary (csv_summary) and of its stability verdict (csv_stability).
-inline constexpr const char* kCsvSummaryHeader = "status,iterations,residual_max_abs,wall_time_seconds,message";
-inline constexpr const char* kCsvStabilityHeader = "stability,unstable_modes,stability_margin,stability_reason";
+inline constexpr const char* kCsvSummaryHeader =
+    "status,iterations,residual_max_abs,wall_time_seconds,message";
+inline constexpr const char* kCsvStabilityHeader =
+    "stability,unstable_modes,stability_margin,stability_reason";
 
 /// "status,iterations,residual_max_abs,wall_time_seconds,"message"" of a solve.
 inline std::string csv_summary(const SolveSummary& s) {

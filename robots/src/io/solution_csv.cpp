@@ -11,7 +11,6 @@ namespace {
 
 using io_detail::csv_number;
 
-
 std::ofstream open_file(const std::filesystem::path& path) {
   std::ofstream file(path);
   require(static_cast<bool>(file), "cannot write '", path.string(), "'");
@@ -47,8 +46,8 @@ void write_solution_csv(const std::string& directory, const RobotModel& model,
   const fs::path summary_path = dir / "summary.csv";
   std::ofstream summary = open_file(summary_path);
   summary << io_detail::kCsvSummaryHeader << ',' << io_detail::kCsvStabilityHeader << '\n'
-          << io_detail::csv_summary(solution.summary) << ',' << io_detail::csv_stability(solution.stability_verdict)
-          << '\n';
+          << io_detail::csv_summary(solution.summary) << ','
+          << io_detail::csv_stability(solution.stability_verdict) << '\n';
   close_file(summary, summary_path);
 
   const fs::path platforms_path = dir / "platforms.csv";

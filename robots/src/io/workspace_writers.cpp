@@ -2,23 +2,38 @@
 #include "pcr/robots/io/workspace_writers.hpp"
 #include "csv_fields.hpp"
 #include "pcr/robots/io/json_writer.hpp"
+#include "stability_output.hpp"
 
 namespace pcr {
 
 using io_detail::csv_number;
 
+namespace {
+
+bool has_stability_verdicts(const WorkspaceResult& result) {
+  for (const WorkspaceSample& s : result.samples)
+    if (s.stability.verdict != StabilityVerdict::NotChecked) return true;
+  return false;
+}
+
+}  // namespace
+
 void write_workspace_csv(std::ostream& out, const RobotModel& model, const WorkspaceResult& result) {
+  const bool verdicts = has_stability_verdicts(result);  // their columns after the message
   out << "sample";
   for (const ActuationInput& input : model.inputs()) out << ',' << input.name;
   for (const Platform& platform : model.platforms()) out << io_detail::csv_pose_header(platform.name);
-  out << ",status,iterations,residual_max_abs,wall_time_seconds,message\n";
+  out << ",status,iterations,residual_max_abs,wall_time_seconds,message"
+      << (verdicts ? std::string(",") + io_detail::kCsvStabilityHeader : std::string()) << '\n';
   for (const WorkspaceSample& s : result.samples) {
     out << s.index;
     for (int i = 0; i < s.inputs.size(); ++i) out << ',' << csv_number(s.inputs[i]);
     for (size_t p = 0; p < model.platforms().size(); ++p)
       out << (s.converged() && p < s.platforms.size() ? io_detail::csv_pose(s.platforms[p]) : ",,,,,,,");
     out << ',' << to_string(s.status) << ',' << s.iterations << ',' << csv_number(s.residual_max_abs) << ','
-        << csv_number(s.wall_time_seconds) << ',' << io_detail::csv_quote(s.message) << '\n';
+        << csv_number(s.wall_time_seconds) << ',' << io_detail::csv_quote(s.message);
+    if (verdicts) out << ',' << io_detail::csv_stability(s.stability);
+    out << '\n';
   }
 }
 
@@ -47,6 +62,7 @@ void write_sample(JsonWriter& json, const RobotModel& model, const WorkspaceSamp
   json.member("iterations", s.iterations);
   json.member("residual_max_abs", s.residual_max_abs);
   json.member("message", s.message);
+  write_stability_member(json, s.stability);  // the same object as fk's, when checked
   json.end_object();
 }
 

@@ -174,7 +174,8 @@ RitzEquilibrium ritz_equilibrium(const Problem& p, VecX e, const Active& a) {
 /// n eps 3.9e8 ~ 3e-5 (n a few hundred).
 void count_on_tangent_space(const Problem& p, const RitzEquilibrium& r, const VecX& D, Stability& s) {
   std::vector<VariableRange> blocks;
-  for (int b = 0; b < p.num_variable_blocks(); ++b) blocks.push_back({p.variable(b).offset, p.variable(b).size});
+  for (int b = 0; b < p.num_variable_blocks(); ++b)
+    blocks.push_back({p.variable(b).offset, p.variable(b).size});
   const SpMat Hs = D.asDiagonal() * r.H * D.asDiagonal();
   const VecX lambda = tangent_space_eigenvalues(Hs, r.Ja * D.asDiagonal(), blocks);
   const double tolerance = static_cast<double>(lambda.size()) * std::numeric_limits<double>::epsilon() *

@@ -118,6 +118,7 @@ WorkspaceSample solve_workspace_sample(const ForwardKinematics& prototype, std::
     s.jacobian_evaluations = solution.summary.jacobian_evaluations;
     s.residual_max_abs = solution.summary.residual_max_abs;
     s.message = solution.summary.message;
+    s.stability = solution.stability_verdict;
     s.wall_time_seconds = seconds_since(start);
     return s;
   } catch (const std::bad_alloc&) {

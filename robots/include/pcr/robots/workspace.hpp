@@ -47,6 +47,9 @@ struct WorkspaceSample {
   double residual_max_abs = 0.0;
   double wall_time_seconds = 0.0;  ///< the only field that is not reproducible
   std::string message;             ///< the solve's message (why it failed; fallbacks taken)
+  /// The verdict of a converged sample when options.kinematics.stability_verdict (robot_stability.hpp),
+  /// else NotChecked.
+  Stability stability;
   bool converged() const { return status == SolveStatus::Converged; }
 };
 

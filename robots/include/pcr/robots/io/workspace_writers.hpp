@@ -12,11 +12,13 @@ namespace pcr {
 
 /// CSV, one row per sample: sample (its index), the inputs by name, NAME.x, .y, .z, .qw, .qx, .qy, .qz
 /// per platform (empty fields when the sample failed), status, iterations, residual_max_abs,
-/// wall_time_seconds, message (quoted).
+/// wall_time_seconds, message (quoted), and where a sample has a verdict (WorkspaceOptions' kinematics
+/// stability_verdict): stability, unstable_modes, stability_margin, stability_reason (as the path CSV).
 void write_workspace_csv(std::ostream& out, const RobotModel& model, const WorkspaceResult& result);
 
 /// JSON object {model, seed, first_sample, samples, failures, threads, wall_time_seconds, inputs: [names],
-/// points: [{index, status, inputs, platforms (converged only), iterations, residual_max_abs, message}],
+/// points: [{index, status, inputs, platforms (converged only), iterations, residual_max_abs, message,
+/// stability (checked samples only: the object of the fk JSON)}],
 /// non_finite_values}; returns how many numbers were not finite (written as null).
 int write_workspace_json(std::ostream& out, const RobotModel& model, const WorkspaceResult& result);
 
