@@ -4,6 +4,9 @@
 // equilibrium on a refined mesh (the check of verdicts against the discretisation).
 #include <boost/test/unit_test.hpp>
 
+#include <cmath>
+#include <string>
+
 #include "kinematics/coarse_continuation.hpp"
 #include "kinematics/energy_model.hpp"
 #include "pcr/solve/ipopt_solver.hpp"
@@ -32,6 +35,17 @@ inline double energy_minimised_from(const RobotAssembly& a, const VecX& x, doubl
 inline double energy_at(const RobotAssembly& a, const VecX& x) {
   const kinematics::EnergyModel energy(a, x);
   return energy.energy(energy.from_state(x));
+}
+
+/// Checks that x is not a minimum of the energy: the minimisation started 1e-4 L0 off it reaches an energy
+/// lower than x's by more than 1e-3 of it, far beyond the two discretisations' difference (5e-7
+/// relative, energy_fallback.cpp). `where` names the state in the message.
+inline void check_energy_descends_from(const RobotAssembly& a, const VecX& x, const std::string& where) {
+  const double V = energy_at(a, x);
+  Vec3 platform;
+  const double lower = energy_minimised_from(a, x, 1e-4, platform);
+  BOOST_TEST_MESSAGE(where << ": V " << V << " J, minimised " << lower << " J");
+  BOOST_TEST(lower < V - 1e-3 * std::abs(V), where);
 }
 
 /// The equilibrium x of `from` carried to the assembly `to` of the same model on another mesh (MeshTransfer:
