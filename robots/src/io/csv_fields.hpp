@@ -55,8 +55,7 @@ inline std::string csv_summary(const SolveSummary& s) {
 /// "verdict,unstable_modes,margin,"reason"": the count and margin empty where nothing was counted
 /// (not checked, unknown).
 inline std::string csv_stability(const Stability& v) {
-  const bool counted = v.verdict == StabilityVerdict::Stable || v.verdict == StabilityVerdict::Unstable ||
-                       v.verdict == StabilityVerdict::Critical;
+  const bool counted = is_counted(v);
   return std::string(to_string(v.verdict)) + ',' + (counted ? std::to_string(v.unstable_modes) : "") + ',' +
          (counted ? csv_number(v.margin) : "") + ',' + csv_quote(v.reason);
 }

@@ -210,6 +210,11 @@ StabilityVerdict verdict_of(int unstable_modes, int neutral_modes) {
   return StabilityVerdict::Stable;
 }
 
+bool is_counted(const Stability& s) {
+  return s.verdict == StabilityVerdict::Stable || s.verdict == StabilityVerdict::Unstable ||
+         s.verdict == StabilityVerdict::Critical;
+}
+
 Stability unknown_stability(std::string reason) {
   Stability s;
   s.verdict = StabilityVerdict::Unknown;

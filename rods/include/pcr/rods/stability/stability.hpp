@@ -47,6 +47,8 @@ struct Stability {
 
 /// Stable / Unstable / Critical from the counts (unstable first, then neutral).
 StabilityVerdict verdict_of(int unstable_modes, int neutral_modes);
+/// Whether s is a count (Stable, Unstable or Critical): unstable_modes and margin hold values.
+bool is_counted(const Stability& s);
 /// A Stability with verdict Unknown and the reason.
 Stability unknown_stability(std::string reason);
 /// "1 unstable mode", "n unstable modes" (for messages).
