@@ -16,7 +16,9 @@ int unstable_mode_count(const RobotAssembly& assembly, const VecX& x) {
   return unstable_mode_count(robot_stability(assembly, x));
 }
 
-int unstable_mode_count(const Stability& s) { return is_counted(s) ? s.unstable_modes : -1; }
+int unstable_mode_count(const Stability& s) {
+  return is_counted(s) ? s.unstable_modes : -1;
+}
 
 namespace {
 
