@@ -13,6 +13,7 @@
 #include <sstream>
 #include <string>
 
+#include "kinematics/arclength_corrector.hpp"
 #include "paths/path_fixtures.hpp"
 #include "pcr/robots/branch_check.hpp"
 #include "pcr/robots/kinematics.hpp"
@@ -160,6 +161,38 @@ double fold_error(const RobotAssembly& a, const PathThroughFoldsResult& r, const
   return (u - fold.inputs).cwiseAbs().maxCoeff();
 }
 
+/// The state on the branch beyond a fold of segment 0 of `path` where its path parameter has come back to
+/// `lambda_end`: the arclength corrector (kinematics/arclength_corrector.hpp, the path's own) on the line
+/// from the trace point `before` (on the branch before the fold: the corrector's start sets its metric
+/// there) to path[1], stepped on from the trace point `beyond` (the first past the fold) with its tangent
+/// towards decreasing lambda; the step halved where the corrector fails or the tangent turns forward (a
+/// second fold: not expected on the arch), grown by 1.5 up to 0.02 where it converges.
+VecX along_branch_beyond(const RobotAssembly& a, const std::vector<VecX>& path, const TracePoint& before,
+                         const TracePoint& beyond, double lambda_end) {
+  const double l0 = before.path_parameter;  // the line's parameter s = (lambda - l0) / (1 - l0)
+  const auto s_of = [l0](double lambda) { return (lambda - l0) / (1.0 - l0); };
+  kinematics::ArcCorrector arc(a, path[0] + l0 * (path[1] - path[0]), path[1], 1e-10);
+  kinematics::ArcPoint p, q;
+  BOOST_TEST_REQUIRE(arc.start(before.state, p));
+  kinematics::ArcPoint guess = p;
+  guess.x = beyond.state;
+  guess.lambda = s_of(beyond.path_parameter);
+  VecX back = VecX::Zero(p.tangent.size());
+  back[back.size() - 1] = -1.0;
+  BOOST_TEST_REQUIRE(arc.at_lambda(guess, back, guess.lambda, p));
+  double ds = 0.02;
+  for (int k = 0; k < 400 && p.lambda > s_of(lambda_end) && ds > 1e-8; ++k) {
+    if (arc.arclength_step(p, ds, q) && q.tau() < 0.0) {
+      p = q;
+      ds = std::min(0.02, 1.5 * ds);
+    } else {
+      ds *= 0.5;
+    }
+  }
+  BOOST_TEST_REQUIRE(p.lambda <= s_of(lambda_end));
+  return p.x;
+}
+
 // An arch: a steel strip (0.5 mm in the plane of the arch, 4 mm across it, so that it stays planar) of
 // 0.22 m between two clamps 0.2 m apart, joined at its middle by a massless link (the platform, to read the
 // arch's middle). The left clamp turns about y (input, rad; positive tilts its tangent down). From -0.2
@@ -234,15 +267,14 @@ BOOST_AUTO_TEST_CASE(arch_fold_located_and_counted) {
   BOOST_TEST(around.before->unstable_modes == 0);
   BOOST_TEST(around.beyond->unstable_modes == 1);
   BOOST_TEST(test::discrete_robot_inertia(*a, around.before->state, kDiscreteSegments).negative == 0);
-  // Farther along the branch beyond the fold (where FoldPolicy::Snap follows it looking for a way back to
-  // the fold's input), away from the fold where the discrete model's own fold (about 0.1 % off) does not
-  // matter: 1 unstable mode both ways.
-  o.at_fold = FoldPolicy::Snap;
-  const PathThroughFoldsResult snap = solve_path_through_folds(a, KinematicsOptions{}, path, o);
-  const AroundFold far = around_fold(snap, fold.path_parameter, 0.1);
-  BOOST_TEST_REQUIRE(far.beyond != nullptr);
-  BOOST_TEST(far.beyond->unstable_modes == 1);
-  BOOST_TEST(test::discrete_robot_inertia(*a, far.beyond->state, kDiscreteSegments).negative == 1);
+  // Farther along the branch beyond the fold, the clamp turned 0.15 rad back from the fold's 0.538 rad:
+  // 1 unstable mode both ways. The discrete model (16 segments) has its own fold nearer: on this branch its
+  // smallest Jacobi-scaled eigenvalue is +7e-8 at 0.522 rad, -1.4e-7 to -1.6e-7 from 0.415 to 0.357 rad
+  // (clear of its zero tolerance, 1e-9); below 0.35 rad its Newton relaxation stops converging.
+  const VecX far = along_branch_beyond(*a, path, *around.before, *around.beyond, fold.path_parameter - 0.15);
+  const Stability far_verdict = robot_stability(*a, far);
+  BOOST_TEST((far_verdict.verdict == StabilityVerdict::Unstable && far_verdict.unstable_modes == 1));
+  BOOST_TEST(test::discrete_robot_inertia(*a, far, kDiscreteSegments).negative == 1);
 }
 
 // planar_three_rod, its middle rod fed from its default length (0.2912 m) to 0.34 m: the branch (1
@@ -278,11 +310,15 @@ BOOST_AUTO_TEST_CASE(planar_robot_fold_and_snap) {
   BOOST_TEST(snap.jump_position > 5e-3);
   BOOST_TEST(r.points[1].summary.converged(), r.points[1].summary.message);
 
-  const AroundFold around = around_fold(r, fold.path_parameter, 0.02);
+  const AroundFold around = around_fold(r, fold.path_parameter, 0.0);
   BOOST_TEST_REQUIRE((around.before && around.beyond));
   BOOST_TEST(test::discrete_robot_inertia(*a, r.trace.front().state, kDiscreteSegments).negative == 1);
-  BOOST_TEST(around.beyond->unstable_modes == 2);
-  BOOST_TEST(test::discrete_robot_inertia(*a, around.beyond->state, kDiscreteSegments).negative == 2);
+  // On the branch beyond the fold, 0.02 of the segment (0.97 mm of the middle rod) back from it.
+  const VecX beyond =
+      along_branch_beyond(*a, path, *around.before, *around.beyond, fold.path_parameter - 0.02);
+  const Stability beyond_verdict = robot_stability(*a, beyond);
+  BOOST_TEST((beyond_verdict.verdict == StabilityVerdict::Unstable && beyond_verdict.unstable_modes == 2));
+  BOOST_TEST(test::discrete_robot_inertia(*a, beyond, kDiscreteSegments).negative == 2);
   // The landing point (in the trace as the point the path goes on from).
   const TracePoint* landed = landing_of(*a, r, snap);
   BOOST_TEST_REQUIRE(landed != nullptr);

@@ -1,6 +1,6 @@
 // The snap's search for a landing point past a fold (segment_tracer.hpp, docs/paths_through_folds.md
-// "Events"): along the branch beyond the fold, by Newton from the fold state pushed along the fold mode,
-// by the damped motion of the platforms from there.
+// "Events"): by Newton from the fold state pushed along the fold mode, by the damped motion of the
+// platforms from there.
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -14,8 +14,6 @@ namespace pcr::kinematics {
 
 namespace {
 
-/// Steps the snap may follow the curve past a fold before it tries Newton from other starts.
-constexpr int kSnapBranchSteps = 60;
 /// Pushes of the fold state along the fold mode (pushed_along_fold_mode: the largest platform or passive
 /// joint coordinate moved by this much; 0.01 = 1 % of the length scale or ~0.02 rad) from which the snap
 /// starts Newton, and the damped motion. The random sweeps' landings lie 2-15 mm and 0.04-0.75 rad from
@@ -34,7 +32,6 @@ bool SegmentTracer::snap(const ArcPoint& fold, int nu_fold_side, ArcPoint& landi
   const auto acceptable = [nu_fold_side](int nu) {
     return nu_fold_side < 0 || (nu >= 0 && nu <= nu_fold_side);
   };
-  if (snap_along_branch(fold, target, acceptable, landing, nu_landing)) return true;
   if (snap_by_newton(fold, target, acceptable, landing, nu_landing)) return true;
   if (snap_by_pseudo_transient(fold, target, acceptable, landing, nu_landing)) return true;
   std::ostringstream why;
@@ -44,27 +41,6 @@ bool SegmentTracer::snap(const ArcPoint& fold, int nu_fold_side, ArcPoint& landi
     why << "no equilibrium as stable as the ending branch (" << unstable_modes_text(nu_fold_side)
         << ") found to snap to at path parameter " << segment_ + fold.lambda;
   out_.stopped = why.str();
-  return false;
-}
-
-/// Follows the curve past the fold (the branch beyond it, lambda decreasing) until it comes back to the
-/// fold's inputs going forward at an acceptable point (an S-shaped curve: past a second fold), within
-/// kSnapBranchSteps steps.
-bool SegmentTracer::snap_along_branch(const ArcPoint& fold, double target, const Acceptable& acceptable,
-                                      ArcPoint& landing, int& nu_landing) {
-  ArcPoint p = fold, q;
-  int nu = count(fold.x), nu_q = 0;
-  double ds = 0.25 * o_.max_step, used = 0.0;
-  for (int k = 0; k < kSnapBranchSteps && budget_left() && p.lambda > -1.0; ++k) {
-    if (!step(p, nu, ds, q, nu_q, used)) return false;
-    if (p.tau() > 0.0 && q.tau() > 0.0 && p.lambda < target && q.lambda >= target &&
-        arc_.at_lambda(p, q.tangent, target, landing)) {
-      nu_landing = unstable_mode_count(a_, landing.x);
-      if (acceptable(nu_landing)) return true;
-    }
-    p = q;
-    nu = nu_q;
-  }
   return false;
 }
 

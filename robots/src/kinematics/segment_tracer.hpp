@@ -44,8 +44,6 @@ class SegmentTracer {
   bool finish_at_end(const ArcPoint& p, const ArcPoint& q);
   bool snap(const ArcPoint& fold, int nu_fold_side, ArcPoint& landing, int& nu_landing);
   using Acceptable = std::function<bool(int)>;
-  bool snap_along_branch(const ArcPoint& fold, double target, const Acceptable& acceptable, ArcPoint& landing,
-                         int& nu_landing);
   bool snap_by_newton(const ArcPoint& fold, double target, const Acceptable& acceptable, ArcPoint& landing,
                       int& nu_landing);
   bool snap_by_pseudo_transient(const ArcPoint& fold, double target, const Acceptable& acceptable,

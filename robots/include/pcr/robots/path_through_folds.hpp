@@ -9,10 +9,9 @@
 //    there). Past a fold the branch turns back: the path cannot stay on it. Reported with where it is
 //    (path parameter, inputs) and the unstable-mode counts on both sides (robot_stability.hpp).
 //  - Snap-through (FoldPolicy::Snap): the robot leaves the ending branch for another equilibrium at the
-//    same inputs; found by following the curve on past the fold until it comes back to the fold's inputs
-//    at a stable point (an S-shaped branch), else by Newton from the fold state pushed along the fold
-//    mode, else by the damped motion of the platforms from there (pseudo-transient continuation);
-//    reported with the jump of the platforms. FoldPolicy::Stop ends the path at the fold.
+//    same inputs; found by Newton from the fold state pushed along the fold mode, else by the damped
+//    motion of the platforms from there (pseudo-transient continuation); reported with the jump of the
+//    platforms. FoldPolicy::Stop ends the path at the fold.
 //  - Bifurcation: the number of unstable modes changes between two accepted points without a fold
 //    (Maddocks, ARMA 99, 1987: at a fold the index changes by one with the sign of the lambda tangent);
 //    located by bisection on the count, reported, and the path stays on its branch.
