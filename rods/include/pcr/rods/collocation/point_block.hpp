@@ -135,11 +135,8 @@ class PointBlock final : public ResidualBlock {
       scatter([&dr](int row, int k) { return dr(row, k); }, jacobians);
     } else {
       using D = Dual<NL>;
-      Eigen::Matrix<D, NL, 1> z;  // default-constructed duals are zero: set the value and the unit seed
-      for (int k = 0; k < NL; ++k) {
-        z[k].a = zv[k];
-        z[k].v[k] = 1.0;
-      }
+      Eigen::Matrix<D, NL, 1> z;
+      for (int k = 0; k < NL; ++k) z[k] = D::variable(zv[k], k);
       std::array<D, NR> r;
       kernel_(z, r.data());
       for (int row = 0; row < NR; ++row) residual[row] = r[row].a;
