@@ -7,10 +7,6 @@
 
 namespace pcr::kinematics {
 
-namespace {
-using RowJacobian = Eigen::SparseMatrix<double, Eigen::RowMajor>;
-}
-
 ArcCorrector::ArcCorrector(const RobotAssembly& assembly, const VecX& u_a, const VecX& u_b, double tolerance)
     : assembly_(assembly), u_a_(u_a), u_b_(u_b), tolerance_(tolerance) {
   const Problem& problem = assembly.problem();
@@ -58,38 +54,81 @@ bool ArcCorrector::evaluate(const VecX& y, const VecX& normal, VecX& residual) {
   ++jacobians_;
   residual = c - row_lower_;
   if (!residual.allFinite()) return false;
+  J.makeCompressed();
+  if (!same_pattern(J)) build_pattern(J);
+  // The values into the kept pattern: each entry of J onto its slot (a free column's, or an input
+  // column's onto its row's lambda slot times du_i: R_lambda = R_u du), then the hyperplane row.
+  double* values = matrix_.valuePtr();
+  std::fill(values, values + matrix_.nonZeros(), 0.0);
+  const double* entries = J.valuePtr();
+  for (size_t k = 0; k < slot_.size(); ++k)
+    if (slot_[k] >= 0) values[slot_[k]] += factor_[k] * entries[k];
+  for (size_t j = 0; j < normal_slot_.size(); ++j) values[normal_slot_[j]] = normal[j] * weights_[j];
+  return Eigen::Map<const VecX>(values, matrix_.nonZeros()).allFinite();
+}
+
+bool ArcCorrector::same_pattern(const RowJacobian& J) const {
+  return J.nonZeros() == static_cast<Eigen::Index>(pattern_inner_.size()) &&
+         J.outerSize() + 1 == static_cast<Eigen::Index>(pattern_outer_.size()) &&
+         std::equal(pattern_outer_.begin(), pattern_outer_.end(), J.outerIndexPtr()) &&
+         std::equal(pattern_inner_.begin(), pattern_inner_.end(), J.innerIndexPtr());
+}
+
+void ArcCorrector::build_pattern(const RowJacobian& J) {
+  const Problem& problem = assembly_.problem();
   const int n = static_cast<int>(free_.size());
   // Column map: free index, or -(input + 2) for an input column, -1 for other fixed ones.
   std::vector<int> column(problem.num_variables(), -1);
   for (int i = 0; i < n; ++i) column[free_[i]] = i;
   for (size_t i = 0; i < inputs_.size(); ++i) column[inputs_[i]] = -static_cast<int>(i) - 2;
-  const VecX du = u_b_ - u_a_;
   std::vector<Eigen::Triplet<double>> entries;
   entries.reserve(J.nonZeros() + 2 * (n + 1));
   for (int r = 0; r < J.outerSize(); ++r) {
     bool touches_input = false;
-    double r_lambda = 0.0;  // R_lambda = R_u du on this row
     for (RowJacobian::InnerIterator it(J, r); it; ++it) {
       const int k = column[it.col()];
-      if (k >= 0) {
-        entries.emplace_back(r, k, it.value());
-      } else if (k <= -2) {
-        touches_input = true;
-        r_lambda += it.value() * du[-k - 2];
-      }
+      if (k >= 0) entries.emplace_back(r, k, 0.0);
+      touches_input = touches_input || k <= -2;
     }
-    if (touches_input) entries.emplace_back(r, n, r_lambda);  // same pattern at every evaluation
+    if (touches_input) entries.emplace_back(r, n, 0.0);
   }
-  for (int j = 0; j <= n; ++j) entries.emplace_back(n, j, normal[j] * weights_[j]);
+  for (int j = 0; j <= n; ++j) entries.emplace_back(n, j, 0.0);
   matrix_.resize(n + 1, n + 1);
   matrix_.setFromTriplets(entries.begin(), entries.end());
   matrix_.makeCompressed();
-  return Eigen::Map<const VecX>(matrix_.valuePtr(), matrix_.nonZeros()).allFinite();
+  // The slot of entry (row, col) in the column-major storage.
+  const auto slot_of = [this](int row, int col) {
+    const int* begin = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[col];
+    const int* end = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[col + 1];
+    return static_cast<int>(std::lower_bound(begin, end, row) - matrix_.innerIndexPtr());
+  };
+  const VecX du = u_b_ - u_a_;
+  slot_.assign(J.nonZeros(), -1);
+  factor_.assign(J.nonZeros(), 0.0);
+  for (int r = 0; r < J.outerSize(); ++r)
+    for (Eigen::Index e = J.outerIndexPtr()[r]; e < J.outerIndexPtr()[r + 1]; ++e) {
+      const int k = column[J.innerIndexPtr()[e]];
+      if (k >= 0) {
+        slot_[e] = slot_of(r, k);
+        factor_[e] = 1.0;
+      } else if (k <= -2) {
+        slot_[e] = slot_of(r, n);
+        factor_[e] = du[-k - 2];
+      }
+    }
+  normal_slot_.resize(n + 1);
+  for (int j = 0; j <= n; ++j) normal_slot_[j] = slot_of(n, j);
+  pattern_outer_.assign(J.outerIndexPtr(), J.outerIndexPtr() + J.outerSize() + 1);
+  pattern_inner_.assign(J.innerIndexPtr(), J.innerIndexPtr() + J.nonZeros());
 }
 
-bool ArcCorrector::factorize() { return lu_.factorize(matrix_); }
+bool ArcCorrector::factorize() {
+  return lu_.factorize(matrix_);
+}
 
-VecX ArcCorrector::solve(const VecX& rhs) const { return lu_.solve(rhs); }
+VecX ArcCorrector::solve(const VecX& rhs) const {
+  return lu_.solve(rhs);
+}
 
 bool ArcCorrector::correct(const VecX& normal, const VecX& y0, double offset, VecX& y, VecX& tangent_out,
                            int max_iterations) {
