@@ -8,7 +8,6 @@
 
 #include "pcr/math/quaternion.hpp"
 #include "pcr/math/so3.hpp"
-#include "pcr/solve/free_jacobian.hpp"
 #include "pcr/solve/grouped_lu.hpp"
 #include "pcr/solve/newton_solver.hpp"
 
@@ -87,13 +86,11 @@ class DampedSystem {
   bool evaluate(const VecX& x, const VecX& anchor, double inv_tau, VecX& g, bool with_matrix) {
     VecX c;
     std::vector<Eigen::Triplet<double>> entries;  // the dampers' and the shift's entries
-    FreeJacobian J_free;
+    RowJacobian J;
     if (with_matrix) {
-      RowJacobian J;
       a_.problem().evaluate_residuals_and_jacobian(x, c, J);
       ++jacobians_;
-      J_free = free_jacobian(a_.problem(), J);
-      if (J_free.matrix.rows() != free_) return false;  // not square
+      if (J.rows() != free_) return false;  // not square
       entries.reserve(16 * dampers_.size() + shifted_.size());
     } else {
       a_.problem().evaluate_residuals(x, c);
@@ -107,10 +104,20 @@ class DampedSystem {
     }
     if (!g.allFinite()) return false;
     if (!with_matrix) return true;
-    Eigen::SparseMatrix<double> damping(free_, free_);
-    damping.setFromTriplets(entries.begin(), entries.end());
-    M_ = J_free.matrix + damping;
-    return Eigen::Map<const VecX>(M_.valuePtr(), M_.nonZeros()).allFinite();
+    // M = J_free + the dampers' and the shift's entries, written into the kept pattern (build_pattern).
+    J.makeCompressed();
+    if (!same_pattern(J)) build_pattern(J, entries);
+    double* values = M_.valuePtr();
+    std::fill(values, values + M_.nonZeros(), 0.0);
+    const double* jv = J.valuePtr();
+    for (size_t k = 0; k < slot_.size(); ++k)
+      if (slot_[k] >= 0) values[slot_[k]] += jv[k];
+    for (const Eigen::Triplet<double>& t : entries) {
+      const int slot = slot_of(t.row(), t.col());
+      if (slot < 0) return false;  // not in the pattern: cannot happen (the same entries every time)
+      values[slot] += t.value();
+    }
+    return Eigen::Map<const VecX>(values, M_.nonZeros()).allFinite();
   }
   /// The structured LU of the FK Newton systems (the dampers and the shift keep the rods' bands and the
   /// border), the sparse LU where it has no such structure or a block is singular (grouped_lu.hpp).
@@ -155,6 +162,39 @@ class DampedSystem {
     }
   }
 
+  bool same_pattern(const RowJacobian& J) const {
+    return J.nonZeros() == static_cast<Eigen::Index>(pattern_inner_.size()) &&
+           J.outerSize() + 1 == static_cast<Eigen::Index>(pattern_outer_.size()) &&
+           std::equal(pattern_outer_.begin(), pattern_outer_.end(), J.outerIndexPtr()) &&
+           std::equal(pattern_inner_.begin(), pattern_inner_.end(), J.innerIndexPtr());
+  }
+  /// M's pattern: J's free columns and the damper and shift entries (at the same places at every
+  /// evaluation); the slot of each of J's entries in it.
+  void build_pattern(const RowJacobian& J, const std::vector<Eigen::Triplet<double>>& damping) {
+    std::vector<Eigen::Triplet<double>> pattern;
+    pattern.reserve(J.nonZeros() + damping.size());
+    for (int r = 0; r < J.outerSize(); ++r)
+      for (RowJacobian::InnerIterator it(J, r); it; ++it)
+        if (column_[it.col()] >= 0) pattern.emplace_back(r, column_[it.col()], 0.0);
+    for (const Eigen::Triplet<double>& t : damping) pattern.emplace_back(t.row(), t.col(), 0.0);
+    M_.resize(free_, free_);
+    M_.setFromTriplets(pattern.begin(), pattern.end());
+    M_.makeCompressed();
+    slot_.assign(J.nonZeros(), -1);
+    for (int r = 0; r < J.outerSize(); ++r)
+      for (Eigen::Index e = J.outerIndexPtr()[r]; e < J.outerIndexPtr()[r + 1]; ++e)
+        if (column_[J.innerIndexPtr()[e]] >= 0) slot_[e] = slot_of(r, column_[J.innerIndexPtr()[e]]);
+    pattern_outer_.assign(J.outerIndexPtr(), J.outerIndexPtr() + J.outerSize() + 1);
+    pattern_inner_.assign(J.innerIndexPtr(), J.innerIndexPtr() + J.nonZeros());
+  }
+  /// The index of entry (row, col) of M in its value array, -1 when M has no such entry.
+  int slot_of(int row, int col) const {
+    const int* begin = M_.innerIndexPtr() + M_.outerIndexPtr()[col];
+    const int* end = M_.innerIndexPtr() + M_.outerIndexPtr()[col + 1];
+    const int* at = std::lower_bound(begin, end, row);
+    return at != end && *at == row ? static_cast<int>(at - M_.innerIndexPtr()) : -1;
+  }
+
   /// The free columns without a damper (the rods' unknowns, contact variables, ...).
   void list_shifted_columns() {
     std::vector<bool> damped(column_.size(), false);
@@ -174,6 +214,8 @@ class DampedSystem {
   int free_ = 0;
   std::vector<Damper> dampers_;
   Eigen::SparseMatrix<double> M_;
+  std::vector<int> pattern_outer_, pattern_inner_;  // J's pattern M was built for
+  std::vector<int> slot_;  // per entry of J: its value's index in M, -1 for a fixed column
   GroupedLu lu_;
   int jacobians_ = 0;
 };
