@@ -28,25 +28,10 @@ struct Dual {
     return d;
   }
 
-  Dual& operator+=(const Dual& b) {
-    a += b.a;
-    v += b.v;
-    return *this;
-  }
-  Dual& operator-=(const Dual& b) {
-    a -= b.a;
-    v -= b.v;
-    return *this;
-  }
-  Dual& operator*=(const Dual& b) {
-    v = v * b.a + b.v * a;
-    a *= b.a;
-    return *this;
-  }
-  Dual& operator/=(const Dual& b) {
-    *this = *this / b;
-    return *this;
-  }
+  Dual& operator+=(const Dual& b) { a += b.a; v += b.v; return *this; }
+  Dual& operator-=(const Dual& b) { a -= b.a; v -= b.v; return *this; }
+  Dual& operator*=(const Dual& b) { v = v * b.a + b.v * a; a *= b.a; return *this; }
+  Dual& operator/=(const Dual& b) { *this = *this / b; return *this; }
   friend Dual operator-(const Dual& x) { return Dual(-x.a, -x.v); }
   friend Dual operator+(const Dual& x, const Dual& y) { return Dual(x.a + y.a, x.v + y.v); }
   friend Dual operator-(const Dual& x, const Dual& y) { return Dual(x.a - y.a, x.v - y.v); }
@@ -75,9 +60,7 @@ Dual<N> sqrt(const Dual<N>& x) {
 }
 
 /// Value part of a double or a Dual.
-inline double value_of(double x) {
-  return x;
-}
+inline double value_of(double x) { return x; }
 template <int N>
 double value_of(const Dual<N>& x) {
   return x.a;
@@ -92,15 +75,8 @@ struct NumTraits<pcr::Dual<N>> : NumTraits<double> {
   using NonInteger = pcr::Dual<N>;
   using Nested = pcr::Dual<N>;
   using Literal = pcr::Dual<N>;
-  enum {
-    IsComplex = 0,
-    IsInteger = 0,
-    IsSigned = 1,
-    RequireInitialization = 1,
-    ReadCost = 1,
-    AddCost = 1 + N,
-    MulCost = 1 + 2 * N
-  };
+  enum { IsComplex = 0, IsInteger = 0, IsSigned = 1, RequireInitialization = 1, ReadCost = 1,
+         AddCost = 1 + N, MulCost = 1 + 2 * N };
 };
 template <int N, typename BinaryOp>
 struct ScalarBinaryOpTraits<pcr::Dual<N>, double, BinaryOp> {
