@@ -23,7 +23,7 @@ void write_workspace_csv(std::ostream& out, const RobotModel& model, const Works
   out << "sample";
   for (const ActuationInput& input : model.inputs()) out << ',' << input.name;
   for (const Platform& platform : model.platforms()) out << io_detail::csv_pose_header(platform.name);
-  out << ",status,iterations,residual_max_abs,wall_time_seconds,message"
+  out << ',' << io_detail::kCsvSummaryHeader
       << (verdicts ? std::string(",") + io_detail::kCsvStabilityHeader : std::string()) << '\n';
   for (const WorkspaceSample& s : result.samples) {
     out << s.index;

@@ -54,8 +54,11 @@ bool ArcCorrector::evaluate(const VecX& y, const VecX& normal, VecX& residual) {
   ++jacobians_;
   residual = c - row_lower_;
   if (!residual.allFinite()) return false;
-  J.makeCompressed();
-  if (!same_pattern(J)) build_pattern(J);
+  // J keeps its pattern while the problem's structure does (Problem::evaluate_residuals_and_jacobian).
+  if (pattern_version_ != problem.structure_version() || slot_.size() != static_cast<size_t>(J.nonZeros())) {
+    build_pattern(J);
+    pattern_version_ = problem.structure_version();
+  }
   // The values into the kept pattern: each entry of J onto its slot (a free column's, or an input
   // column's onto its row's lambda slot times du_i: R_lambda = R_u du), then the hyperplane row.
   double* values = matrix_.valuePtr();
@@ -65,13 +68,6 @@ bool ArcCorrector::evaluate(const VecX& y, const VecX& normal, VecX& residual) {
     if (slot_[k] >= 0) values[slot_[k]] += factor_[k] * entries[k];
   for (size_t j = 0; j < normal_slot_.size(); ++j) values[normal_slot_[j]] = normal[j] * weights_[j];
   return Eigen::Map<const VecX>(values, matrix_.nonZeros()).allFinite();
-}
-
-bool ArcCorrector::same_pattern(const RowJacobian& J) const {
-  return J.nonZeros() == static_cast<Eigen::Index>(pattern_inner_.size()) &&
-         J.outerSize() + 1 == static_cast<Eigen::Index>(pattern_outer_.size()) &&
-         std::equal(pattern_outer_.begin(), pattern_outer_.end(), J.outerIndexPtr()) &&
-         std::equal(pattern_inner_.begin(), pattern_inner_.end(), J.innerIndexPtr());
 }
 
 void ArcCorrector::build_pattern(const RowJacobian& J) {
@@ -118,8 +114,6 @@ void ArcCorrector::build_pattern(const RowJacobian& J) {
     }
   normal_slot_.resize(n + 1);
   for (int j = 0; j <= n; ++j) normal_slot_[j] = slot_of(n, j);
-  pattern_outer_.assign(J.outerIndexPtr(), J.outerIndexPtr() + J.outerSize() + 1);
-  pattern_inner_.assign(J.innerIndexPtr(), J.innerIndexPtr() + J.nonZeros());
 }
 
 bool ArcCorrector::factorize() {

@@ -14,6 +14,7 @@
 // Factorised with BorderedBlockLu (lambda one more border column, the hyperplane row one more border
 // row; the rods' bands are those of the FK Newton systems), the sparse LU where a block is singular.
 #include <Eigen/SparseCore>
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -69,8 +70,6 @@ class ArcCorrector {
   /// Evaluates R and the bordered matrix at y with the hyperplane row normal^T W; false if not finite.
   bool evaluate(const VecX& y, const VecX& normal, VecX& residual);
   using RowJacobian = Eigen::SparseMatrix<double, Eigen::RowMajor>;
-  /// Whether J has the sparsity pattern the bordered matrix was built for (build_pattern).
-  bool same_pattern(const RowJacobian& J) const;
   /// The bordered matrix's pattern from J's (its values set by evaluate) and the slot of each of J's
   /// entries in it.
   void build_pattern(const RowJacobian& J);
@@ -81,17 +80,17 @@ class ArcCorrector {
   const RobotAssembly& assembly_;
   VecX u_a_, u_b_;
   double tolerance_;
-  VecX x_template_;                                 // full state holding the fixed variables
-  std::vector<int> free_;                           // global index of each free column
-  std::vector<int> inputs_;                         // global index of each input variable
-  VecX row_lower_;                                  // c_l of the rows (equality rows: c(x) = c_l)
-  VecX weights_;                                    // W: free columns then lambda (size free + 1)
-  Eigen::SparseMatrix<double> matrix_;              // the bordered matrix
-  std::vector<int> pattern_outer_, pattern_inner_;  // J's pattern the bordered matrix was built for
-  std::vector<int> slot_;         // per entry of J: its value's index in matrix_, -1 when not there
-  std::vector<double> factor_;    // per entry of J: 1 (a free column) or du_i (input i: R_lambda)
-  std::vector<int> normal_slot_;  // the hyperplane row's value indices, per column
-  GroupedLu lu_;                  // columns grouped by variable group, lambda a border column
+  VecX x_template_;                     // full state holding the fixed variables
+  std::vector<int> free_;               // global index of each free column
+  std::vector<int> inputs_;             // global index of each input variable
+  VecX row_lower_;                      // c_l of the rows (equality rows: c(x) = c_l)
+  VecX weights_;                        // W: free columns then lambda (size free + 1)
+  Eigen::SparseMatrix<double> matrix_;  // the bordered matrix
+  std::uint64_t pattern_version_ = 0;   // the problem's structure_version() the pattern was built for
+  std::vector<int> slot_;               // per entry of J: its value's index in matrix_, -1 when not there
+  std::vector<double> factor_;          // per entry of J: 1 (a free column) or du_i (input i: R_lambda)
+  std::vector<int> normal_slot_;        // the hyperplane row's value indices, per column
+  GroupedLu lu_;                        // columns grouped by variable group, lambda a border column
   int jacobians_ = 0, iterations_ = 0;
 };
 

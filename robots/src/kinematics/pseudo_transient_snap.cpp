@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -105,8 +106,12 @@ class DampedSystem {
     if (!g.allFinite()) return false;
     if (!with_matrix) return true;
     // M = J_free + the dampers' and the shift's entries, written into the kept pattern (build_pattern).
-    J.makeCompressed();
-    if (!same_pattern(J)) build_pattern(J, entries);
+    // J keeps its pattern while the problem's structure does (Problem::evaluate_residuals_and_jacobian).
+    const std::uint64_t version = a_.problem().structure_version();
+    if (pattern_version_ != version || slot_.size() != static_cast<size_t>(J.nonZeros())) {
+      build_pattern(J, entries);
+      pattern_version_ = version;
+    }
     double* values = M_.valuePtr();
     std::fill(values, values + M_.nonZeros(), 0.0);
     const double* jv = J.valuePtr();
@@ -162,12 +167,6 @@ class DampedSystem {
     }
   }
 
-  bool same_pattern(const RowJacobian& J) const {
-    return J.nonZeros() == static_cast<Eigen::Index>(pattern_inner_.size()) &&
-           J.outerSize() + 1 == static_cast<Eigen::Index>(pattern_outer_.size()) &&
-           std::equal(pattern_outer_.begin(), pattern_outer_.end(), J.outerIndexPtr()) &&
-           std::equal(pattern_inner_.begin(), pattern_inner_.end(), J.innerIndexPtr());
-  }
   /// M's pattern: J's free columns and the damper and shift entries (at the same places at every
   /// evaluation); the slot of each of J's entries in it.
   void build_pattern(const RowJacobian& J, const std::vector<Eigen::Triplet<double>>& damping) {
@@ -184,8 +183,6 @@ class DampedSystem {
     for (int r = 0; r < J.outerSize(); ++r)
       for (Eigen::Index e = J.outerIndexPtr()[r]; e < J.outerIndexPtr()[r + 1]; ++e)
         if (column_[J.innerIndexPtr()[e]] >= 0) slot_[e] = slot_of(r, column_[J.innerIndexPtr()[e]]);
-    pattern_outer_.assign(J.outerIndexPtr(), J.outerIndexPtr() + J.outerSize() + 1);
-    pattern_inner_.assign(J.innerIndexPtr(), J.innerIndexPtr() + J.nonZeros());
   }
   /// The index of entry (row, col) of M in its value array, -1 when M has no such entry.
   int slot_of(int row, int col) const {
@@ -214,8 +211,8 @@ class DampedSystem {
   int free_ = 0;
   std::vector<Damper> dampers_;
   Eigen::SparseMatrix<double> M_;
-  std::vector<int> pattern_outer_, pattern_inner_;  // J's pattern M was built for
-  std::vector<int> slot_;  // per entry of J: its value's index in M, -1 for a fixed column
+  std::uint64_t pattern_version_ = 0;  // the problem's structure_version() M's pattern was built for
+  std::vector<int> slot_;              // per entry of J: its value's index in M, -1 for a fixed column
   GroupedLu lu_;
   int jacobians_ = 0;
 };
