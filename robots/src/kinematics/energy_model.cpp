@@ -121,10 +121,9 @@ void EnergyModel::add_platforms_and_passive_joints(const LinkState& links) {
         std::make_shared<PlatformLoadTerm>(platforms_.back(), forces, points, energy_scale_));
   }
   for (int j : m.passive_joints()) {
-    const Joint& joint = m.joints()[j];
-    passive_.push_back(problem_.add_variable_block("passive." + joint.name, VecX::Zero(1),
-                                                   VecX::Constant(1, joint.lower),
-                                                   VecX::Constant(1, joint.upper)));
+    // Unbounded, as in the collocation system: the joint limits are not enforced (a minimiser held at a
+    // limit would not be an equilibrium of the model, whose joints carry no limit reaction).
+    passive_.push_back(problem_.add_variable_block("passive." + m.joints()[j].name, VecX::Zero(1)));
   }
   if (!passive_.empty())
     problem_.add_objective_term(std::make_shared<PassiveJointTerm>(m, q, passive_, energy_scale_));

@@ -13,8 +13,9 @@
 // collocation form), so the minimiser maps onto the collocation unknowns control point by control point;
 // v = R(q)^T p_s, u = 2 vec(conj(q) q_s) / |q|^2 (R(q) of the normalised q), integrated by Gauss-Legendre
 // with degree + 1 nodes per element. Unknowns: per control point [P (3), Q (4)], per platform [x (3),
-// Q (4)], per passive joint its value (within its limits); the rod lengths are the inputs. The energy is
-// scaled by the assembly's moment scale M0 [J], coupling positions by its length scale L0.
+// Q (4)], per passive joint its value (unbounded, as the collocation's: joint limits are not enforced);
+// the rod lengths are the inputs. The energy is scaled by the assembly's moment scale M0 [J], coupling
+// positions by its length scale L0.
 #include <string>
 #include <vector>
 
