@@ -103,17 +103,6 @@ class IntegralStepBlock final : public ResidualBlock {
   double weight_, scale_;
 };
 
-/// The condensed form with loads, I(u) = sum_j J_j(u) P_j over every control point up to the active ones.
-struct CondensedSummedZ {
-  enum Entry { q, q_u, p_u, p, wrench, L, I, kEntries };
-  static constexpr LocalLayout<kEntries> layout{{{{kCondensedPoint.q, 4, 0},
-                                                  {kCondensedPoint.q, 4, 1},
-                                                  {kCondensedPoint.p, 3, 1},
-                                                  {kCondensedPoint.p, 3, 0},
-                                                  {kDirect, kWrenchSize},
-                                                  {kDirect, 1},
-                                                  {kCondensedPoint.p, 3, kIntegral}}}};
-};
 struct CondensedSummedTipZ {
   enum Entry { p, q, wrench, L, I, kEntries };
   static constexpr LocalLayout<kEntries> layout{{{{kCondensedPoint.p, 3, 0},
@@ -207,9 +196,9 @@ class CondensedLoadedForm final : public RodForm {
     for (int j = 0; j + 1 < b.num_control_points(); ++j) {
       const double u = b.midpoint(j);
       const PointConstants c = b.constants_at(u);
-      b.add_detected<CondensedLoadedZ, 6>(
-          "rod.condensed_field", u, with_integrals(b, b.basis_at(u, 1), u), {wrench, L},
-          [c, c_point, u](const auto& z, auto* r) { condensed_loaded_field(z, c, c_point, u, r); }, pattern);
+      b.add_detected<CondensedLoadedZ, 6>("rod.condensed_field", u, with_integrals(b, b.basis_at(u, 1), u),
+                                          {wrench, L}, CondensedLoadedFieldKernel<CondensedLoadedZ>{c, c_point, u},
+                                          pattern);
     }
     b.add_unit_quaternion_rows(kCondensedLoadedPoint);
     add_integral_rows(b);
@@ -275,18 +264,9 @@ class CondensedSummedForm final : public RodForm {
     for (int j = 0; j + 1 < b.num_control_points(); ++j) {
       const double u = b.midpoint(j);
       const PointConstants c = b.constants_at(u);
-      b.add_detected<CondensedSummedZ, 6>(
-          "rod.condensed_field", u, widened(b, b.basis_at(u, 1), u), {wrench, L},
-          [c, c_point, u](const auto& z, auto* r) {
-            using T = typename std::decay_t<decltype(z)>::Scalar;
-            using Z = CondensedSummedZ;
-            V3<T> n, m;
-            condensed_summed_wrench<Z, T>(z, c, c_point, u, n, m);
-            const T length = get<Z, Z::L>(z)[0];
-            constitutive_rows<T>(get<Z, Z::q>(z), get<Z, Z::q_u>(z) / length, get<Z, Z::p_u>(z) / length, n,
-                                 m, c, r);
-          },
-          pattern);
+      b.add_detected<CondensedSummedZ, 6>("rod.condensed_field", u, widened(b, b.basis_at(u, 1), u),
+                                          {wrench, L}, CondensedLoadedFieldKernel<CondensedSummedZ>{c, c_point, u},
+                                          pattern);
     }
     b.add_unit_quaternion_rows(kCondensedPoint);
     add_condensed_end(b, false);

@@ -3,7 +3,12 @@
 //   R_unit^T u = (w^2 - |v|^2) u + 2 v (v . u) - 2 w v x u,
 //   kappa = 2 vec(conj(q) (x) q_s) / S,   vec(conj(a) (x) b) = a0 bv - b0 av - av x bv,
 // the rows are  r_f = K_SE^-1 R^T n - (R^T p_s - e3 - eps0),  r_m = L0 (K_BT^-1 R^T m - (kappa - kappa0)),
-// with p_s = p_u / L, q_s = q_u / L.
+// with p_s = p_u / L, q_s = q_u / L. With distributed loads (condensed_forms.cpp) n and m are those at
+// s = u L: n(s) = n - f s, m(s) = h - (p - c) x n(s) - l s - L (I - c u) x f, so besides the rows'
+// own dependence on q, q_u, p_u, L (at fixed n, m) they read
+//   dn(s)/dn = I, dn(s)/dL = -f u,
+//   dm(s)/dh = I, dm(s)/dn = -hat(p - c), dm(s)/dp = hat(n(s)), dm(s)/dI = L hat(f),
+//   dm(s)/dL = u hat(p - c) f - l u + hat(f) (I - c u).
 #include "condensed_jacobian.hpp"
 
 #include "pcr/math/so3.hpp"
@@ -27,23 +32,21 @@ void rotate_back(const Vec4& q, double S, const Vec3& u, Vec3& out, Mat34& d) {
   d = dg / S - out * (2.0 / S) * q.transpose();
 }
 
-}  // namespace
-
-void condensed_field_jacobian(const Eigen::Matrix<double, kCondensedLocal, 1>& z, const PointConstants& c,
-                              const Vec3& moment_point, double* r, double* J) {
-  using Z = CondensedZ;
+// The rows at q, q_u, p_u, L with the internal force n and moment m given, and their derivatives: the
+// columns of q, q_u, p_u and L of D (at fixed n, m; offsets of Z, whose first entries are those of
+// CondensedZ); dr/dn = [K_SE^-1 R^T; 0] and dr/dm = [0; C] with C = L0 K_BT^-1 R^T are returned as Rt
+// (R^T) and C for the caller's chain rule.
+template <typename Z, int NL>
+void constitutive_jacobian(const Eigen::Matrix<double, NL, 1>& z, const Vec3& n, const Vec3& m,
+                           const PointConstants& c, double* r,
+                           Eigen::Map<Eigen::Matrix<double, 6, NL, Eigen::RowMajor>>& D, Mat3& Rt, Mat3& C) {
   constexpr int nq = Z::layout.offset(Z::q), nq_u = Z::layout.offset(Z::q_u), np_u = Z::layout.offset(Z::p_u),
-                np = Z::layout.offset(Z::p), nw = Z::layout.offset(Z::wrench), nL = Z::layout.offset(Z::L);
-  Eigen::Map<Eigen::Matrix<double, 6, kCondensedLocal, Eigen::RowMajor>> D(J);
-  D.setZero();
+                nL = Z::layout.offset(Z::L);
   const Eigen::Vector4d q = get<Z, Z::q>(z);
   const double L = get<Z, Z::L>(z)[0], S = q.squaredNorm();
   const Eigen::Vector4d q_s = get<Z, Z::q_u>(z) / L;
   const Vec3 p_s = get<Z, Z::p_u>(z) / L;
-  const Vec3 n = get<Z, Z::wrench>(z).head<3>();
-  const Vec3 arm = get<Z, Z::p>(z) - moment_point;
-  const Vec3 m = get<Z, Z::wrench>(z).tail<3>() - arm.cross(n);
-  const Mat3 Rt = rotation<double>(q).transpose();
+  Rt = rotation<double>(q).transpose();
   Vec3 sigma, chi, eps;
   Mat34 dsigma, dchi, deps;
   rotate_back(q, S, n, sigma, dsigma);
@@ -67,18 +70,59 @@ void condensed_field_jacobian(const Eigen::Matrix<double, kCondensedLocal, 1>& z
     r[3 + i] = (chi[i] * ibt[i] - (kappa[i] - c.kappa0[i])) * L0;
   }
   // Force rows: sigma / K_SE - eps.
-  D.block<3, 4>(0, nq) = ise.asDiagonal() * dsigma - deps;
-  D.block<3, 3>(0, np_u) = -Rt / L;
-  D.block<3, 3>(0, nw) = ise.asDiagonal() * Rt;
-  D.block<3, 1>(0, nL) = eps / L;
-  // Moment rows: L0 (chi / K_BT - kappa), chi = R^T m, dm/dh = I, dm/dn = -hat(arm), dm/dp = hat(n).
-  const Mat3 C = L0 * (ibt.asDiagonal() * Rt);
-  D.block<3, 4>(3, nq) = L0 * (ibt.asDiagonal() * dchi - dkappa_dq);
-  D.block<3, 4>(3, nq_u) = -L0 * dkappa_dqu;
+  D.template block<3, 4>(0, nq) = ise.asDiagonal() * dsigma - deps;
+  D.template block<3, 3>(0, np_u) = -Rt / L;
+  D.template block<3, 1>(0, nL) = eps / L;
+  // Moment rows: L0 (chi / K_BT - kappa), chi = R^T m.
+  C = L0 * (ibt.asDiagonal() * Rt);
+  D.template block<3, 4>(3, nq) = L0 * (ibt.asDiagonal() * dchi - dkappa_dq);
+  D.template block<3, 4>(3, nq_u) = -L0 * dkappa_dqu;
+  D.template block<3, 1>(3, nL) = L0 * kappa / L;
+  D.template block<3, 3>(0, Z::layout.offset(Z::wrench)) = ise.asDiagonal() * Rt;
+}
+
+}  // namespace
+
+void condensed_field_jacobian(const Eigen::Matrix<double, kCondensedLocal, 1>& z, const PointConstants& c,
+                              const Vec3& moment_point, double* r, double* J) {
+  using Z = CondensedZ;
+  constexpr int np = Z::layout.offset(Z::p), nw = Z::layout.offset(Z::wrench);
+  Eigen::Map<Eigen::Matrix<double, 6, kCondensedLocal, Eigen::RowMajor>> D(J);
+  D.setZero();
+  const Vec3 n = get<Z, Z::wrench>(z).head<3>();
+  const Vec3 arm = get<Z, Z::p>(z) - moment_point;
+  const Vec3 m = get<Z, Z::wrench>(z).tail<3>() - arm.cross(n);
+  Mat3 Rt, C;
+  constitutive_jacobian<Z>(z, n, m, c, r, D, Rt, C);
+  // dm/dh = I, dm/dn = -hat(arm), dm/dp = hat(n).
   D.block<3, 3>(3, np) = C * hat(n);
   D.block<3, 3>(3, nw) = -C * hat(arm);
   D.block<3, 3>(3, nw + 3) = C;
-  D.block<3, 1>(3, nL) = L0 * kappa / L;
+}
+
+void condensed_loaded_field_jacobian(const Eigen::Matrix<double, kCondensedSummedLocal, 1>& z,
+                                     const PointConstants& c, const Vec3& moment_point, double u, double* r,
+                                     double* J) {
+  using Z = CondensedSummedZ;
+  constexpr int np = Z::layout.offset(Z::p), nw = Z::layout.offset(Z::wrench), nL = Z::layout.offset(Z::L),
+                nI = Z::layout.offset(Z::I);
+  Eigen::Map<Eigen::Matrix<double, 6, kCondensedSummedLocal, Eigen::RowMajor>> D(J);
+  D.setZero();
+  const double L = get<Z, Z::L>(z)[0];
+  const Vec3 I = get<Z, Z::I>(z);
+  Vec3 n, m;
+  condensed_wrench_from_integral<Z, double>(z, I, c, moment_point, u, n, m);
+  const Vec3 arm = get<Z, Z::p>(z) - moment_point;
+  Mat3 Rt, C;
+  constitutive_jacobian<Z>(z, n, m, c, r, D, Rt, C);
+  D.block<3, 3>(3, np) = C * hat(n);
+  D.block<3, 3>(3, nw) = -C * hat(arm);
+  D.block<3, 3>(3, nw + 3) = C;
+  D.block<3, 3>(3, nI) = L * (C * hat(c.f));
+  const Vec3 dn_dL = -c.f * u;
+  const Vec3 dm_dL = u * arm.cross(c.f) - c.l * u + c.f.cross(I - moment_point * u);
+  D.block<3, 1>(0, nL) += c.k_se.cwiseInverse().asDiagonal() * (Rt * dn_dL);
+  D.block<3, 1>(3, nL) += C * dm_dL;
 }
 
 }  // namespace pcr::collocation

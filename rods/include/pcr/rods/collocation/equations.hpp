@@ -264,16 +264,6 @@ void condensed_loaded_wrench(const Local& z, const PointConstants& c, const Vec3
   condensed_wrench_from_integral<Z, T>(z, I, c, moment_point, u, n, m);
 }
 
-template <typename T>
-void condensed_loaded_field(const Eigen::Matrix<T, CondensedLoadedZ::layout.size(), 1>& z,
-                            const PointConstants& c, const Vec3& moment_point, double u, T* r) {
-  using Z = CondensedLoadedZ;
-  V3<T> n, m;
-  condensed_loaded_wrench<Z, T>(z, c, moment_point, u, n, m);
-  const T L = get<Z, Z::L>(z)[0];
-  constitutive_rows<T>(get<Z, Z::q>(z), get<Z, Z::q_u>(z) / L, get<Z, Z::p_u>(z) / L, n, m, c, r);
-}
-
 /// Primal form: internal force and moment at a point from the constitutive law, from q and the
 /// u-derivatives q_u, p_u (world frame).
 template <typename T>
