@@ -49,7 +49,7 @@ bool ArcCorrector::evaluate(const VecX& y, const VecX& normal, VecX& residual) {
   const Problem& problem = assembly_.problem();
   VecX x, c;
   write_state(y, x);
-  RowJacobian J;
+  RowJacobian& J = jacobian_;  // kept: its pattern is not built again at every evaluation
   problem.evaluate_residuals_and_jacobian(x, c, J);
   ++jacobians_;
   residual = c - row_lower_;

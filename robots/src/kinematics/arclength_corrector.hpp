@@ -85,6 +85,7 @@ class ArcCorrector {
   std::vector<int> inputs_;             // global index of each input variable
   VecX row_lower_;                      // c_l of the rows (equality rows: c(x) = c_l)
   VecX weights_;                        // W: free columns then lambda (size free + 1)
+  RowJacobian jacobian_;                // J of the last evaluation (its pattern kept)
   Eigen::SparseMatrix<double> matrix_;  // the bordered matrix
   std::uint64_t pattern_version_ = 0;   // the problem's structure_version() the pattern was built for
   std::vector<int> slot_;               // per entry of J: its value's index in matrix_, -1 when not there

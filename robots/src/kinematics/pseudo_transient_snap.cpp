@@ -87,7 +87,7 @@ class DampedSystem {
   bool evaluate(const VecX& x, const VecX& anchor, double inv_tau, VecX& g, bool with_matrix) {
     VecX c;
     std::vector<Eigen::Triplet<double>> entries;  // the dampers' and the shift's entries
-    RowJacobian J;
+    RowJacobian& J = jacobian_;                   // kept: its pattern is not built again at every evaluation
     if (with_matrix) {
       a_.problem().evaluate_residuals_and_jacobian(x, c, J);
       ++jacobians_;
@@ -210,6 +210,7 @@ class DampedSystem {
   std::vector<int> column_;   // free index of each global column, -1 when fixed
   int free_ = 0;
   std::vector<Damper> dampers_;
+  RowJacobian jacobian_;  // J of the last evaluation (its pattern kept)
   Eigen::SparseMatrix<double> M_;
   std::uint64_t pattern_version_ = 0;  // the problem's structure_version() M's pattern was built for
   std::vector<int> slot_;              // per entry of J: its value's index in M, -1 for a fixed column
