@@ -18,6 +18,9 @@ std::vector<VariableId> concat(std::vector<VariableId> a, const std::vector<Vari
 }
 
 using RowMap = Eigen::Map<RowMajorMatX>;
+// The chain rules below multiply 7 x 13 (or 7 x 7) by 13 x k (k <= 7) matrices: lazyProduct (a loop
+// over the coefficients) rather than operator*, which takes Eigen's blocked matrix product for dynamic
+// sizes and spends most of its time packing (8 % of a universal_pair cold solve's instructions).
 
 }  // namespace
 
@@ -76,12 +79,12 @@ void CouplingBlock::evaluate(const double* const* values, double* residual, doub
   Eigen::Matrix<double, 7, 20> dr;
   for (int i = 0; i < 7; ++i) dr.row(i) = r[i].v.transpose();
   for (int k = 0; k < end_blocks_; ++k)
-    if (jacobians[k]) RowMap(jacobians[k], 7, dy[k].cols()) = dr.leftCols<13>() * dy[k];
+    if (jacobians[k]) RowMap(jacobians[k], 7, dy[k].cols()) = dr.leftCols<13>().lazyProduct(dy[k]);
   int column = 0;
   for (size_t k = 0; k < frame_.variables.size(); ++k) {
     const int size = frame_.kind == LinkFrame::Kind::Platform ? 7 : 1;
     if (jacobians[end_blocks_ + k])
-      RowMap(jacobians[end_blocks_ + k], 7, size) = dr.rightCols<7>() * dz.middleCols(column, size);
+      RowMap(jacobians[end_blocks_ + k], 7, size) = dr.rightCols<7>().lazyProduct(dz.middleCols(column, size));
     column += size;
   }
 }
@@ -151,7 +154,7 @@ void PlatformBalanceBlock::evaluate(const double* const* values, double* residua
       dr_dy.block<3, 3>(3, 10) = -e.sigma * Mat3::Identity() / moment_scale_;
       dmoment_dx -= e.sigma * hat(n);
       for (size_t k = 0; k < dy.size(); ++k)
-        if (jacobians[block + k]) RowMap(jacobians[block + k], 7, dy[k].cols()) = dr_dy * dy[k];
+        if (jacobians[block + k]) RowMap(jacobians[block + k], 7, dy[k].cols()) = dr_dy.lazyProduct(dy[k]);
     }
     block += static_cast<int>(e.end.variables().size());
   }
