@@ -36,7 +36,7 @@ bool BorderedBlockLu::analyze_pattern(const Eigen::SparseMatrix<double>& A,
                                       const std::vector<int>& column_groups, int max_border) {
   analyzed_ = false;
   groups_.clear();
-  slots_.clear();
+  for (std::vector<Slot>& slots : slots_) slots.clear();
   error_.clear();
   border_rows_.clear();
   border_columns_.clear();
@@ -211,7 +211,7 @@ void BorderedBlockLu::build_groups(const Eigen::SparseMatrix<double>& A, const P
 // Where each nonzero of A goes, and which border columns and rows couple to each group.
 bool BorderedBlockLu::build_slots(const Eigen::SparseMatrix<double>& A) {
   const int n = static_cast<int>(A.rows()), nb = static_cast<int>(border_columns_.size());
-  slots_.reserve(A.nonZeros());
+  int value = 0;  // A is compressed: its nonzeros in CSC order
   std::vector<std::vector<bool>> coupled(groups_.size(), std::vector<bool>(nb, false));
   std::vector<std::vector<Group::RowSpan>> spans(groups_.size());  // per group and border row
   for (size_t g = 0; g < groups_.size(); ++g)
@@ -221,24 +221,29 @@ bool BorderedBlockLu::build_slots(const Eigen::SparseMatrix<double>& A) {
     for (Eigen::SparseMatrix<double>::InnerIterator it(A, c); it; ++it) {
       const int r = static_cast<int>(it.row());
       const int gr = group_of_row_[r], row = local_row_[r];
+      const int v = value++;
+      int target = kD;
       Slot s{};
       if (gr >= 0 && gc == gr) {
-        s = {kBand, gr, groups_[gr].band.index(row, column)};
+        target = kBand;
+        s = {v, gr, groups_[gr].band.index(row, column)};
       } else if (gr >= 0 && gc < 0) {
-        s = {kB, gr, row + column * static_cast<int>(groups_[gr].rows.size())};
+        target = kB;
+        s = {v, gr, row + column * static_cast<int>(groups_[gr].rows.size())};
         coupled[gr][column] = true;
       } else if (gr < 0 && gc >= 0) {
-        s = {kC, gc, column + row * static_cast<int>(groups_[gc].columns.size())};
+        target = kC;
+        s = {v, gc, column + row * static_cast<int>(groups_[gc].columns.size())};
         Group::RowSpan& span = spans[gc][row];
         span.begin = std::min(span.begin, column);
         span.end = std::max(span.end, column + 1);
       } else if (gr < 0 && gc < 0) {
-        s = {kD, -1, row + column * nb};
+        s = {v, -1, row + column * nb};
       } else {  // a group row in another group's column: cannot happen by the row rule
         error_ = "BorderedBlockLu: internal error in the row groups";
         return false;
       }
-      slots_.push_back(s);
+      slots_[target].push_back(s);
     }
   }
   for (size_t g = 0; g < groups_.size(); ++g) {
@@ -270,15 +275,10 @@ bool BorderedBlockLu::factorize(const Eigen::SparseMatrix<double>& A) {
   }
   S_.setZero();
   const double* values = A.valuePtr();
-  for (size_t p = 0; p < slots_.size(); ++p) {
-    const Slot& s = slots_[p];
-    switch (s.target) {
-      case kBand: groups_[s.group].band.data()[s.index] = values[p]; break;
-      case kB: groups_[s.group].B.data()[s.index] = values[p]; break;
-      case kC: groups_[s.group].Ct.data()[s.index] = values[p]; break;
-      default: S_.data()[s.index] = values[p]; break;
-    }
-  }
+  for (const Slot& s : slots_[kBand]) groups_[s.group].band.data()[s.index] = values[s.value];
+  for (const Slot& s : slots_[kB]) groups_[s.group].B.data()[s.index] = values[s.value];
+  for (const Slot& s : slots_[kC]) groups_[s.group].Ct.data()[s.index] = values[s.value];
+  for (const Slot& s : slots_[kD]) S_.data()[s.index] = values[s.value];
   for (size_t g = 0; g < groups_.size(); ++g) {
     Group& group = groups_[g];
     if (!group.band.factorize()) {

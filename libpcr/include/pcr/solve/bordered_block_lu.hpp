@@ -39,6 +39,7 @@
 //
 // Not thread-safe: solve() uses scratch buffers of the object.
 #include <Eigen/SparseCore>
+#include <array>
 #include <string>
 #include <vector>
 
@@ -86,9 +87,9 @@ class BorderedBlockLu {
     bool has_storage = false;  // B, Ct, W, z sized (by the first factorize)
     int leftover() const { return static_cast<int>(rows.size() - columns.size()); }
   };
-  enum Target { kBand, kB, kC, kD };
+  enum Target { kBand, kB, kC, kD, kTargets };
   struct Slot {
-    int target;
+    int value;  // position of the nonzero in A's values (CSC order)
     int group;
     int index;  // position in the target's storage
   };
@@ -112,7 +113,8 @@ class BorderedBlockLu {
   std::vector<int> local_row_, local_column_, group_of_row_, group_of_column_;
   MatX S_;  // the border block D, then D - sum_g C_g W_g; rows: border_rows_, then the leftover rows
   Eigen::PartialPivLU<MatX> schur_;
-  std::vector<Slot> slots_;  // per nonzero of A (CSC order)
+  // Where each nonzero of A goes, listed per target (one loop each in factorize, no branch per entry).
+  std::array<std::vector<Slot>, kTargets> slots_;
   long nonzeros_ = 0;
   bool analyzed_ = false;
   std::string error_;
