@@ -93,6 +93,8 @@ class PointBlock final : public ResidualBlock {
         kernel_(std::move(kernel)) {
     require(basis_.count >= 1 && static_cast<int>(basis_.B.size()) == basis_.count, "PointBlock '",
             this->name(), "': ", basis_.count, " basis functions, ", basis_.B.size(), " rows");
+    require(tiles_local_vector(), "PointBlock '", this->name(), "': its groups and direct blocks do not cover the ",
+            NL, " local entries once each");
   }
 
   bool structural_nonzero(int k, int row, int column) const override {
@@ -189,7 +191,7 @@ class PointBlock final : public ResidualBlock {
         default: accumulate<Eigen::Dynamic>(values, r, sum); break;
       }
     }
-    z.setZero();
+    // Every entry of z is written once (tiles_local_vector).
     for (const LocalGroup& g : groups_) copy_small(sums[g.derivative] + g.component, g.dim, &z[g.local]);
     for (size_t j = 0; j < direct_.size(); ++j)
       copy_small(values[basis_.count + j], direct_[j].size, &z[direct_[j].local]);
@@ -206,6 +208,20 @@ class PointBlock final : public ResidualBlock {
   }
 
   bool depends(int row, int local) const { return depends_[row * NL + local]; }
+
+  // The groups' and direct blocks' entries of z cover [0, NL) once each (gather writes no other).
+  bool tiles_local_vector() const {
+    std::array<int, NL> written{};
+    const auto mark = [&written](int local, int dim) {
+      for (int k = local; k < local + dim; ++k)
+        if (k >= 0 && k < NL) ++written[k];
+      return local >= 0 && local + dim <= NL;
+    };
+    bool inside = true;
+    for (const LocalGroup& g : groups_) inside = mark(g.local, g.dim) && inside;
+    for (const DirectBlock& d : direct_) inside = mark(d.local, d.size) && inside;
+    return inside && std::all_of(written.begin(), written.end(), [](int n) { return n == 1; });
+  }
 
   static constexpr int kMaxComponents = 13, kDerivativeSlots = kBasisSlots;
   /// Components [begin, end) of the control points read with basis row `derivative`.
