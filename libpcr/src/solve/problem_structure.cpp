@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <numeric>
 
+#include "pcr/solve/compressed_index.hpp"
 #include "problem_impl.hpp"
 
 namespace pcr {
@@ -25,9 +26,7 @@ std::vector<int> global_indices(const std::vector<VariableBlock>& variables,
 
 /// Position of (row, col) in the compressed pattern, -1 if absent.
 int find_entry(const std::vector<int>& outer, const std::vector<int>& inner, int row, int col) {
-  const auto begin = inner.begin() + outer[row], end = inner.begin() + outer[row + 1];
-  const auto it = std::lower_bound(begin, end, col);
-  return it != end && *it == col ? static_cast<int>(it - inner.begin()) : -1;
+  return compressed_index(outer.data(), inner.data(), row, col);
 }
 
 /// Room for `more` elements at the end of v, at least doubling its capacity when it must grow.

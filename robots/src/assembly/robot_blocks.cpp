@@ -84,7 +84,8 @@ void CouplingBlock::evaluate(const double* const* values, double* residual, doub
   for (size_t k = 0; k < frame_.variables.size(); ++k) {
     const int size = frame_.kind == LinkFrame::Kind::Platform ? 7 : 1;
     if (jacobians[end_blocks_ + k])
-      RowMap(jacobians[end_blocks_ + k], 7, size) = dr.rightCols<7>().lazyProduct(dz.middleCols(column, size));
+      RowMap(jacobians[end_blocks_ + k], 7, size) =
+          dr.rightCols<7>().lazyProduct(dz.middleCols(column, size));
     column += size;
   }
 }

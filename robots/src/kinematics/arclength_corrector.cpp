@@ -5,6 +5,8 @@
 #include <cmath>
 #include <vector>
 
+#include "pcr/solve/compressed_index.hpp"
+
 namespace pcr::kinematics {
 
 ArcCorrector::ArcCorrector(const RobotAssembly& assembly, const VecX& u_a, const VecX& u_b, double tolerance)
@@ -92,11 +94,9 @@ void ArcCorrector::build_pattern(const RowJacobian& J) {
   matrix_.resize(n + 1, n + 1);
   matrix_.setFromTriplets(entries.begin(), entries.end());
   matrix_.makeCompressed();
-  // The slot of entry (row, col) in the column-major storage.
+  // The slot of entry (row, col) in the column-major storage (every entry looked up is in the pattern).
   const auto slot_of = [this](int row, int col) {
-    const int* begin = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[col];
-    const int* end = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[col + 1];
-    return static_cast<int>(std::lower_bound(begin, end, row) - matrix_.innerIndexPtr());
+    return compressed_index(matrix_.outerIndexPtr(), matrix_.innerIndexPtr(), col, row);
   };
   const VecX du = u_b_ - u_a_;
   slot_.assign(J.nonZeros(), -1);

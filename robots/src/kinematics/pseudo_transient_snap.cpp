@@ -9,6 +9,7 @@
 
 #include "pcr/math/quaternion.hpp"
 #include "pcr/math/so3.hpp"
+#include "pcr/solve/compressed_index.hpp"
 #include "pcr/solve/grouped_lu.hpp"
 #include "pcr/solve/newton_solver.hpp"
 
@@ -186,10 +187,7 @@ class DampedSystem {
   }
   /// The index of entry (row, col) of M in its value array, -1 when M has no such entry.
   int slot_of(int row, int col) const {
-    const int* begin = M_.innerIndexPtr() + M_.outerIndexPtr()[col];
-    const int* end = M_.innerIndexPtr() + M_.outerIndexPtr()[col + 1];
-    const int* at = std::lower_bound(begin, end, row);
-    return at != end && *at == row ? static_cast<int>(at - M_.innerIndexPtr()) : -1;
+    return compressed_index(M_.outerIndexPtr(), M_.innerIndexPtr(), col, row);
   }
 
   /// The free columns without a damper (the rods' unknowns, contact variables, ...).

@@ -196,9 +196,9 @@ class CondensedLoadedForm final : public RodForm {
     for (int j = 0; j + 1 < b.num_control_points(); ++j) {
       const double u = b.midpoint(j);
       const PointConstants c = b.constants_at(u);
-      b.add_detected<CondensedLoadedZ, 6>("rod.condensed_field", u, with_integrals(b, b.basis_at(u, 1), u),
-                                          {wrench, L}, CondensedLoadedFieldKernel<CondensedLoadedZ>{c, c_point, u},
-                                          pattern);
+      b.add_detected<CondensedLoadedZ, 6>(
+          "rod.condensed_field", u, with_integrals(b, b.basis_at(u, 1), u), {wrench, L},
+          CondensedLoadedFieldKernel<CondensedLoadedZ>{c, c_point, u}, pattern);
     }
     b.add_unit_quaternion_rows(kCondensedLoadedPoint);
     add_integral_rows(b);
@@ -264,9 +264,9 @@ class CondensedSummedForm final : public RodForm {
     for (int j = 0; j + 1 < b.num_control_points(); ++j) {
       const double u = b.midpoint(j);
       const PointConstants c = b.constants_at(u);
-      b.add_detected<CondensedSummedZ, 6>("rod.condensed_field", u, widened(b, b.basis_at(u, 1), u),
-                                          {wrench, L}, CondensedLoadedFieldKernel<CondensedSummedZ>{c, c_point, u},
-                                          pattern);
+      b.add_detected<CondensedSummedZ, 6>(
+          "rod.condensed_field", u, widened(b, b.basis_at(u, 1), u), {wrench, L},
+          CondensedLoadedFieldKernel<CondensedSummedZ>{c, c_point, u}, pattern);
     }
     b.add_unit_quaternion_rows(kCondensedPoint);
     add_condensed_end(b, false);

@@ -93,8 +93,8 @@ class PointBlock final : public ResidualBlock {
         kernel_(std::move(kernel)) {
     require(basis_.count >= 1 && static_cast<int>(basis_.B.size()) == basis_.count, "PointBlock '",
             this->name(), "': ", basis_.count, " basis functions, ", basis_.B.size(), " rows");
-    require(tiles_local_vector(), "PointBlock '", this->name(), "': its groups and direct blocks do not cover the ",
-            NL, " local entries once each");
+    require(tiles_local_vector(), "PointBlock '", this->name(),
+            "': its groups and direct blocks do not cover the ", NL, " local entries once each");
   }
 
   bool structural_nonzero(int k, int row, int column) const override {
