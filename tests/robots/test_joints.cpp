@@ -312,6 +312,21 @@ BOOST_AUTO_TEST_CASE(table_and_json_list_the_passive_joint_values) {
   BOOST_TEST(table.str().find("passive joints:\n" + std::string(line)) != std::string::npos, table.str());
   BOOST_TEST(json.str().find("\"passive_joints\": {") != std::string::npos, json.str());
   BOOST_TEST(json.str().find("\"hinge\": ") != std::string::npos, json.str());
+  const Joint& hinge = model->joints()[model->passive_joints()[0]];
+  BOOST_REQUIRE(s.passive_joints[0] >= hinge.lower && s.passive_joints[0] <= hinge.upper);
+  BOOST_TEST(json.str().find("\"passive_joints_outside_limits\": []") != std::string::npos, json.str());
+  // The same solution with the hinge turned past its upper limit (the writers read the value only; FK
+  // does not enforce limits): both outputs name it.
+  RobotSolution past = s;
+  past.passive_joints[0] = hinge.upper + 0.1;
+  std::ostringstream past_table, past_json;
+  write_solution_table(past_table, *model, past);
+  write_solution_json(past_json, *model, past);
+  BOOST_TEST(past_table.str().find("(outside its limits") != std::string::npos, past_table.str());
+  const std::string text = past_json.str();
+  const size_t list = text.find("\"passive_joints_outside_limits\": [");
+  BOOST_REQUIRE(list != std::string::npos);
+  BOOST_TEST(text.substr(list, text.find(']', list) - list).find("\"hinge\"") != std::string::npos, text);
 }
 
 namespace {

@@ -97,7 +97,9 @@ void write_derivatives(JsonWriter& json, const RobotModel& model, const Solution
   }
 }
 
-/// "inputs" and "passive_joints": name -> value (rad or m), in the model's order.
+/// "inputs" and "passive_joints": name -> value (rad or m), in the model's order; then
+/// "passive_joints_outside_limits": the passive joints whose value lies outside their URDF limits (which
+/// the solve does not enforce), as the table flags them.
 void write_joint_values(JsonWriter& json, const RobotModel& model, const RobotSolution& solution) {
   json.key("inputs");
   json.begin_object();
@@ -112,6 +114,14 @@ void write_joint_values(JsonWriter& json, const RobotModel& model, const RobotSo
     json.member(model.joints()[passive[i]].name, solution.passive_joints[static_cast<int>(i)]);
   }
   json.end_object();
+  json.key("passive_joints_outside_limits");
+  json.begin_array();
+  for (size_t i = 0; i < passive.size() && static_cast<int>(i) < solution.passive_joints.size(); ++i) {
+    const Joint& joint = model.joints()[passive[i]];
+    const double value = solution.passive_joints[static_cast<int>(i)];
+    if (value < joint.lower || value > joint.upper) json.value(joint.name);
+  }
+  json.end_array();
 }
 
 /// "platforms": name -> pose (world frame).
