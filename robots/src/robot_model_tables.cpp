@@ -102,10 +102,8 @@ void RobotModel::build_joint_values() {
               "': limits lower = ", joint.lower, ", upper = ", joint.upper,
               " must be finite with lower <= upper");
     }
-    require(finite(joint.default_value) && joint.default_value >= joint.lower &&
-                joint.default_value <= joint.upper,
-            "joint '", joint.name, "': default value ", joint.default_value, " is outside [", joint.lower,
-            ", ", joint.upper, "]");
+    require(finite(joint.default_value) && joint.within_limits(joint.default_value), "joint '", joint.name,
+            "': default value ", joint.default_value, " is outside [", joint.lower, ", ", joint.upper, "]");
     joint.value_index = joint_value_count_++;
   }
 }

@@ -119,7 +119,7 @@ void write_joint_values(JsonWriter& json, const RobotModel& model, const RobotSo
   for (size_t i = 0; i < passive.size() && static_cast<int>(i) < solution.passive_joints.size(); ++i) {
     const Joint& joint = model.joints()[passive[i]];
     const double value = solution.passive_joints[static_cast<int>(i)];
-    if (value < joint.lower || value > joint.upper) json.value(joint.name);
+    if (!joint.within_limits(value)) json.value(joint.name);
   }
   json.end_array();
 }

@@ -90,7 +90,7 @@ void write_solution_table(std::ostream& out, const RobotModel& model, const Robo
       const auto shown = display_joint(joint, value);
       out << format("  %-16s %12.4f %s", joint.name.c_str(), tidy(VecX::Constant(1, shown.first), 5e-5)[0],
                     shown.second);
-      if (value < joint.lower || value > joint.upper) {
+      if (!joint.within_limits(value)) {
         out << format("   (outside its limits [%g, %g] %s)", display_joint(joint, joint.lower).first,
                       display_joint(joint, joint.upper).first, shown.second);
       }

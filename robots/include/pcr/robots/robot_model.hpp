@@ -47,6 +47,8 @@ struct Joint {
   bool passive = false;
   double stiffness = 0.0;
   double rest = 0.0;
+  /// Whether value lies within [lower, upper] (a passive joint's limits are not enforced by the solve).
+  bool within_limits(double value) const { return value >= lower && value <= upper; }
 };
 
 /// A link whose parent joint is floating: its world pose (position x, unit quaternion Q) is unknown.
