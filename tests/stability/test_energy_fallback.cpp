@@ -3,8 +3,9 @@
 // stable equilibrium. Checked: the energy's gradient and the constraint Jacobians and Hessians against
 // finite differences; the strategy reaching the ordinary FK result where that is stable; the passive_hinge
 // input that every other strategy fails on, converged to an equilibrium that the tests' independent
-// discrete energy model (robot_discrete.hpp) also finds stable; a planar_post input in contact with its
-// post; the refusal of a contact at one section.
+// discrete energy model (robot_discrete.hpp) also finds stable; universal_passive and universal_pair inputs
+// (a minimiser beyond the joint limits; a rod nearly at a conjugate point); planar_post inputs in contact
+// with its post; the refusal of a contact at one section.
 #include <algorithm>
 #include <boost/test/unit_test.hpp>
 #include <cmath>
@@ -276,6 +277,60 @@ BOOST_AUTO_TEST_CASE(universal_passive_inputs_whose_minimiser_lies_beyond_the_jo
     BOOST_TEST_REQUIRE(newton.solve(x).converged());
     BOOST_TEST((x.segment<3>(platform) - r.x.segment<3>(platform)).norm() < 1e-9);
   }
+}
+
+// universal_pair at a cold input of the random sweep on which every other strategy fails (every
+// continuation stops at a fold 0.355 of the line from the default inputs with nothing as stable to snap
+// to). From the default equilibrium Ipopt reaches a minimiser (1.832 J) and Newton the collocation's
+// equilibrium next to it, where leg5 is nearly at a conjugate point with its links held: its probe
+// eigenvalue (8.9e-6) lies within the neutral tolerance of the requested mesh (0.1 x its strain mismatch,
+// 1.9e-5), so the count there is taken on the energy's Ritz form, which has no equilibrium next to it.
+// On twice the elements (refined_verdict.hpp) the mismatch falls to 1.5e-6 and the eigenvalue (3.4e-5)
+// is clear of the tolerance (1e-5): stable. Checked without the code that found it: the residual, the
+// rod lengths, and on 32 elements (the equilibrium carried there and solved again; its platform moves by
+// 1.5e-6 m) the verdict and an energy minimisation started next to it (moved by 1e-3 L0) returning to it:
+// the platform within 1e-5 m and the energy to 1e-5 relative (the Ritz minimiser against the
+// collocation's equilibrium, as for planar_post below; measured 5e-11 m), i.e. a minimum of the energy.
+// On 8 elements the two discretisations differ more (1.1e-5 m, 3.5e-5 relative: leg5 is strongly bent).
+// About 7 s in Release.
+BOOST_AUTO_TEST_CASE(universal_pair_input_with_a_rod_nearly_at_a_conjugate_point) {
+  const auto model = load_model("universal_pair");
+  Fk fk(model);
+  const DefaultEquilibrium& start = fk.data.model->default_equilibrium();
+  BOOST_TEST_REQUIRE(start.converged);
+  const RobotAssembly& a = *fk.assembly;
+  const VecX inputs = (VecX(6) << 0.31281147723570213, 0.32566380103291415, 0.29152448581449447,
+                       0.31252541526064515, 0.21380791917257755, 0.34806431545992006)
+                          .finished();
+  const EnergyFallback r =
+      minimise_energy_then_newton(fk.data, inputs, {{&start.x, "the default equilibrium"}});
+  BOOST_TEST_MESSAGE("universal_pair: " << r.message);
+  BOOST_TEST_REQUIRE(r.converged, r.message);
+  VecX c;
+  a.problem().evaluate_residuals(r.x, c);
+  BOOST_TEST(c.cwiseAbs().maxCoeff() <= KinematicsOptions{}.tolerance);
+  for (int i = 0; i < a.num_rods(); ++i) BOOST_TEST(a.rod(i).length(r.x, a.rod_variables(i)) == inputs[i]);
+  const Stability requested = robot_stability(a, r.x);
+  BOOST_TEST(requested.reason.find("rod 'leg5' is at a conjugate point") == 0u, requested.reason);
+  BOOST_TEST(to_string(r.verdict.verdict) == std::string("stable"), r.verdict.reason);
+  BOOST_TEST(r.verdict.reason.find("counted on 16 elements per rod") == 0u, r.verdict.reason);
+  AssemblyOptions o = a.options();
+  o.discretization.elements = 32;
+  const RobotAssembly fine(model, o);
+  const VecX xf = test::carried_to(a, r.x, fine);
+  const Stability v = robot_stability(fine, xf);
+  BOOST_TEST_MESSAGE(
+      "32 elements: " << to_string(v.verdict) << " (margin " << v.margin << ", platform moved "
+                      << (fine.platform_pose(xf, 0).position - a.platform_pose(r.x, 0).position).norm()
+                      << " m)");
+  BOOST_TEST(to_string(v.verdict) == std::string("stable"), v.reason);
+  Vec3 platform;
+  const double minimum = test::energy_minimised_from(fine, xf, 1e-3, platform);
+  const double V = test::energy_at(fine, xf);
+  BOOST_TEST_MESSAGE("minimised again: " << minimum << " J against " << V << " J, platform off by "
+                                         << (platform - fine.platform_pose(xf, 0).position).norm() << " m");
+  BOOST_TEST((platform - fine.platform_pose(xf, 0).position).norm() <= 1e-5);
+  BOOST_TEST(std::abs(minimum - V) <= 1e-5 * std::abs(V));
 }
 
 // The obstacles' gap rows (frictionless contact in the energy) against finite differences, as the

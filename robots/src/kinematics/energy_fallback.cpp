@@ -10,6 +10,7 @@
 #include "energy_model.hpp"
 #include "pcr/robots/robot_stability.hpp"
 #include "pseudo_transient_snap.hpp"
+#include "refined_verdict.hpp"
 #include "solve_support.hpp"
 
 namespace pcr::kinematics {
@@ -91,6 +92,7 @@ bool newton_to_stable(FkData& data, const Minimum& minimum, const VecX& inputs, 
   }
   note += "; Newton " + std::to_string(summary.iterations) + " iterations";
   v = robot_stability(*data.model->assembly, xs);
+  refine_unknown_verdict(*data.model->assembly, xs, data.model->options.tolerance, v);
   if (accepted(*data.model->assembly, minimum, xs, v, note)) return true;
   note += not_stable(v);
   return false;
@@ -113,6 +115,7 @@ bool damped_motion(FkData& data, const Minimum& minimum, const VecX& inputs, con
     return false;
   }
   v = robot_stability(assembly, r.x);
+  refine_unknown_verdict(assembly, r.x, data.model->options.tolerance, v);
   note += std::to_string(r.steps) + " steps";
   if (!accepted(assembly, minimum, r.x, v, note)) {
     note += not_stable(v);

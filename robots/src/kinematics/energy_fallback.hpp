@@ -1,8 +1,9 @@
 #pragma once
 // The last FK strategy (fk_strategies.cpp): minimise the total potential energy at the requested inputs
 // (energy_model.hpp) with Ipopt, then Newton on the collocation equations from the minimiser; accepted
-// only when Newton converges to the full tolerance and the stability verdict (robot_stability.hpp) is
-// `stable`, or `unknown` only because a rod touches an obstacle (docs/design.md "Energy minimisation (the
+// only when Newton converges to the full tolerance and the stability verdict (robot_stability.hpp; on twice
+// the elements where the requested mesh cannot count, refined_verdict.hpp) is `stable`, or `unknown` only
+// because a rod touches an obstacle (docs/design.md "Energy minimisation (the
 // last FK strategy)"). Internal header of pcr::robots.
 #include <string>
 #include <vector>
