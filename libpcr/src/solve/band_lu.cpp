@@ -4,16 +4,10 @@
 #include <cmath>
 #include <utility>
 
-// The factorisation's and the solves' inner loops (axpy over a column of the band) also compiled for AVX2,
-// picked at run time where the processor has it (GCC's function multi-versioning; x86-64 Linux): 4
-// doubles per instruction instead of SSE2's 2. Every entry takes the same operations in the same order
-// (no fused multiply-add: AVX2 does not include FMA, and the file is compiled with -ffp-contract=off), so
-// both versions give the same bits.
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
-#define PCR_BAND_LU_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define PCR_BAND_LU_CLONES
-#endif
+#include "avx2_clones.hpp"
+
+// The factorisation's and the solves' inner loops (axpy over a column of the band) are compiled for AVX2
+// as well (avx2_clones.hpp).
 
 namespace pcr {
 
@@ -47,7 +41,7 @@ void BandLu::set_zero() {
 // columns j + 1 .. ju with a rank-one update (skipped where U(j, c) = 0: much of the band is
 // structurally zero for collocation matrices). A tall matrix: the same over its cols columns, the pivot
 // candidates running down to its last row.
-PCR_BAND_LU_CLONES bool BandLu::factorize() {
+PCR_AVX2_CLONES bool BandLu::factorize() {
   const int kv = kl_ + ku_;
   double* a = ab_.data();
   int ju = 0;  // last column touched by the pivot rows so far
@@ -92,7 +86,7 @@ PCR_BAND_LU_CLONES bool BandLu::factorize() {
   return true;
 }
 
-PCR_BAND_LU_CLONES void BandLu::solve_in_place(double* b) const {
+PCR_AVX2_CLONES void BandLu::solve_in_place(double* b) const {
   const int kv = kl_ + ku_;
   const double* a = ab_.data();
   for (int j = 0; j < cols_; ++j) {  // [L1 0; L2 I] g = P b

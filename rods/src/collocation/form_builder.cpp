@@ -7,6 +7,7 @@
 #include "pcr/rods/drawn_rod.hpp"
 #include "pcr/rods/end_axes.hpp"
 #include "pcr/splines/basis.hpp"
+#include "unit_quaternion_rows.hpp"
 
 namespace pcr::collocation {
 
@@ -107,22 +108,18 @@ std::string FormBuilder::where(double u) const {
   return out;
 }
 
-namespace {
-// |q|^2 - 1 at a point (the Greville abscissae of the midpoint schemes).
-struct UnitQuaternionZ {
-  enum Entry { q, kEntries };
-  static constexpr LocalLayout<kEntries> layout{{{{kMixedPoint.q, 4, 0}}}};
-};
-static_assert(kPrimalPoint.q == kMixedPoint.q && kCondensedPoint.q == kMixedPoint.q &&
-                  kCondensedLoadedPoint.q == kMixedPoint.q,
-              "every layout keeps Q at the same offset (UnitQuaternionZ)");
-}  // namespace
-
 void FormBuilder::add_unit_quaternion_rows(const PointLayout& layout) const {
-  require(layout.q == kMixedPoint.q, "add_unit_quaternion_rows: Q at component ", layout.q);
-  for (int j = 1; j + 1 < num_control_points(); ++j)
-    add<UnitQuaternionZ, 1>("rod.unit_quaternion", tau_[j], basis_at(tau_[j], 0), {},
-                            [](const auto& z, auto* r) { r[0] = z.squaredNorm() - 1.0; });
+  std::vector<AbscissaBasis> bases;
+  for (int j = 1; j + 1 < num_control_points(); ++j) {
+    const PointBasis b = basis_at(tau_[j], 0);
+    AbscissaBasis a{b.first, std::vector<double>(b.count)};
+    for (int i = 0; i < b.count; ++i) a.values[i] = b.B[i][0];
+    bases.push_back(std::move(a));
+  }
+  if (bases.empty()) return;
+  problem_.add_residual_block(make_unit_quaternion_rows(rod_.model().name + "@interior Greville abscissae",
+                                                        vars_.control_points, rod_.control_point_size(),
+                                                        layout.q, std::move(bases)));
 }
 
 }  // namespace pcr::collocation

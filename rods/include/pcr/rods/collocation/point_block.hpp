@@ -76,7 +76,92 @@ KernelPattern<NL, NR> detect_kernel_pattern(const Kernel& kernel) {
   return depends;
 }
 
-template <int NL, int NR, typename Kernel>
+/// The gather of a local vector named by the layout struct Z (layout.hpp) with its read ranges, groups
+/// and direct blocks known at compile time: the sums of PointBlock's table-driven gather, the same
+/// operations in the same order (so the same bits), without its run-time dispatch on widths and its
+/// copies of run-time length.
+namespace layout_gather {
+
+inline constexpr int kMaxComponents = 13;
+
+struct SlotRange {
+  int begin, end;
+};
+
+/// The components [begin, end) that the entries of Z read with basis row `slot` (empty: begin >= end).
+template <typename Z>
+constexpr SlotRange slot_range(int slot) {
+  SlotRange r{kMaxComponents, 0};
+  for (const LocalEntry& e : Z::layout.entries) {
+    if (e.component == kDirect || e.slot != slot) continue;
+    r.begin = e.component < r.begin ? e.component : r.begin;
+    r.end = e.component + e.dim > r.end ? e.component + e.dim : r.end;
+  }
+  return r;
+}
+
+/// sum[c] = sum_i B[i][Slot] c_i[Begin + c], c < Width: the first term, then the others added in order.
+template <int Slot, int Begin, int Width>
+inline void accumulate(const double* const* values, const PointBasis& basis, double* sum) {
+  const double b0 = basis.B[0][Slot];
+  for (int c = 0; c < Width; ++c) sum[c] = b0 * values[0][Begin + c];
+  for (int i = 1; i < basis.count; ++i) {
+    const double b = basis.B[i][Slot];
+    const double* v = values[i] + Begin;
+    for (int c = 0; c < Width; ++c) sum[c] += b * v[c];
+  }
+}
+
+template <typename Z, int Slot>
+inline void accumulate_slot(const double* const* values, const PointBasis& basis,
+                            double (&sums)[kBasisSlots][kMaxComponents]) {
+  constexpr SlotRange r = slot_range<Z>(Slot);
+  if constexpr (r.begin < r.end)
+    accumulate<Slot, r.begin, r.end - r.begin>(values, basis, sums[Slot] + r.begin);
+}
+
+/// The number of direct entries of Z before entry E (its index among the direct blocks).
+template <typename Z>
+constexpr int direct_index(int entry) {
+  int j = 0;
+  for (int i = 0; i < entry; ++i) j += Z::layout.entries[i].component == kDirect ? 1 : 0;
+  return j;
+}
+
+template <typename Z, int E>
+inline void copy_entry(const double (&sums)[kBasisSlots][kMaxComponents], const double* const* values,
+                       int count, double* z) {
+  constexpr LocalEntry e = Z::layout.entries[E];
+  constexpr int offset = Z::layout.offset(E);
+  if constexpr (e.component == kDirect) {
+    const double* from = values[count + direct_index<Z>(E)];
+    for (int c = 0; c < e.dim; ++c) z[offset + c] = from[c];
+  } else {
+    for (int c = 0; c < e.dim; ++c) z[offset + c] = sums[e.slot][e.component + c];
+  }
+}
+
+template <typename Z, std::size_t... Slot, std::size_t... E>
+inline void gather(const double* const* values, const PointBasis& basis, double* z,
+                   std::index_sequence<Slot...>, std::index_sequence<E...>) {
+  double sums[kBasisSlots][kMaxComponents];
+  (accumulate_slot<Z, static_cast<int>(Slot)>(values, basis, sums), ...);
+  (copy_entry<Z, static_cast<int>(E)>(sums, values, basis.count, z), ...);
+}
+
+/// z (Z::layout.size() values) from the control points (values[0 .. basis.count)) and the direct blocks
+/// after them.
+template <typename Z>
+inline void gather(const double* const* values, const PointBasis& basis, double* z) {
+  gather<Z>(values, basis, z, std::make_index_sequence<kBasisSlots>(),
+            std::make_index_sequence<Z::layout.entries.size()>());
+}
+
+}  // namespace layout_gather
+
+/// Z: the layout struct naming the local vector (layout.hpp), whose gather is then compiled for it
+/// (layout_gather), or void (the groups' and direct blocks' tables alone).
+template <int NL, int NR, typename Kernel, typename Z = void>
 class PointBlock final : public ResidualBlock {
  public:
   /// variables: the `basis.count` control point blocks, then one block per entry of `direct`.
@@ -180,6 +265,10 @@ class PointBlock final : public ResidualBlock {
   // sums[d][c] = sum_i B[i][d] c_i[c] for c in read_[d] (fixed-size loops for the usual widths), then
   // the groups' slices.
   void gather(const double* const* values, Eigen::Matrix<double, NL, 1>& z) const {
+    if constexpr (!std::is_void_v<Z>) {
+      layout_gather::gather<Z>(values, basis_, z.data());
+      return;
+    }
     double sums[kDerivativeSlots][kMaxComponents];
     for (const ReadRange& r : read_) {
       double* sum = sums[r.derivative] + r.begin;
@@ -287,9 +376,9 @@ std::shared_ptr<const ResidualBlock> make_point_block(
   require(static_cast<int>(variables.size()) == basis.count + Z::layout.num_direct(), "PointBlock '", name,
           "': ", variables.size(), " variable blocks for ", basis.count, " control points and ",
           Z::layout.num_direct(), " direct blocks");
-  return make_point_block<Z::layout.size(), NR>(std::move(kind), std::move(name), std::move(variables),
-                                                cp_size, basis, Z::layout.groups(), Z::layout.direct(),
-                                                std::move(kernel), depends);
+  return std::make_shared<PointBlock<Z::layout.size(), NR, Kernel, Z>>(
+      std::move(kind), std::move(name), std::move(variables), cp_size, basis, Z::layout.groups(),
+      Z::layout.direct(), std::move(kernel), depends);
 }
 
 }  // namespace pcr::collocation
