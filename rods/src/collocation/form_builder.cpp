@@ -109,17 +109,26 @@ std::string FormBuilder::where(double u) const {
 }
 
 void FormBuilder::add_unit_quaternion_rows(const PointLayout& layout) const {
-  std::vector<AbscissaBasis> bases;
-  for (int j = 1; j + 1 < num_control_points(); ++j) {
-    const PointBasis b = basis_at(tau_[j], 0);
-    AbscissaBasis a{b.first, std::vector<double>(b.count)};
-    for (int i = 0; i < b.count; ++i) a.values[i] = b.B[i][0];
-    bases.push_back(std::move(a));
+  // Blocks of kRowsPerBlock consecutive abscissae: the Problem's per-block overhead is shared by their
+  // rows, and a block's dense Jacobian (rows x its control points) stays small on fine meshes.
+  constexpr int kRowsPerBlock = 8;
+  const int last_row = num_control_points() - 2;  // rows at tau_1 .. tau_{n-2}
+  for (int j0 = 1; j0 <= last_row; j0 += kRowsPerBlock) {
+    const int j1 = std::min(last_row, j0 + kRowsPerBlock - 1);
+    std::vector<PointBasis> point_bases;
+    for (int j = j0; j <= j1; ++j) point_bases.push_back(basis_at(tau_[j], 0));
+    const int first = point_bases.front().first;
+    const int end = point_bases.back().first + point_bases.back().count;
+    std::vector<AbscissaBasis> bases;
+    for (const PointBasis& b : point_bases) {
+      AbscissaBasis a{b.first - first, std::vector<double>(b.count)};
+      for (int i = 0; i < b.count; ++i) a.values[i] = b.B[i][0];
+      bases.push_back(std::move(a));
+    }
+    std::vector<VariableId> points(vars_.control_points.begin() + first, vars_.control_points.begin() + end);
+    problem_.add_residual_block(make_unit_quaternion_rows(
+        where(tau_[j0]), std::move(points), rod_.control_point_size(), layout.q, std::move(bases)));
   }
-  if (bases.empty()) return;
-  problem_.add_residual_block(make_unit_quaternion_rows(rod_.model().name + "@interior Greville abscissae",
-                                                        vars_.control_points, rod_.control_point_size(),
-                                                        layout.q, std::move(bases)));
 }
 
 }  // namespace pcr::collocation
