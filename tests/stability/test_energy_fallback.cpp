@@ -41,6 +41,13 @@ struct Fk {
   FkData data;
 };
 
+/// The default equilibrium of fk's model (the strategy's start in these tests), required converged.
+const VecX& default_state(const Fk& fk) {
+  const DefaultEquilibrium& start = fk.data.model->default_equilibrium();
+  BOOST_TEST_REQUIRE(start.converged);
+  return start.x;
+}
+
 /// The values of a block's variables in the energy unknowns e.
 std::vector<VecX> block_values(const Problem& p, const std::vector<VariableId>& variables, const VecX& e) {
   std::vector<VecX> values;
@@ -60,11 +67,10 @@ BOOST_AUTO_TEST_SUITE(energy_fallback)
 // the 1e-6 tolerance.
 BOOST_AUTO_TEST_CASE(gradient_and_jacobians_against_finite_differences) {
   Fk fk(load_model("passive_hinge"));
-  const DefaultEquilibrium& start = fk.data.model->default_equilibrium();
-  BOOST_TEST_REQUIRE(start.converged);
-  const EnergyModel energy(*fk.assembly, start.x);
+  const VecX& start = default_state(fk);
+  const EnergyModel energy(*fk.assembly, start);
   const Problem& p = energy.problem();
-  const VecX e = energy.perturbed(energy.from_state(start.x), 1e-4);
+  const VecX e = energy.perturbed(energy.from_state(start), 1e-4);
   const JacobianCheckResult all = check_problem_jacobian(p, e);
   BOOST_TEST(all.passed, all.to_string());
   // The Hessians of the constraint rows, with weights of mixed signs (as Ipopt's multipliers).
@@ -80,7 +86,7 @@ BOOST_AUTO_TEST_CASE(gradient_and_jacobians_against_finite_differences) {
   const CollocationRod& rod = fk.assembly->rod(0);
   std::vector<VariableId> points;
   for (int k = 0; k < rod.num_control_points(); ++k) points.push_back(k);  // rod 0's blocks come first
-  const RodEnergyTerm term(rod, rod.length(start.x, fk.assembly->rod_variables(0)), points, 1.0);
+  const RodEnergyTerm term(rod, rod.length(start, fk.assembly->rod_variables(0)), points, 1.0);
   const std::vector<VecX> values = block_values(p, points, e);
   std::vector<const double*> pointers;
   for (const VecX& v : values) pointers.push_back(v.data());
@@ -200,11 +206,10 @@ BOOST_AUTO_TEST_CASE(cantilever_with_a_dead_tip_force) {
 BOOST_AUTO_TEST_CASE(passive_hinge_input_that_all_other_strategies_fail_on) {
   const auto model = load_model("passive_hinge");
   Fk fk(model);
-  const DefaultEquilibrium& start = fk.data.model->default_equilibrium();
-  BOOST_TEST_REQUIRE(start.converged);
+  const VecX& start = default_state(fk);
   const VecX inputs = (VecX(3) << 0.260, 0.166, 0.416).finished();
   const EnergyFallback r =
-      minimise_energy_then_newton(fk.data, inputs, {{&start.x, "the default equilibrium"}});
+      minimise_energy_then_newton(fk.data, inputs, {{&start, "the default equilibrium"}});
   BOOST_TEST_REQUIRE(r.converged, r.message);
   VecX c;
   fk.assembly->problem().evaluate_residuals(r.x, c);
@@ -239,8 +244,7 @@ BOOST_AUTO_TEST_CASE(passive_hinge_input_that_all_other_strategies_fail_on) {
 BOOST_AUTO_TEST_CASE(universal_passive_inputs_whose_minimiser_lies_beyond_the_joint_limits) {
   const auto model = load_model("universal_passive");
   Fk fk(model);
-  const DefaultEquilibrium& start = fk.data.model->default_equilibrium();
-  BOOST_TEST_REQUIRE(start.converged);
+  const VecX& start = default_state(fk);
   const Problem& problem = fk.assembly->problem();
   const double tolerance = KinematicsOptions{}.tolerance;
   const std::vector<VecX> input_sets{
@@ -250,7 +254,7 @@ BOOST_AUTO_TEST_CASE(universal_passive_inputs_whose_minimiser_lies_beyond_the_jo
           .finished()};
   for (const VecX& inputs : input_sets) {
     const EnergyFallback r =
-        minimise_energy_then_newton(fk.data, inputs, {{&start.x, "the default equilibrium"}});
+        minimise_energy_then_newton(fk.data, inputs, {{&start, "the default equilibrium"}});
     BOOST_TEST_MESSAGE("universal_passive at leg0 = " << inputs[0] << ": " << r.message);
     BOOST_TEST_REQUIRE(r.converged, r.message);
     VecX c;
@@ -296,14 +300,13 @@ BOOST_AUTO_TEST_CASE(universal_passive_inputs_whose_minimiser_lies_beyond_the_jo
 BOOST_AUTO_TEST_CASE(universal_pair_input_with_a_rod_nearly_at_a_conjugate_point) {
   const auto model = load_model("universal_pair");
   Fk fk(model);
-  const DefaultEquilibrium& start = fk.data.model->default_equilibrium();
-  BOOST_TEST_REQUIRE(start.converged);
+  const VecX& start = default_state(fk);
   const RobotAssembly& a = *fk.assembly;
   const VecX inputs = (VecX(6) << 0.31281147723570213, 0.32566380103291415, 0.29152448581449447,
                        0.31252541526064515, 0.21380791917257755, 0.34806431545992006)
                           .finished();
   const EnergyFallback r =
-      minimise_energy_then_newton(fk.data, inputs, {{&start.x, "the default equilibrium"}});
+      minimise_energy_then_newton(fk.data, inputs, {{&start, "the default equilibrium"}});
   BOOST_TEST_MESSAGE("universal_pair: " << r.message);
   BOOST_TEST_REQUIRE(r.converged, r.message);
   VecX c;
@@ -391,8 +394,7 @@ BOOST_AUTO_TEST_CASE(obstacle_gap_rows_against_finite_differences) {
 BOOST_AUTO_TEST_CASE(planar_post_inputs_that_all_other_strategies_fail_on) {
   const auto model = load_model("planar_post");
   Fk fk(model);
-  const DefaultEquilibrium& start = fk.data.model->default_equilibrium();
-  BOOST_TEST_REQUIRE(start.converged);
+  const VecX& start = default_state(fk);
   const RobotAssembly& a = *fk.assembly;
   const double L0 = a.length_scale(), F0 = a.force_scale();
   const int middle = 1;
@@ -401,7 +403,7 @@ BOOST_AUTO_TEST_CASE(planar_post_inputs_that_all_other_strategies_fail_on) {
         (VecX(3) << 0.18210049270634937, 0.2268877454652834, 0.15973475140950516).finished(),
         (VecX(3) << 0.44527699973051293, 0.36649806730711199, 0.29753558740694563).finished()}) {
     const EnergyFallback r =
-        minimise_energy_then_newton(fk.data, inputs, {{&start.x, "the default equilibrium"}});
+        minimise_energy_then_newton(fk.data, inputs, {{&start, "the default equilibrium"}});
     BOOST_TEST_REQUIRE(r.converged, r.message);
     BOOST_TEST_MESSAGE("planar_post: " << r.message);
     VecX c;
@@ -449,12 +451,11 @@ BOOST_AUTO_TEST_CASE(planar_post_inputs_that_all_other_strategies_fail_on) {
 BOOST_AUTO_TEST_CASE(planar_post_pitchfork_descended_along_the_unstable_mode) {
   const auto model = load_model("planar_post");
   Fk fk(model);
-  const DefaultEquilibrium& start = fk.data.model->default_equilibrium();
-  BOOST_TEST_REQUIRE(start.converged);
+  const VecX& start = default_state(fk);
   const RobotAssembly& a = *fk.assembly;
   const VecX inputs = (VecX(3) << 0.45535090075211382, 0.17134479274337425, 0.18095039817943706).finished();
   const EnergyFallback r =
-      minimise_energy_then_newton(fk.data, inputs, {{&start.x, "the default equilibrium"}});
+      minimise_energy_then_newton(fk.data, inputs, {{&start, "the default equilibrium"}});
   BOOST_TEST_REQUIRE(r.converged, r.message);
   BOOST_TEST_MESSAGE("planar_post: " << r.message);
   BOOST_TEST(r.message.find("damped motion along the unstable mode") != std::string::npos, r.message);
