@@ -1,4 +1,4 @@
-// The unit-quaternion rows of one rod as one residual block (unit_quaternion_rows.hpp).
+// Unit-quaternion rows of a rod, several as one residual block (unit_quaternion_rows.hpp).
 #include "unit_quaternion_rows.hpp"
 
 #include <algorithm>
@@ -41,8 +41,8 @@ class UnitQuaternionRows final : public ResidualBlock {
         for (int c = q_; c < q_ + 4; ++c) mask[row * size + c] = 1;
   }
 
-  // r_j = |q|^2 - 1, dr_j / dQ_i = 2 q^T B_i(tau_j). q summed as the point blocks gathered it (the first
-  // term, then the others added in order), so the rows are the same to the bit.
+  // r_j = |q|^2 - 1, dr_j / dQ_i = 2 q^T B_i(tau_j); q summed as PointBlock's gather sums (the first term,
+  // then the others added in order).
   void evaluate(const double* const* values, double* residual, double* const* jacobians) const override {
     if (jacobians != nullptr)
       for (size_t k = 0; k < variables().size(); ++k)
