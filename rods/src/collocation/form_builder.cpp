@@ -115,16 +115,11 @@ void FormBuilder::add_unit_quaternion_rows(const PointLayout& layout) const {
   const int last_row = num_control_points() - 2;  // rows at tau_1 .. tau_{n-2}
   for (int j0 = 1; j0 <= last_row; j0 += kRowsPerBlock) {
     const int j1 = std::min(last_row, j0 + kRowsPerBlock - 1);
-    std::vector<PointBasis> point_bases;
-    for (int j = j0; j <= j1; ++j) point_bases.push_back(basis_at(tau_[j], 0));
-    const int first = point_bases.front().first;
-    const int end = point_bases.back().first + point_bases.back().count;
-    std::vector<AbscissaBasis> bases;
-    for (const PointBasis& b : point_bases) {
-      AbscissaBasis a{b.first - first, std::vector<double>(b.count)};
-      for (int i = 0; i < b.count; ++i) a.values[i] = b.B[i][0];
-      bases.push_back(std::move(a));
-    }
+    std::vector<PointBasis> bases;
+    for (int j = j0; j <= j1; ++j) bases.push_back(basis_at(tau_[j], 0));
+    const int first = bases.front().first;
+    const int end = bases.back().first + bases.back().count;
+    for (PointBasis& b : bases) b.first -= first;  // relative to the block's first control point
     std::vector<VariableId> points(vars_.control_points.begin() + first, vars_.control_points.begin() + end);
     problem_.add_residual_block(make_unit_quaternion_rows(
         where(tau_[j0]), std::move(points), rod_.control_point_size(), layout.q, std::move(bases)));

@@ -14,7 +14,7 @@ namespace {
 class UnitQuaternionRows final : public ResidualBlock {
  public:
   UnitQuaternionRows(const std::string& name, std::vector<int> control_points, int cp_size, int q_offset,
-                     std::vector<AbscissaBasis> bases)
+                     std::vector<PointBasis> bases)
       : ResidualBlock("rod.unit_quaternion", name, static_cast<int>(bases.size()), std::move(control_points)),
         cp_size_(cp_size),
         q_(q_offset),
@@ -22,10 +22,11 @@ class UnitQuaternionRows final : public ResidualBlock {
     const int n = static_cast<int>(variables().size());
     require(q_ >= 0 && q_ + 4 <= cp_size_, "unit quaternion rows '", this->name(), "': Q at ", q_, " of ",
             cp_size_);
-    for (const AbscissaBasis& b : bases_)
-      require(b.first >= 0 && b.first + static_cast<int>(b.values.size()) <= n && !b.values.empty(),
-              "unit quaternion rows '", this->name(), "': basis from ", b.first, " (", b.values.size(),
-              " functions) of ", n, " control points");
+    for (const PointBasis& b : bases_)
+      require(
+          b.first >= 0 && b.count >= 1 && b.first + b.count <= n && static_cast<int>(b.B.size()) == b.count,
+          "unit quaternion rows '", this->name(), "': basis from ", b.first, " (", b.count, " functions) of ",
+          n, " control points");
   }
 
   int expected_variable_size(int) const override { return cp_size_; }
@@ -48,38 +49,36 @@ class UnitQuaternionRows final : public ResidualBlock {
       for (size_t k = 0; k < variables().size(); ++k)
         if (jacobians[k] != nullptr) std::fill(jacobians[k], jacobians[k] + num_rows() * cp_size_, 0.0);
     for (int row = 0; row < num_rows(); ++row) {
-      const AbscissaBasis& b = bases_[row];
-      const int count = static_cast<int>(b.values.size());
-      Eigen::Vector4d q = b.values[0] * Eigen::Map<const Eigen::Vector4d>(values[b.first] + q_);
-      for (int i = 1; i < count; ++i)
-        q += b.values[i] * Eigen::Map<const Eigen::Vector4d>(values[b.first + i] + q_);
+      const PointBasis& b = bases_[row];
+      Eigen::Vector4d q = b.B[0][0] * Eigen::Map<const Eigen::Vector4d>(values[b.first] + q_);
+      for (int i = 1; i < b.count; ++i)
+        q += b.B[i][0] * Eigen::Map<const Eigen::Vector4d>(values[b.first + i] + q_);
       residual[row] = q.squaredNorm() - 1.0;
       if (jacobians == nullptr) continue;
-      for (int i = 0; i < count; ++i) {
+      for (int i = 0; i < b.count; ++i) {
         double* J = jacobians[b.first + i];
-        if (J == nullptr || b.values[i] == 0.0) continue;
-        for (int c = 0; c < 4; ++c) J[row * cp_size_ + q_ + c] = (2.0 * q[c]) * b.values[i];
+        if (J == nullptr || b.B[i][0] == 0.0) continue;
+        for (int c = 0; c < 4; ++c) J[row * cp_size_ + q_ + c] = (2.0 * q[c]) * b.B[i][0];
       }
     }
   }
 
  private:
   double basis_value(int row, int k) const {
-    const AbscissaBasis& b = bases_[row];
+    const PointBasis& b = bases_[row];
     const int i = k - b.first;
-    return i >= 0 && i < static_cast<int>(b.values.size()) ? b.values[i] : 0.0;
+    return i >= 0 && i < b.count ? b.B[i][0] : 0.0;
   }
 
   int cp_size_, q_;
-  std::vector<AbscissaBasis> bases_;
+  std::vector<PointBasis> bases_;
 };
 
 }  // namespace
 
 std::shared_ptr<const ResidualBlock> make_unit_quaternion_rows(const std::string& name,
                                                                std::vector<int> control_points, int cp_size,
-                                                               int q_offset,
-                                                               std::vector<AbscissaBasis> bases) {
+                                                               int q_offset, std::vector<PointBasis> bases) {
   return std::make_shared<UnitQuaternionRows>(name, std::move(control_points), cp_size, q_offset,
                                               std::move(bases));
 }

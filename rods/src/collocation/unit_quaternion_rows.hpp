@@ -10,21 +10,15 @@
 #include <string>
 #include <vector>
 
+#include "pcr/rods/collocation/point_block.hpp"
 #include "pcr/solve/residual_block.hpp"
 
 namespace pcr::collocation {
 
-/// The basis at one abscissa: the values B_{first + i}(tau), i <= degree.
-struct AbscissaBasis {
-  int first = 0;
-  std::vector<double> values;
-};
-
 /// control_points: consecutive control point blocks of a rod (cp_size components each, Q at q_offset);
-/// bases: one per row, `first` indexing control_points.
+/// bases: one per row (FormBuilder::basis_at, the values in slot 0), `first` indexing control_points.
 std::shared_ptr<const ResidualBlock> make_unit_quaternion_rows(const std::string& name,
                                                                std::vector<int> control_points, int cp_size,
-                                                               int q_offset,
-                                                               std::vector<AbscissaBasis> bases);
+                                                               int q_offset, std::vector<PointBasis> bases);
 
 }  // namespace pcr::collocation

@@ -1,5 +1,5 @@
 #pragma once
-// A residual block at one collocation point of one rod (shared by rods and robot couplings).
+// A residual block at one collocation point of one rod (the rod forms of rods/src/collocation).
 //
 // The equations at a point depend on a small local vector z (values and u-derivatives of p, q, n, m
 // at the point, and the rod length L; layout.hpp names it per kernel). z is gathered from the p+1 active
@@ -173,24 +173,22 @@ template <typename Z>
 
 }  // namespace layout_gather
 
-/// Z: the layout struct naming the local vector (layout.hpp), NL = Z::layout.size(); its gather is
-/// compiled for it (layout_gather), its groups and direct blocks (Z::layout) serve the pattern and the chain
-/// rule.
-template <int NL, int NR, typename Kernel, typename Z>
+/// Z: the layout struct naming the local vector (layout.hpp); its gather is compiled for it
+/// (layout_gather), its groups and direct blocks (Z::layout) serve the pattern and the chain rule.
+template <typename Z, int NR, typename Kernel>
 class PointBlock final : public ResidualBlock {
-  static_assert(Z::layout.size() == NL, "PointBlock: NL is the size of Z's local vector");
+  static constexpr int NL = Z::layout.size();
 
  public:
-  /// variables: the `basis.count` control point blocks, then one block per entry of `direct`.
+  /// variables: the `basis.count` control point blocks, then one block per direct entry of Z.
   PointBlock(std::string kind, std::string name, std::vector<VariableId> variables, int control_point_size,
-             PointBasis basis, std::vector<LocalGroup> groups, std::vector<DirectBlock> direct, Kernel kernel,
-             const KernelPattern<NL, NR>& depends = dense_kernel_pattern<NL, NR>())
+             PointBasis basis, Kernel kernel, const KernelPattern<NL, NR>& depends)
       : ResidualBlock(std::move(kind), std::move(name), NR, std::move(variables)),
         cp_size_(control_point_size),
         depends_(depends),
-        basis_(basis),
-        groups_(std::move(groups)),
-        direct_(std::move(direct)),
+        basis_(std::move(basis)),
+        groups_(Z::layout.groups()),
+        direct_(Z::layout.direct()),
         kernel_(std::move(kernel)) {
     require(basis_.count >= 1 && static_cast<int>(basis_.B.size()) == basis_.count, "PointBlock '",
             this->name(), "': ", basis_.count, " basis functions, ", basis_.B.size(), " rows");
@@ -312,9 +310,8 @@ std::shared_ptr<const ResidualBlock> make_point_block(
   require(static_cast<int>(variables.size()) == basis.count + Z::layout.num_direct(), "PointBlock '", name,
           "': ", variables.size(), " variable blocks for ", basis.count, " control points and ",
           Z::layout.num_direct(), " direct blocks");
-  return std::make_shared<PointBlock<Z::layout.size(), NR, Kernel, Z>>(
-      std::move(kind), std::move(name), std::move(variables), cp_size, basis, Z::layout.groups(),
-      Z::layout.direct(), std::move(kernel), depends);
+  return std::make_shared<PointBlock<Z, NR, Kernel>>(std::move(kind), std::move(name), std::move(variables),
+                                                     cp_size, basis, std::move(kernel), depends);
 }
 
 }  // namespace pcr::collocation
