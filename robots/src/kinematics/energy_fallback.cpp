@@ -79,6 +79,14 @@ bool accepted(const RobotAssembly& assembly, const Minimum& m, const VecX& x, co
   return false;
 }
 
+/// The verdict of the equilibrium x, taken on twice the elements where the requested mesh cannot count
+/// (refined_verdict.hpp), as FK reports it.
+Stability judged_verdict(const FkData& data, const VecX& x) {
+  Stability v = robot_stability(*data.model->assembly, x);
+  refine_unknown_verdict(*data.model->assembly, x, data.model->options.tolerance, v);
+  return v;
+}
+
 /// Newton from the minimiser (xs, in and out): true at an accepted equilibrium (its verdict in v, the
 /// solve's summary in summary).
 bool newton_to_stable(FkData& data, const Minimum& minimum, const VecX& inputs, VecX& xs, EnergyFallback& out,
@@ -91,8 +99,7 @@ bool newton_to_stable(FkData& data, const Minimum& minimum, const VecX& inputs, 
     return false;
   }
   note += "; Newton " + std::to_string(summary.iterations) + " iterations";
-  v = robot_stability(*data.model->assembly, xs);
-  refine_unknown_verdict(*data.model->assembly, xs, data.model->options.tolerance, v);
+  v = judged_verdict(data, xs);
   if (accepted(*data.model->assembly, minimum, xs, v, note)) return true;
   note += not_stable(v);
   return false;
@@ -114,8 +121,7 @@ bool damped_motion(FkData& data, const Minimum& minimum, const VecX& inputs, con
     note += r.stopped;
     return false;
   }
-  v = robot_stability(assembly, r.x);
-  refine_unknown_verdict(assembly, r.x, data.model->options.tolerance, v);
+  v = judged_verdict(data, r.x);
   note += std::to_string(r.steps) + " steps";
   if (!accepted(assembly, minimum, r.x, v, note)) {
     note += not_stable(v);
