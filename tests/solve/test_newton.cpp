@@ -93,6 +93,36 @@ BOOST_AUTO_TEST_CASE(converged_to_the_round_off_of_the_residuals) {
   BOOST_TEST(u.residual_round_off == 0.0);
 }
 
+// Rows at their round-off bound above 10 x the tolerance, by hand (residuals_within_round_off). A balance
+// of two forces of 2e4 N, r = 1e3 (x0 - x1): bound 2 eps 4e7 = 1.78e-8 above r = 3e-9; accepted when
+// the forces are large against their scale (ones: 2e4; a force scale 0.3 N: 6.7e4; either way up to
+// 10 x 1e-10 x that), refused when the same values are of their natural size (scale 1e5: 1e-9 < 3e-9).
+// A stiff row of unknowns of natural size, r = 1e9 (x0 - x1) at x = 0.5: bound 4.4e-7, refused. A
+// residual above its bound is refused whatever the scale.
+BOOST_AUTO_TEST_CASE(round_off_above_ten_tolerances_accepted_for_large_unknowns_only) {
+  const double eps = std::numeric_limits<double>::epsilon();
+  const auto row = [](double a) {
+    Eigen::SparseMatrix<double, Eigen::RowMajor> J(1, 2);
+    J.insert(0, 0) = a;
+    J.insert(0, 1) = -a;
+    J.makeCompressed();
+    return J;
+  };
+  const VecX forces = VecX::Constant(2, 2e4), r = VecX::Constant(1, 3e-9);
+  const double tolerance = 1e-10;
+  double bound = -1.0;
+  for (const VecX& scale : {VecX(), VecX(VecX::Ones(2)), VecX(VecX::Constant(2, 0.3))}) {
+    BOOST_TEST(residuals_within_round_off(row(1e3), forces, scale, r, tolerance, bound));
+    BOOST_TEST(bound == 2.0 * eps * 4e7);  // exact: 1e3 x 2e4 twice, and powers of 2
+  }
+  BOOST_TEST(!residuals_within_round_off(row(1e3), forces, VecX::Constant(2, 1e5), r, tolerance, bound));
+  BOOST_TEST(
+      !residuals_within_round_off(row(1e9), VecX::Constant(2, 0.5), VecX::Ones(2), r, tolerance, bound));
+  BOOST_TEST(!residuals_within_round_off(row(1e3), forces, VecX::Ones(2), VecX::Constant(1, 2e-8), tolerance,
+                                         bound));
+  BOOST_TEST(!residuals_within_round_off(row(1e3), forces, VecX::Ones(3), r, tolerance, bound));  // sizes
+}
+
 BOOST_AUTO_TEST_CASE(fixed_variable_and_inactive_block) {
   CircleLine cl(1.0, 1.0);
   cl.p.set_residual_active(cl.line, false);

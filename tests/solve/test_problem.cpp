@@ -3,6 +3,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "pcr/core/error.hpp"
@@ -224,6 +225,9 @@ BOOST_AUTO_TEST_CASE(bad_input_throws_naming_the_block) {
       message_of([&] { p.add_variable_block("c", VecX::Zero(2), VecX::Zero(3), VecX::Ones(2)); }), "'c'"));
   BOOST_TEST(contains(message_of([&] { p.set_variable_bounds(a, VecX::Ones(3), VecX::Zero(3)); }), "'a'"));
   BOOST_TEST(contains(message_of([&] { p.fix_variable(b, VecX::Zero(3)); }), "'b'"));
+  BOOST_TEST(contains(message_of([&] { p.set_variable_scale(b, VecX::Ones(3)); }), "'b'"));
+  for (const double bad : {0.0, -1.0, std::numeric_limits<double>::infinity(), std::nan("")})
+    BOOST_TEST(contains(message_of([&] { p.set_variable_scale(b, VecX::Constant(2, bad)); }), "'b'"));
   BOOST_TEST(contains(message_of([&] {
                         CircleBlock circle(a, b, 1.0);
                         circle.set_row_bounds(VecX::Zero(2), VecX::Zero(2));
@@ -245,6 +249,15 @@ BOOST_AUTO_TEST_CASE(fixing_a_variable_sets_its_value_and_bounds) {
   BOOST_TEST(sp.p.variable_upper()[5] == 3.0);
   sp.p.set_variable_bounds(sp.s, VecX::Constant(1, -1.0), VecX::Constant(1, 4.0));
   BOOST_TEST(!sp.p.variable_fixed(sp.s));
+}
+
+BOOST_AUTO_TEST_CASE(variable_scales_are_ones_unless_set_and_stack_in_block_order) {
+  SmallProblem sp;
+  BOOST_TEST(sp.p.variable_scales() == VecX::Ones(sp.p.num_variables()));
+  sp.p.set_variable_scale(sp.s, VecX::Constant(1, 0.25));
+  const VecX s = sp.p.variable_scales();
+  BOOST_TEST(s[sp.p.variable(sp.s).offset] == 0.25);
+  BOOST_TEST(s.sum() == sp.p.num_variables() - 1 + 0.25);
 }
 
 BOOST_AUTO_TEST_CASE(copies_are_independent) {

@@ -115,17 +115,23 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
 }
 
 bool residuals_within_round_off(const Eigen::SparseMatrix<double, Eigen::RowMajor>& J, const VecX& x,
-                                const VecX& r, double tolerance, double& bound) {
+                                const VecX& scale, const VecX& r, double tolerance, double& bound) {
   bound = 0.0;
   if (J.rows() != r.size() || J.cols() != x.size() || J.nonZeros() == 0) return false;
+  if (scale.size() != 0 && scale.size() != x.size()) return false;
   constexpr double kUnitRoundoffs = 2.0 * std::numeric_limits<double>::epsilon();
   for (int i = 0; i < r.size(); ++i) {
     if (!(std::abs(r[i]) > tolerance)) continue;
     double sensitivity = 0.0;  // sum_j |J_ij x_j|
-    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(J, i); it; ++it)
-      sensitivity += std::abs(it.value() * x[it.col()]);
+    double magnitude = 1.0;    // max(1, max_j |x_j| / scale_j)
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(J, i); it; ++it) {
+      const double xj = std::abs(x[it.col()]);
+      sensitivity += std::abs(it.value()) * xj;
+      magnitude = std::max(magnitude, scale.size() != 0 ? xj / scale[it.col()] : xj);
+    }
     const double row_bound = kUnitRoundoffs * sensitivity;
-    if (!(std::abs(r[i]) <= row_bound) || !(std::abs(r[i]) <= kRoundOffTolerances * tolerance)) return false;
+    if (!(std::abs(r[i]) <= row_bound) || !(std::abs(r[i]) <= kRoundOffTolerances * tolerance * magnitude))
+      return false;
     bound = std::max(bound, row_bound);
   }
   return true;

@@ -72,6 +72,7 @@ VariableId Problem::add_variable_block(const std::string& name, const VecX& init
   v.offset = m.num_variables;
   v.size = static_cast<int>(initial.size());
   v.initial = initial;
+  v.scale = VecX::Ones(initial.size());
   m.variables.push_back(v);
   m.fixed.push_back(0);
   const VariableId id = static_cast<int>(m.variables.size()) - 1;
@@ -161,6 +162,18 @@ void Problem::set_variable_bounds(VariableId id, const VecX& lower, const VecX& 
   m.fixed[id] = 0;
 }
 
+void Problem::set_variable_scale(VariableId id, const VecX& scale) {
+  Impl& m = impl();
+  m.check_variable(id, "set_variable_scale");
+  VariableBlock& v = m.variables[id];
+  require(scale.size() == v.size, "variable block '", v.name, "': scale size = ", scale.size(), ", expected ",
+          v.size);
+  for (int i = 0; i < v.size; ++i)
+    require(std::isfinite(scale[i]) && scale[i] > 0.0, "variable block '", v.name, "': scale ", scale[i],
+            " of entry ", i, " is not positive and finite");
+  v.scale = scale;
+}
+
 void Problem::fix_variable(VariableId id, const VecX& value) {
   Impl& m = impl();
   m.check_variable(id, "fix_variable");
@@ -243,6 +256,13 @@ VecX Problem::variable_lower() const {
   VecX l(m.num_variables);
   for (const auto& v : m.variables) l.segment(v.offset, v.size) = v.lower;
   return l;
+}
+
+VecX Problem::variable_scales() const {
+  const Impl& m = impl();
+  VecX s(m.num_variables);
+  for (const auto& v : m.variables) s.segment(v.offset, v.size) = v.scale;
+  return s;
 }
 
 VecX Problem::variable_upper() const {

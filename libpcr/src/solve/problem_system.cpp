@@ -195,7 +195,7 @@ void ProblemSystem::accept_trial() {
 // Newton step, first half: J at x, its free columns, the factorisation.
 bool ProblemSystem::within_round_off(const VecX& r, double tolerance, double& bound) const {
   bound = 0.0;
-  return x_ && residuals_within_round_off(J_, *x_, r, tolerance, bound);
+  return x_ && residuals_within_round_off(J_, *x_, problem_.variable_scales(), r, tolerance, bound);
 }
 
 SystemStatus ProblemSystem::factorize(VecX&) {

@@ -49,7 +49,7 @@ void account_for_round_off(const Problem& problem, const VecX& x, double toleran
   double bound = 0.0;
   std::ostringstream note;
   note << "|r|max = " << summary.residual_max_abs << " above the tolerance " << tolerance;
-  if (residuals_within_round_off(J, xs, r, tolerance, bound)) {
+  if (residuals_within_round_off(J, xs, problem.variable_scales(), r, tolerance, bound)) {
     summary.residual_round_off = bound;
     note << ", within the round-off bound of each row (largest " << bound << ")";
     summary.message += "; converged to the round-off of the residuals: " + note.str();

@@ -182,14 +182,28 @@ RodVariables CollocationRod::add_variables(Problem& problem, bool free_length, i
   require(init.allFinite(), "rod '", name, "': initial guess is not finite");
   set_running_integrals(init);
 
+  // Natural magnitudes of the unknowns (Problem::set_variable_scale): P and T against L0, N against F0,
+  // M and h against M0, contact force densities against F0 / L0. A round-off stall of rows balancing
+  // forces far above F0 is judged against them (residuals_within_round_off).
+  const PointLayout& z = point_layout();
+  const double L0 = length_scale();
+  VecX cp_scale = VecX::Ones(cp);
+  cp_scale.segment<3>(z.p).setConstant(L0);
+  if (z.n >= 0) cp_scale.segment<3>(z.n).setConstant(force_scale_);
+  if (z.m >= 0) cp_scale.segment<3>(z.m).setConstant(moment_scale_);
+  if (z.integral >= 0) cp_scale.segment<3>(z.integral).setConstant(L0);
   RodVariables vars;
   for (int i = 0; i < n; ++i) {
     vars.control_points.push_back(
         problem.add_variable_block(name + ".cp" + std::to_string(i), init.segment(i * cp, cp)));
+    problem.set_variable_scale(vars.control_points.back(), cp_scale);
     if (group >= 0) problem.set_variable_group(vars.control_points.back(), group);
   }
   if (discretization_.formulation == RodFormulation::Condensed) {
     vars.wrench = problem.add_variable_block(name + ".wrench", init.tail(kWrenchSize));
+    VecX wrench_scale(kWrenchSize);
+    wrench_scale << Vec3::Constant(force_scale_), Vec3::Constant(moment_scale_);
+    problem.set_variable_scale(vars.wrench, wrench_scale);
     if (group >= 0) problem.set_variable_group(vars.wrench, group);
     vars.wrench_offset = problem.variable(vars.wrench).offset;
   }
@@ -200,6 +214,7 @@ RodVariables CollocationRod::add_variables(Problem& problem, bool free_length, i
     for (int j = 0; j + 1 < n; ++j) {
       vars.contact_forces.push_back(
           problem.add_variable_block(name + ".contact_force" + std::to_string(j), VecX::Zero(3)));
+      problem.set_variable_scale(vars.contact_forces.back(), VecX::Constant(3, force_scale_ / L0));
       if (group >= 0) problem.set_variable_group(vars.contact_forces.back(), group);
     }
   }

@@ -79,14 +79,17 @@ class NewtonSolver {
 
 /// Whether every residual |r_i| above tolerance is within its round-off bound 2 eps sum_j |J_ij x_j|
 /// (twice what changing every unknown by one unit in the last place can change r_i by: no point in double
-/// precision need do better) and within kRoundOffTolerances x tolerance; bound: the largest bound of those
-/// rows (0 when none is above tolerance).
+/// precision need do better) and within kRoundOffTolerances x tolerance x max(1, max_j |x_j| / scale_j)
+/// over the unknowns j of row i (scale: Problem::variable_scales(), empty = ones); bound: the largest
+/// bound of those rows (0 when none is above tolerance).
 bool residuals_within_round_off(const Eigen::SparseMatrix<double, Eigen::RowMajor>& J, const VecX& x,
-                                const VecX& r, double tolerance, double& bound);
-/// How far above the tolerance a residual at its round-off is still accepted: the stretched rods of a
-/// robot wrapped around an obstacle (planar_post) reach 2.2e-10 against 1e-10; slender rods in the primal
-/// form stall at 1e-9 - 1e-7, where their solution is wrong by a locking error of 60 % and more
-/// (docs/benchmarks.md "Hard single rods").
+                                const VecX& scale, const VecX& r, double tolerance, double& bound);
+/// How far above the tolerance a residual at its round-off is still accepted, for rows whose unknowns
+/// are of their natural magnitude (VariableBlock::scale). Rows balancing unknowns n times larger (a rod
+/// pressed on a post with 1e5 times its force scale) carry n times the round-off, and are accepted up to
+/// n times more. Large round-off bounds from a stiff Jacobian with unknowns of natural size are not:
+/// slender rods in the primal form stall at 1e-9 - 1e-7, where their solution is wrong by a locking error
+/// of 60 % and more (docs/benchmarks.md "Hard single rods").
 constexpr double kRoundOffTolerances = 10.0;
 
 }  // namespace pcr

@@ -29,6 +29,9 @@ struct VariableBlock {
   int offset = 0;  ///< first index in x
   int size = 0;
   VecX initial, lower, upper;
+  /// Natural magnitude of each entry in its units (e.g. a rod's force scale for its internal force),
+  /// ones by default: how large a value is against the rows' scaling (residuals_within_round_off).
+  VecX scale;
   int group = -1;  ///< optional structural group (e.g. one rod) for structured linear solvers
 };
 
@@ -55,6 +58,8 @@ class Problem {
   void set_residual_active(const std::vector<ResidualId>& ids, bool active);
   void set_variable_group(VariableId id, int group);
   void set_variable_bounds(VariableId id, const VecX& lower, const VecX& upper);
+  /// The natural magnitude of each entry (VariableBlock::scale): positive and finite.
+  void set_variable_scale(VariableId id, const VecX& scale);
   /// Fixes a variable block (lower = upper = initial = value): solvers treat it as a constant, with the
   /// value its entries of x hold. set_variable_bounds un-fixes it.
   void fix_variable(VariableId id, const VecX& value);
@@ -99,6 +104,8 @@ class Problem {
   VecX row_upper() const;
   VecX variable_lower() const;
   VecX variable_upper() const;
+  /// Stacked VariableBlock::scale.
+  VecX variable_scales() const;
 
   /// Unscaled violation of row i: max(l_i - c_i, c_i - u_i, 0); returns its max over all rows
   /// (+infinity if any c_i is not finite, 0 when there are no rows).
