@@ -117,8 +117,8 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
 bool residuals_within_round_off(const Eigen::SparseMatrix<double, Eigen::RowMajor>& J, const VecX& x,
                                 const VecX& scale, const VecX& r, double tolerance, double& bound) {
   bound = 0.0;
-  if (J.rows() != r.size() || J.cols() != x.size() || J.nonZeros() == 0) return false;
-  if (scale.size() != 0 && scale.size() != x.size()) return false;
+  if (J.rows() != r.size() || J.cols() != x.size() || scale.size() != x.size() || J.nonZeros() == 0)
+    return false;
   constexpr double kUnitRoundoffs = 2.0 * std::numeric_limits<double>::epsilon();
   for (int i = 0; i < r.size(); ++i) {
     if (!(std::abs(r[i]) > tolerance)) continue;
@@ -127,7 +127,7 @@ bool residuals_within_round_off(const Eigen::SparseMatrix<double, Eigen::RowMajo
     for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(J, i); it; ++it) {
       const double xj = std::abs(x[it.col()]);
       sensitivity += std::abs(it.value()) * xj;
-      magnitude = std::max(magnitude, scale.size() != 0 ? xj / scale[it.col()] : xj);
+      magnitude = std::max(magnitude, xj / scale[it.col()]);
     }
     const double row_bound = kUnitRoundoffs * sensitivity;
     if (!(std::abs(r[i]) <= row_bound) || !(std::abs(r[i]) <= kRoundOffTolerances * tolerance * magnitude))

@@ -80,7 +80,7 @@ class NewtonSolver {
 /// Whether every residual |r_i| above tolerance is within its round-off bound 2 eps sum_j |J_ij x_j|
 /// (twice what changing every unknown by one unit in the last place can change r_i by: no point in double
 /// precision need do better) and within kRoundOffTolerances x tolerance x max(1, max_j |x_j| / scale_j)
-/// over the unknowns j of row i (scale: Problem::variable_scales(), empty = ones); bound: the largest
+/// over the unknowns j of row i (scale: Problem::variable_scales(), one per unknown); bound: the largest
 /// bound of those rows (0 when none is above tolerance).
 bool residuals_within_round_off(const Eigen::SparseMatrix<double, Eigen::RowMajor>& J, const VecX& x,
                                 const VecX& scale, const VecX& r, double tolerance, double& bound);
