@@ -5,6 +5,7 @@
 #include <boost/math/special_functions/ellint_1.hpp>
 #include <boost/math/special_functions/ellint_2.hpp>
 
+#include "pcr/math/quaternion.hpp"
 #include "pcr/math/so3.hpp"
 #include "pcr/rods/rod_model.hpp"
 
@@ -115,6 +116,35 @@ inline double clamped_free_elastica_deflection(double lambda) {
   }
   const double k = 0.5 * (a + b);
   return 2.0 * k / boost::math::ellint_1(k);
+}
+
+/// A cantilever with every end and distributed load, an intrinsic curvature and shear-extension, and
+/// the given end kinds (the prescribed tip frame is used by clamped, collar and spherical tips).
+inline RodModel loaded_rod(RodEndKind base, RodEndKind tip) {
+  RodModel m = cantilever(0.7, Vec3(3e3, 2e3, 5e3), Vec3(2.0, 1.5, 1.2));
+  m.base.kind = base;
+  m.tip.kind = tip;
+  m.base.orientation = quat_from_rotation_vector(Vec3(0.1, -0.2, 0.05));
+  m.tip.position = Vec3(0.1, 0.05, 0.6);
+  m.tip.orientation = quat_from_rotation_vector(Vec3(0.3, 0.1, -0.2));
+  m.tip.force = Vec3(0.3, -0.2, 0.1);
+  m.tip.moment = Vec3(0.05, 0.1, -0.02);
+  m.base.force = Vec3(-0.1, 0.2, 0.0);
+  m.base.moment = Vec3(0.02, 0.0, 0.03);
+  m.mass_per_length = 0.2;
+  m.loads.gravity = Vec3(0, -9.81, 0);
+  m.loads.moment_per_length = Vec3(0.01, 0.02, -0.01);
+  m.intrinsic.curvature = Vec3(0.3, -0.1, 0.2);
+  m.intrinsic.shear_extension = Vec3(0.001, 0.0, 0.002);
+  return m;
+}
+
+/// loaded_rod without distributed loads (gravity, moment per length): what the condensed form takes.
+inline RodModel end_loaded_rod(RodEndKind base, RodEndKind tip) {
+  RodModel m = loaded_rod(base, tip);
+  m.loads.gravity.setZero();
+  m.loads.moment_per_length.setZero();
+  return m;
 }
 
 }  // namespace pcr::test

@@ -38,27 +38,15 @@ std::array<double, 7> end_rows(RodEndKind kind, const Mat3& R_T, const Vec3& axi
   return r;
 }
 
-// A loaded rod between two held ends (test_collocation_rod's loaded_rod with joint axes).
+// A loaded rod between two held ends: rod_fixtures.hpp's loaded_rod with joint axes, the base off the
+// origin, no intrinsic shear-extension and, without distributed loads, no mass.
 RodModel joint_rod(RodEndKind base, RodEndKind tip, bool distributed_loads) {
-  RodModel m = test::cantilever(0.7, Vec3(3e3, 2e3, 5e3), Vec3(2.0, 1.5, 1.2));
-  m.base.kind = base;
-  m.tip.kind = tip;
+  RodModel m = distributed_loads ? test::loaded_rod(base, tip) : test::end_loaded_rod(base, tip);
+  if (!distributed_loads) m.mass_per_length = 0.0;
+  m.intrinsic.shear_extension.setZero();
   m.base.position = Vec3(0.05, -0.1, 0.2);
-  m.base.orientation = quat_from_rotation_vector(Vec3(0.1, -0.2, 0.05));
   m.base.axis = Vec3(0.6, 0.7, 0.2);
-  m.tip.position = Vec3(0.1, 0.05, 0.6);
-  m.tip.orientation = quat_from_rotation_vector(Vec3(0.3, 0.1, -0.2));
   m.tip.axis = Vec3(-0.3, 0.9, -0.4);
-  m.tip.force = Vec3(0.3, -0.2, 0.1);
-  m.tip.moment = Vec3(0.05, 0.1, -0.02);
-  m.base.force = Vec3(-0.1, 0.2, 0.0);
-  m.base.moment = Vec3(0.02, 0.0, 0.03);
-  m.intrinsic.curvature = Vec3(0.3, -0.1, 0.2);
-  if (distributed_loads) {
-    m.mass_per_length = 0.2;
-    m.loads.gravity = Vec3(0, -9.81, 0);
-    m.loads.moment_per_length = Vec3(0.01, 0.02, -0.01);
-  }
   return m;
 }
 
