@@ -11,6 +11,7 @@ if(PCR_SANITIZE)
       "--run_test=!effort_and_energy_optima_beat_nearby_feasible_points,infeasible_stress_limit_is_reported")
 endif()
 pcr_add_test(NAME test_ik_objectives LABELS robots SOURCES ${CMAKE_CURRENT_LIST_DIR}/robots/test_ik_objectives.cpp
+             ${CMAKE_CURRENT_LIST_DIR}/robots/test_formulation_choice.cpp
              ARGS ${ik_objectives_args})
 if(TARGET test_ik_objectives)  # not in PCR_SKIP_TESTS
   target_compile_definitions(test_ik_objectives PRIVATE PCR_TOOL="$<TARGET_FILE:pcr>")

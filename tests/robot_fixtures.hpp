@@ -1,7 +1,8 @@
 #pragma once
 // Set-ups shared by the robot tests (and benchmarks/common): models by name, the tight settings of the
-// references, inputs moved off their defaults, the fed column of the stability tests, the 6-RUS robot
-// without its platform mass. No Boost.Test here: failures are pcr::InputError (require).
+// references, inputs moved off their defaults, the fed column of the stability tests, the planar robot with
+// other rod radii, the 6-RUS robot without its platform mass. No Boost.Test here: failures are
+// pcr::InputError (require).
 #include <cmath>
 #include <fstream>
 #include <memory>
@@ -90,6 +91,23 @@ inline std::shared_ptr<const RobotModel> fed_column(double lateral) {
   </pcr_rod>
 </robot>)";
   return std::make_shared<const RobotModel>(parse_robot_model(xml, "fed_column"));
+}
+
+/// The planar robot with rods of the given radius instead of 0.5 mm; first_rod_extra: XML put into
+/// the first rod element.
+inline std::shared_ptr<const RobotModel> planar_with_radius(double radius,
+                                                            const std::string& first_rod_extra = "") {
+  std::ifstream in(model_path("planar_three_rod"));
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  std::string xml = buffer.str();
+  const std::string from = "radius=\"0.0005\"", to = "radius=\"" + std::to_string(radius) + "\"";
+  int replaced = 0;
+  for (size_t at = xml.find(from); at != std::string::npos; at = xml.find(from, at + to.size()), ++replaced)
+    xml.replace(at, from.size(), to);
+  require(replaced == 3, model_path("planar_three_rod"), ": ", replaced, " rods of radius 0.5 mm, not 3");
+  xml.insert(xml.find("</pcr_rod>"), first_rod_extra);
+  return std::make_shared<const RobotModel>(parse_robot_model(xml, "planar_thick"));
 }
 
 /// models/six_rus.urdf without the platform's <inertial> (0.5 kg): the massless platform of the README
