@@ -3,6 +3,7 @@ pcr_add_test(NAME test_stability_verdict LABELS rods robots
                      ${CMAKE_CURRENT_LIST_DIR}/stability/test_robot_verdict.cpp
                      ${CMAKE_CURRENT_LIST_DIR}/stability/test_passive_joint_verdict.cpp
                      ${CMAKE_CURRENT_LIST_DIR}/stability/test_energy_fallback.cpp
+                     ${CMAKE_CURRENT_LIST_DIR}/stability/test_energy_fallback_contact.cpp
                      ${CMAKE_CURRENT_LIST_DIR}/stability/test_contact_verdict.cpp
                      $<TARGET_OBJECTS:pcr_test_discrete>)
 # The energy-minimisation FK strategy (robots/src/kinematics/energy_fallback.hpp, internal) is tested
