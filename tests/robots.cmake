@@ -1,5 +1,6 @@
 pcr_add_test(NAME test_kinematics LABELS robots SOURCES ${CMAKE_CURRENT_LIST_DIR}/robots/test_kinematics.cpp
-             ${CMAKE_CURRENT_LIST_DIR}/robots/test_kinematics_option_names.cpp)
+             ${CMAKE_CURRENT_LIST_DIR}/robots/test_kinematics_option_names.cpp
+             ${CMAKE_CURRENT_LIST_DIR}/robots/test_solver_agreement.cpp)
 pcr_add_test(NAME test_input_continuation LABELS robots
              SOURCES ${CMAKE_CURRENT_LIST_DIR}/robots/test_input_continuation.cpp)
 pcr_add_test(NAME test_path_predictor LABELS robots SOURCES ${CMAKE_CURRENT_LIST_DIR}/robots/test_path_predictor.cpp)
