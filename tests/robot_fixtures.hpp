@@ -22,6 +22,20 @@ inline std::string model_path(const std::string& name) {
   return std::string(PCR_MODEL_DIR) + "/" + name + ".urdf";
 }
 
+/// The material element of a steel rod (E = 200 GPa, G = 80 GPa, 8000 kg/m^3).
+inline constexpr const char* kSteel =
+    R"(<material youngs_modulus="200e9" shear_modulus="80e9" density="8000"/>)";
+
+/// The text of models/<name>.urdf (an InputError naming the file if it cannot be read).
+inline std::string model_text(const std::string& name) {
+  const std::string path = model_path(name);
+  std::ifstream in(path);
+  require(in.good(), path, ": cannot be read");
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
 inline std::shared_ptr<const RobotModel> load_model(const std::string& name) {
   return std::make_shared<const RobotModel>(load_robot_model(model_path(name)));
 }
@@ -97,10 +111,7 @@ inline std::shared_ptr<const RobotModel> fed_column(double lateral) {
 /// the first rod element.
 inline std::shared_ptr<const RobotModel> planar_with_radius(double radius,
                                                             const std::string& first_rod_extra = "") {
-  std::ifstream in(model_path("planar_three_rod"));
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  std::string xml = buffer.str();
+  std::string xml = model_text("planar_three_rod");
   const std::string from = "radius=\"0.0005\"", to = "radius=\"" + std::to_string(radius) + "\"";
   int replaced = 0;
   for (size_t at = xml.find(from); at != std::string::npos; at = xml.find(from, at + to.size()), ++replaced)
@@ -113,15 +124,12 @@ inline std::shared_ptr<const RobotModel> planar_with_radius(double radius,
 /// models/six_rus.urdf without the platform's <inertial> (0.5 kg): the massless platform of the README
 /// IK example of Rodrigues et al. (ARK 2024).
 inline std::shared_ptr<const RobotModel> massless_six_rus() {
-  const std::string path = model_path("six_rus");
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string xml = text.str();
+  std::string xml = model_text("six_rus");
   const size_t begin = xml.find("\n    <inertial>");
   const std::string close = "</inertial>";
   const size_t end = xml.find(close, begin);
-  require(begin != std::string::npos && end != std::string::npos, path, ": no platform <inertial> to remove");
+  require(begin != std::string::npos && end != std::string::npos, model_path("six_rus"),
+          ": no platform <inertial> to remove");
   xml.erase(begin, end + close.size() - begin);
   return std::make_shared<const RobotModel>(parse_robot_model(xml, "six_rus_massless"));
 }

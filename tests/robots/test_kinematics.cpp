@@ -19,22 +19,15 @@
 
 using namespace pcr;
 using test::load_model;
-using test::model_path;
+using test::model_text;
 using test::moved_inputs;
 using test::tight_kinematics;
 
 namespace {
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 /// The planar robot with a fourth rod ending in a spherical joint (exercises that coupling).
 std::shared_ptr<const RobotModel> planar_with_spherical_rod() {
-  std::string xml = read_file(model_path("planar_three_rod"));
+  std::string xml = model_text("planar_three_rod");
   const std::string rod = R"(
   <pcr_rod name="pin">
     <start link="base" xyz="0 0.05 0" rpy="0 0 0" coupling="clamped"/>
