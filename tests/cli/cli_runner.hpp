@@ -1,5 +1,5 @@
 #pragma once
-// Running the built pcr tool from the CLI tests (test_cli, test_cli_tools): each test executable defines
+// Running the built pcr tool from the CLI tests (test_cli, test_cli_tools, ...): each source file defines
 // PCR_CLI_WORK_DIRECTORY, its own directory under the system's temporary one, named with the process id
 // (created at the first use, removed at exit), so that the executables, and two runs of one of them (two
 // build trees tested on one machine), can run at the same time.
@@ -73,6 +73,13 @@ Run run_pcr(const std::string& arguments, const std::string& prefix = "") {
 
 [[maybe_unused]] bool contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
+}
+
+/// Writes text to a file of the work directory; returns its path, quoted for the shell.
+[[maybe_unused]] std::string write_file(const std::string& name, const std::string& text) {
+  const fs::path path = work_directory() / name;
+  std::ofstream(path) << text;
+  return "'" + path.string() + "'";
 }
 
 [[maybe_unused]] std::string number(double x) {
