@@ -12,6 +12,7 @@ if(PCR_SANITIZE)
 endif()
 pcr_add_test(NAME test_ik_objectives LABELS robots SOURCES ${CMAKE_CURRENT_LIST_DIR}/robots/test_ik_objectives.cpp
              ${CMAKE_CURRENT_LIST_DIR}/robots/test_formulation_choice.cpp
+             ${CMAKE_CURRENT_LIST_DIR}/robots/test_ik_constraints.cpp
              ARGS ${ik_objectives_args})
 if(TARGET test_ik_objectives)  # not in PCR_SKIP_TESTS
   target_compile_definitions(test_ik_objectives PRIVATE PCR_TOOL="$<TARGET_FILE:pcr>")
