@@ -20,6 +20,7 @@
 #include "pcr/rods/shooting/rod_ode.hpp"
 #include "pcr/rods/shooting/rod_shooting.hpp"
 #include "pcr/solve/jacobian_check.hpp"
+#include "rods/rod_fixtures.hpp"
 
 using namespace pcr;
 
@@ -227,30 +228,12 @@ BOOST_AUTO_TEST_CASE(primal_form_matches_shooting_on_a_thick_drawn_rod) {
 
 namespace {
 
-// A rod with every kind of load and end (the model of tests/rods/test_collocation_rod.cpp, constant
-// intrinsic strains), drawn at c: rho A c^2 = 0.2 c^2 = 320 N at c = 40 m/s, a tenth of K_SE.
+// A rod with every kind of load and end (rod_fixtures.hpp's loaded_rod, constant intrinsic strains;
+// without distributed loads its end_loaded_rod), drawn at c: rho A c^2 = 0.2 c^2 = 320 N at c = 40 m/s,
+// a tenth of K_SE.
 RodModel loaded_drawn_rod(RodEndKind base, RodEndKind tip, bool distributed) {
-  RodModel m;
+  RodModel m = distributed ? test::loaded_rod(base, tip) : test::end_loaded_rod(base, tip);
   m.name = "loaded";
-  m.length = 0.7;
-  m.shear_extension_stiffness = Vec3(3e3, 2e3, 5e3);
-  m.bending_torsion_stiffness = Vec3(2.0, 1.5, 1.2);
-  m.base.kind = base;
-  m.tip.kind = tip;
-  m.base.orientation = quat_from_rotation_vector(Vec3(0.1, -0.2, 0.05));
-  m.tip.position = Vec3(0.1, 0.05, 0.6);
-  m.tip.orientation = quat_from_rotation_vector(Vec3(0.3, 0.1, -0.2));
-  m.tip.force = Vec3(0.3, -0.2, 0.1);
-  m.tip.moment = Vec3(0.05, 0.1, -0.02);
-  m.base.force = Vec3(-0.1, 0.2, 0.0);
-  m.base.moment = Vec3(0.02, 0.0, 0.03);
-  m.mass_per_length = 0.2;
-  if (distributed) {
-    m.loads.gravity = Vec3(0, -9.81, 0);
-    m.loads.moment_per_length = Vec3(0.01, 0.02, -0.01);
-  }
-  m.intrinsic.curvature = Vec3(0.3, -0.1, 0.2);
-  m.intrinsic.shear_extension = Vec3(0.001, 0.0, 0.002);
   m.drawing_speed = 40.0;
   return m;
 }

@@ -11,10 +11,12 @@
 #include <string>
 #include <vector>
 
+#include "model_xml.hpp"
 #include "pcr/core/error.hpp"
 #include "pcr/robots/urdf_loader.hpp"
 
 using namespace pcr;
+using test::check_rejected;
 
 namespace {
 
@@ -48,21 +50,6 @@ std::string at_line_of(const std::string& xml, const std::string& needle) {
   int line = 1;
   for (std::size_t i = 0; i < position; ++i) line += xml[i] == '\n' ? 1 : 0;
   return "bad.urdf:" + std::to_string(line) + ":";
-}
-
-// Asserts that parsing throws InputError whose message contains every part.
-void check_rejected(const std::string& xml, const std::vector<std::string>& parts) {
-  try {
-    parse_robot_model(xml, "bad.urdf");
-    BOOST_ERROR("no InputError for a model that should give: " << parts.front() << " ...");
-  } catch (const InputError& e) {
-    const std::string message = e.what();
-    BOOST_TEST_MESSAGE(message);
-    for (const std::string& part : parts) {
-      BOOST_TEST(message.find(part) != std::string::npos,
-                 "message \"" << message << "\" lacks \"" << part << "\"");
-    }
-  }
 }
 
 }  // namespace
