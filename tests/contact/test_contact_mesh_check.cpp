@@ -4,7 +4,6 @@
 #define BOOST_TEST_MODULE contact_edges
 #include <boost/test/unit_test.hpp>
 
-#include <fstream>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -12,6 +11,7 @@
 #include "pcr/robots/io/solution_writers.hpp"
 #include "pcr/robots/kinematics.hpp"
 #include "pcr/robots/urdf_loader.hpp"
+#include "robot_fixtures.hpp"
 
 using namespace pcr;
 
@@ -20,10 +20,7 @@ namespace {
 // models/planar_post.urdf with its middle rod meshed by `elements` elements, solved by FK at the default
 // inputs.
 RobotSolution planar_post_with(int elements, std::shared_ptr<const RobotModel>& model, bool point = false) {
-  std::ifstream file(std::string(PCR_MODEL_DIR) + "/planar_post.urdf");
-  std::stringstream text;
-  text << file.rdbuf();
-  std::string xml = text.str();
+  std::string xml = test::model_text("planar_post");
   const std::string mesh = R"(elements="24")";
   BOOST_TEST_REQUIRE(xml.find(mesh) != std::string::npos);
   xml.replace(xml.find(mesh), mesh.size(), "elements=\"" + std::to_string(elements) + "\"");

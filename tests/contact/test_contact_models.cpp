@@ -3,7 +3,6 @@
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
-#include <fstream>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -12,6 +11,7 @@
 #include "pcr/robots/io/solution_writers.hpp"
 #include "pcr/robots/kinematics.hpp"
 #include "pcr/robots/urdf_loader.hpp"
+#include "robot_fixtures.hpp"
 
 using namespace pcr;
 
@@ -226,10 +226,7 @@ BOOST_AUTO_TEST_CASE(obstacles_on_links_fixed_to_the_world) {
 
   // A concentrated contact with an obstacle on a moving link (the platform) is rejected: its reaction on
   // the platform is not modelled (distributed contact is: tests/robots/test_moving_obstacles.cpp).
-  std::ifstream file(std::string(PCR_MODEL_DIR) + "/planar_post.urdf");
-  std::stringstream text;
-  text << file.rdbuf();
-  std::string xml = text.str();
+  std::string xml = test::model_text("planar_post");
   const std::string post = R"(<pcr_obstacle name="post" type="capsule")";
   BOOST_TEST_REQUIRE(xml.find(post) != std::string::npos);
   xml.replace(xml.find(post), post.size(),

@@ -6,16 +6,15 @@
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
-#include <fstream>
 #include <memory>
 #include <random>
-#include <sstream>
 #include <string>
 
 #include "pcr/core/error.hpp"
 #include "pcr/robots/kinematics.hpp"
 #include "pcr/robots/urdf_loader.hpp"
 #include "pcr/solve/jacobian_check.hpp"
+#include "robot_fixtures.hpp"
 
 using namespace pcr;
 
@@ -207,10 +206,7 @@ namespace {
 // frame (the platform starts at (0, 0, 0.3), unrotated, so the declared world post is where it starts),
 // and `extra` added before the first rod (loads, obstacles).
 std::string planar_post_xml(const std::string& post, const std::string& extra = "") {
-  std::ifstream file(std::string(PCR_MODEL_DIR) + "/planar_post.urdf");
-  std::stringstream text;
-  text << file.rdbuf();
-  std::string xml = text.str();
+  std::string xml = test::model_text("planar_post");
   const std::string declared =
       R"(<pcr_obstacle name="post" type="capsule" xyz="-0.0147 -0.02 0.1436" end="-0.0147 0.02 0.1436" radius="0.02"/>)";
   BOOST_TEST_REQUIRE(xml.find(declared) != std::string::npos);

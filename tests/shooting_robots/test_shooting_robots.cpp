@@ -5,8 +5,6 @@
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include "pcr/core/error.hpp"
 #include "pcr/math/so3.hpp"
@@ -195,10 +193,7 @@ BOOST_AUTO_TEST_CASE(every_coupling_with_loads_agrees_with_collocation) {
   // R5a with leg0, leg3 clamped to the platform and leg1 spherical (the others collars), the platform's
   // centre of mass off its origin and an external force + torque off the origin: exercises every tip
   // coupling, the centre-of-mass lever arm and the external load in the balances of both solvers.
-  std::ifstream in(std::string(PCR_MODEL_DIR) + "/stewart_gough.urdf");
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string xml = text.str();
+  std::string xml = test::model_text("stewart_gough");
   auto replace_in_rod = [&](const std::string& rod, const std::string& coupling) {
     const size_t at = xml.find("coupling=\"collar\"", xml.find("name=\"" + rod + "\""));
     xml.replace(at, 17, "coupling=\"" + coupling + "\"");

@@ -4,7 +4,6 @@
 // against the same robot with its passive joints replaced by the equivalent rod coupling.
 #include <boost/test/unit_test.hpp>
 #include <cmath>
-#include <fstream>
 #include <random>
 #include <sstream>
 #include <string>
@@ -166,10 +165,7 @@ BOOST_AUTO_TEST_CASE(passive_hinge_default_pose_against_the_discrete_model) {
 // nonlinearity) that is ~1e-8 relative, and the solves' residual 1e-12 x M0 = 3e-14 N m gives an error of
 // ~3e-9 relative. The bound 1e-6 of the column's largest entry covers both with a margin of 100.
 BOOST_AUTO_TEST_CASE(passive_hinge_compliance_against_finite_differences) {
-  std::ifstream file(test::model_path("passive_hinge"));
-  std::stringstream text;
-  text << file.rdbuf();
-  const std::string xml = text.str();
+  const std::string xml = test::model_text("passive_hinge");
   const auto model = model_from(xml, "passive_hinge");
   ForwardKinematics fk(model, test::tight_kinematics());
   const VecX u = model->default_input_values();

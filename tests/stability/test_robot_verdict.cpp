@@ -5,7 +5,6 @@
 #include <cmath>
 #include <string>
 
-#include <fstream>
 #include <sstream>
 
 #include "kinematics/coarse_continuation.hpp"
@@ -331,10 +330,7 @@ namespace {
 /// planar_three_rod with a ball its middle rod may touch: radius 10 mm, centre 50 mm right of the base
 /// and 150 mm up, about 80 mm from the middle rod at the default inputs.
 std::shared_ptr<const RobotModel> planar_three_rod_beside_a_ball() {
-  std::ifstream in(test::model_path("planar_three_rod"));
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  std::string xml = buffer.str();
+  std::string xml = test::model_text("planar_three_rod");
   const std::string gravity = "<pcr_gravity xyz=\"0 0 -9.81\"/>";
   const std::size_t g = xml.find(gravity);
   BOOST_TEST_REQUIRE(g != std::string::npos);
