@@ -104,10 +104,8 @@ LinkInertial read_inertial(const TiXmlElement& link, const std::string& source, 
   return result;
 }
 
-}  // namespace
-
-UrdfTree read_tree(const TiXmlElement& robot, const std::string& source) {
-  UrdfTree tree;
+// The <link> elements: unique, non-empty names, at least one.
+void read_links(const TiXmlElement& robot, const std::string& source, UrdfTree& tree) {
   for (const TiXmlElement* e = robot.FirstChildElement("link"); e; e = e->NextSiblingElement("link")) {
     XmlElementReader reader(*e, source, "link");
     const std::string name = reader.text("name");
@@ -119,6 +117,11 @@ UrdfTree read_tree(const TiXmlElement& robot, const std::string& source) {
     tree.link_names.push_back(name);
   }
   if (tree.links.empty()) throw_input_error(source, ": <robot> has no <link>");
+}
+
+// The <joint> elements: unique names, a type, a parent and a child link that differ, at most one parent
+// joint per link.
+void read_joints(const TiXmlElement& robot, const std::string& source, UrdfTree& tree) {
   tree.parent_joint.assign(tree.links.size(), -1);
   std::map<std::string, int> joint_index;
   for (const TiXmlElement* e = robot.FirstChildElement("joint"); e; e = e->NextSiblingElement("joint")) {
@@ -154,7 +157,10 @@ UrdfTree read_tree(const TiXmlElement& robot, const std::string& source) {
     tree.joint_child.push_back(ends[1]);
     tree.joint_type.push_back(type);
   }
-  // One root; every link reaches it.
+}
+
+// One root link, which every link reaches through its parent joints (no cycle).
+void check_single_root(const std::string& source, const UrdfTree& tree) {
   int root = -1;
   for (std::size_t i = 0; i < tree.links.size(); ++i) {
     if (tree.parent_joint[i] >= 0) continue;
@@ -176,6 +182,15 @@ UrdfTree read_tree(const TiXmlElement& robot, const std::string& source) {
       link = tree.joint_parent[tree.parent_joint[link]];
     }
   }
+}
+
+}  // namespace
+
+UrdfTree read_tree(const TiXmlElement& robot, const std::string& source) {
+  UrdfTree tree;
+  read_links(robot, source, tree);
+  read_joints(robot, source, tree);
+  check_single_root(source, tree);
   return tree;
 }
 
