@@ -156,19 +156,8 @@ void check_drawing_speed(XmlElementReader& element, const RodModel& rod) {
   if (!problem.empty()) element.fail("drawing_speed", element.text("drawing_speed"), problem);
 }
 
-}  // namespace
-
-RodElement read_rod(const TiXmlElement& e, const std::string& source, const UrdfTree& tree) {
-  RodElement rod;
-  {
-    XmlElementReader reader(e, source, "pcr_rod");
-    rod.name = reader.text("name");
-    if (rod.name.empty()) reader.fail("name", rod.name, "is empty");
-    rod.rod.drawing_speed = reader.number_or("drawing_speed", 0.0);
-    reader.finish();
-  }
-  const std::string label = quoted("pcr_rod", rod.name);
-  XmlElementReader element(e, source, label);
+// Every child element of <pcr_rod> is one that pcr reads.
+void check_known_children(XmlElementReader& element, const TiXmlElement& e) {
   static const char* const known[] = {"start",          "end",
                                       "material",       "section",
                                       "length",         "intrinsic_curvature",
@@ -179,9 +168,11 @@ RodElement read_rod(const TiXmlElement& e, const std::string& source, const Urdf
     for (const char* k : known) ok = ok || c->ValueStr() == k;
     if (!ok) element.fail("unknown element <" + c->ValueStr() + ">");
   }
-  auto child = [&](const char* name, bool required) { return single_child(element, e, name, required); };
-  read_rod_end(*child("start", true), source, label + " <start>", tree, rod.start, rod.rod.base);
-  read_rod_end(*child("end", true), source, label + " <end>", tree, rod.end, rod.rod.tip);
+}
+
+// The two ends together: the twist rule, no rod that swings about a joint because its other end is free,
+// and two different links.
+void check_end_pair(XmlElementReader& element, const RodElement& rod, const UrdfTree& tree) {
   const std::string twist = twist_rule_violation(rod);
   if (!twist.empty()) element.fail(twist);
   // A universal or revolute end with the other end free leaves the rod a pendulum about the joint.
@@ -198,6 +189,26 @@ RodElement read_rod(const TiXmlElement& e, const std::string& source, const Urdf
     element.fail("both ends are on link '" + tree.link_names[rod.start.link] +
                  "'; a rod must join two different links");
   }
+}
+
+}  // namespace
+
+RodElement read_rod(const TiXmlElement& e, const std::string& source, const UrdfTree& tree) {
+  RodElement rod;
+  {
+    XmlElementReader reader(e, source, "pcr_rod");
+    rod.name = reader.text("name");
+    if (rod.name.empty()) reader.fail("name", rod.name, "is empty");
+    rod.rod.drawing_speed = reader.number_or("drawing_speed", 0.0);
+    reader.finish();
+  }
+  const std::string label = quoted("pcr_rod", rod.name);
+  XmlElementReader element(e, source, label);
+  check_known_children(element, e);
+  auto child = [&](const char* name, bool required) { return single_child(element, e, name, required); };
+  read_rod_end(*child("start", true), source, label + " <start>", tree, rod.start, rod.rod.base);
+  read_rod_end(*child("end", true), source, label + " <end>", tree, rod.end, rod.rod.tip);
+  check_end_pair(element, rod, tree);
   XmlElementReader material(*child("material", true), source, label + " <material>");
   XmlElementReader section(*child("section", true), source, label + " <section>");
   rod.rod.name = rod.name;
