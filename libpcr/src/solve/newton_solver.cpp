@@ -99,7 +99,8 @@ SolveSummary NewtonSolver::solve(VecX& x, int max_iterations, int max_jacobian_e
     summary.jacobian_evaluations = result.jacobian_evaluations;
     summary.residual_round_off = result.round_off_bound;
     if (summary.converged() && w.options.reuse_factorization)
-      summary.message = std::to_string(result.jacobian_evaluations) + " Jacobian evaluations" +
+      summary.message = std::to_string(result.jacobian_evaluations) + " Jacobian evaluation" +
+                        (result.jacobian_evaluations == 1 ? "" : "s") +
                         (result.message.empty() ? "" : "; " + result.message);
   }
   summary.residual_by_kind = problem.violation_by_kind(*constraints);
