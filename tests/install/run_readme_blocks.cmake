@@ -6,7 +6,9 @@
 #     $HOME/opt/pcr, then the example is configured against that prefix, built, and run on an
 #     installed model); example.py goes to example/ too and python.sh runs it with the installed
 #     Python package;
-#  3. the installed layout is checked, and the installed pcr tool solves an installed model.
+#  3. the installed layout is checked, and the installed pcr tool solves an installed model;
+#  4. the C++ blocks of docs/api.md, in page order, are built as one program against the install and run
+#     where the installed models are.
 # Arguments: -DBUILD_DIR -DSOURCE_DIR -DWORK.
 file(REMOVE_RECURSE "${WORK}")
 set(root "${WORK}/root")
@@ -81,3 +83,41 @@ if(NOT package OR NOT libraries)
   message(FATAL_ERROR "no pcrConfig.cmake or libpcr_robots.a under ${prefix}")
 endif()
 run("${prefix}/bin/pcr" fk "${prefix}/share/pcr/models/planar_three_rod.urdf" --json)
+
+# docs/api.md's C++ blocks as one program: each block nested in the scope of the blocks before it (later
+# blocks use their variables: model, fk, target, rod; a name declared again shadows the earlier one),
+# their #include lines hoisted. It must build against the install and run without an exception.
+file(READ "${SOURCE_DIR}/docs/api.md" api)
+set(includes "#include <cmath>\n#include <iostream>\n#include <memory>\n")
+set(body "")
+set(closing "")
+string(FIND "${api}" "```cpp\n" begin)
+while(NOT begin EQUAL -1)
+  math(EXPR begin "${begin} + 7")
+  string(SUBSTRING "${api}" ${begin} -1 api)
+  string(FIND "${api}" "```" end)
+  string(SUBSTRING "${api}" 0 ${end} block)
+  math(EXPR end "${end} + 3")
+  string(SUBSTRING "${api}" ${end} -1 api)
+  string(REGEX MATCHALL "#include [^\n]*\n" block_includes "${block}")
+  string(REGEX REPLACE "#include [^\n]*\n" "" block "${block}")
+  string(APPEND includes ${block_includes})
+  string(APPEND body "{\n${block}")
+  string(APPEND closing "}\n")
+  string(FIND "${api}" "```cpp\n" begin)
+endwhile()
+if(body STREQUAL "")
+  message(FATAL_ERROR "docs/api.md has no C++ block")
+endif()
+set(api_dir "${root}/api_doc")
+file(WRITE "${api_dir}/main.cpp" "${includes}\nint main() {\n${body}${closing}  return 0;\n}\n")
+file(WRITE "${api_dir}/CMakeLists.txt" "cmake_minimum_required(VERSION 3.16)
+project(pcr_api_doc LANGUAGES CXX)
+set(CMAKE_CXX_STANDARD 17)
+find_package(pcr 0.1 REQUIRED)
+add_executable(api_doc main.cpp)
+target_link_libraries(api_doc PRIVATE pcr::robots)
+")
+run(${CMAKE_COMMAND} -S "${api_dir}" -B "${api_dir}/build" -DCMAKE_PREFIX_PATH=${prefix})
+run(${CMAKE_COMMAND} --build "${api_dir}/build")
+run(${CMAKE_COMMAND} -E chdir "${prefix}/share/pcr" "${api_dir}/build/api_doc")
