@@ -1,5 +1,6 @@
 # The Python package (pytest, Debian's /usr/bin/python3): bindings against the pcr tool's JSON bit for
-# bit, errors, paths, the workspace sampler and the examples (Dask LocalCluster, matplotlib).
+# bit, errors, paths, the workspace sampler, the examples (Dask LocalCluster, matplotlib) and the blocks
+# of docs/python.md.
 if(PCR_BUILD_PYTHON)
   add_test(NAME test_python COMMAND ${Python3_EXECUTABLE} -m pytest -q -p no:cacheprovider
                                     ${CMAKE_CURRENT_LIST_DIR}/python)
