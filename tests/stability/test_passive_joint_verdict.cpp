@@ -148,7 +148,7 @@ BOOST_AUTO_TEST_CASE(passive_hinge_default_pose_against_the_discrete_model) {
   const test::DiscreteRods::Inertia d = test::discrete_robot_inertia(fk.assembly(), fk.state(), 16);
   BOOST_TEST(d.negative == 1);
   BOOST_TEST(d.zero == 0);
-  // The verdict in the results table and JSON (pcr fk --stability), no longer `unknown`.
+  // The verdict in the results table and JSON (pcr fk --stability): a count, not `unknown`.
   std::ostringstream table, json;
   write_solution_table(table, *model, s);
   write_solution_json(json, *model, s, {});
@@ -255,7 +255,7 @@ BOOST_AUTO_TEST_CASE(universal_passive_counts_as_universal_pair) {
 }
 
 // An asymmetry of the reduced stiffness between 1e-4 and 1e-3 (the collocation's discretisation error in
-// a strongly compressed, bent state) no longer makes the verdict `unknown` where the count cannot depend
+// a strongly compressed, bent state) does not make the verdict `unknown` where the count cannot depend
 // on it (robot_stability.cpp: every eigenvalue farther than n x asymmetry from zero). The state: the first
 // warm solve of the passive_hinge random sweep (test_random_sweeps, seed 11: inputs uniform in the bounds,
 // FK warm-started along the sequence) with an asymmetry in (1e-4, 1e-3] at 8 elements per rod. Its count

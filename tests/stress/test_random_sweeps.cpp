@@ -13,6 +13,7 @@
 // the order solved: time with the verdict and FK alone [s], iterations, fresh Jacobians, status, verdict,
 // unstable modes, margin, the first platform's position [m], message; for comparing runs by the
 // equilibria they reach and their verdicts; --trace=2 adds a line INPUTS with the inputs after each).
+// The consistency checks of a converged result: solution_consistency.hpp.
 #define BOOST_TEST_MODULE random_sweeps
 #include <boost/test/unit_test.hpp>
 
@@ -31,8 +32,11 @@
 #include "pcr/robots/kinematics.hpp"
 #include "pcr/robots/urdf_loader.hpp"
 #include "robot_fixtures.hpp"
+#include "stress/solution_consistency.hpp"
 
 using namespace pcr;
+using test::check_solution;
+using test::Consistency;
 using test::load_model;
 
 namespace {
@@ -52,137 +56,6 @@ std::string text_argument(const std::string& name, const std::string& fallback) 
 long argument(const std::string& name, long fallback) {
   const std::string text = text_argument(name, "");
   return text.empty() ? fallback : std::strtol(text.c_str(), nullptr, 10);
-}
-
-/// Worst violations of the global checks of one converged solution (0 = exact).
-struct Consistency {
-  double length = 0.0;     ///< |rod length - input| [m]
-  double coupling = 0.0;   ///< |rod end position - attachment position| [m]
-  double force = 0.0;      ///< |platform force balance| [N]
-  double moment = 0.0;     ///< |platform moment balance| [N m]
-  double stretch = 0.0;    ///< polyline length / admissible arc length - 1 (> 0 means too long)
-  double magnitude = 0.0;  ///< largest sum of |force terms| on one platform [N] (round-off scale)
-  double passive_moment = 0.0, passive_force = 0.0;  ///< |passive joint balance| [N m], [N]
-  bool finite = true;
-};
-
-/// The passive joints' balances recomputed from the solution at the joint values q into c (the largest
-/// |Q - k (q - rest)| of revolute and of prismatic joints), Q = w . sum ((x - o) x F + M) (revolute) or w .
-/// sum F (prismatic) over the wrenches on the links the joint moves: rod ends (+n(0), +m(0) on a start link;
-/// -n(L), -m(L) on an end link), link weights and loads (docs/model_format.md, "Passive joints").
-void check_passive_balances(const RobotModel& model, const RobotSolution& s, const VecX& q, Consistency& c) {
-  for (int j : model.passive_joints()) {
-    const Joint& joint = model.joints()[j];
-    const Pose frame = model.link_pose(joint.parent_link, q, s.platforms) * joint.origin;
-    const Vec3 w = frame.rotation() * joint.axis, o = frame.position;
-    Vec3 F = Vec3::Zero(), M = Vec3::Zero();
-    auto add = [&](const Vec3& x, const Vec3& force, const Vec3& torque) {
-      F += force;
-      M += (x - o).cross(force) + torque;
-    };
-    for (size_t l = 0; l < model.links().size(); ++l)
-      if (model.joint_moves_link(j, static_cast<int>(l)) && model.links()[l].mass > 0.0)
-        add(model.link_pose(static_cast<int>(l), q, s.platforms)
-                .transform_point(model.links()[l].center_of_mass),
-            model.links()[l].mass * model.gravity(), Vec3::Zero());
-    for (const ExternalLoad& load : model.loads())
-      if (model.joint_moves_link(j, load.link))
-        add(model.link_pose(load.link, q, s.platforms).transform_point(load.point), load.force, load.torque);
-    for (size_t i = 0; i < s.rods.size(); ++i) {
-      const RodResult& r = s.rods[i];
-      if (model.rods()[i].start.link >= 0 && model.joint_moves_link(j, model.rods()[i].start.link))
-        add(r.centerline.front(), r.base_force, r.base_moment);
-      if (model.rods()[i].end.link >= 0 && model.joint_moves_link(j, model.rods()[i].end.link))
-        add(r.centerline.back(), -r.tip_force, -r.tip_moment);
-    }
-    const bool prismatic = joint.type == JointType::Prismatic;
-    const double Q = w.dot(prismatic ? F : M);
-    const double residual = Q - joint.stiffness * (q[joint.value_index] - joint.rest);
-    double& worst = prismatic ? c.passive_force : c.passive_moment;
-    worst = std::max(worst, std::abs(residual));
-  }
-}
-
-/// Recomputes, from the RobotSolution alone (and the model), what a converged result must satisfy.
-/// Sign conventions (kinematics.hpp, docs/design.md §3): the rod exerts +n(0), +m(0) on its start link at
-/// p(0) and -n(L), -m(L) on its end link at p(L); platform balance about the platform origin x:
-///   m g + F_ext + sum_start n(0) - sum_end n(L) = 0,
-///   (R c) x m g + sum (r_load x F + T) + sum_start [m(0) + (p(0) - x) x n(0)]
-///                                      - sum_end [m(L) + (p(L) - x) x n(L)] = 0.
-Consistency check_solution(const RobotModel& model, const RobotSolution& s) {
-  Consistency c;
-  c.finite = s.inputs.allFinite();
-  for (const Pose& p : s.platforms)
-    c.finite = c.finite && p.position.allFinite() && p.orientation.allFinite();
-  for (const RodResult& r : s.rods) {
-    c.finite = c.finite && std::isfinite(r.length) && r.base_force.allFinite() && r.base_moment.allFinite() &&
-               r.tip_force.allFinite() && r.tip_moment.allFinite() && std::isfinite(r.axial_force);
-    for (const Vec3& p : r.centerline) c.finite = c.finite && p.allFinite();
-  }
-  if (!c.finite) return c;
-
-  // Every moving joint's value: the joint inputs' and the passive joints' (RobotSolution::passive_joints).
-  const VecX joint_values = joint_values_of_solution(model, s);
-  const size_t np = model.platforms().size();
-  std::vector<Vec3> force(np, Vec3::Zero()), moment(np, Vec3::Zero());
-  std::vector<double> magnitude(np, 0.0);  // sum of |force terms|, for the round-off bound
-  for (size_t p = 0; p < np; ++p) {
-    const Platform& pl = model.platforms()[p];
-    const Vec3 weight = pl.mass * model.gravity();
-    force[p] += weight;
-    moment[p] += (s.platforms[p].rotation() * pl.center_of_mass).cross(weight);
-    magnitude[p] += weight.norm();
-  }
-  for (const ExternalLoad& l : model.loads()) {
-    const int p = model.carrying_platform(l.link);
-    if (p < 0) continue;
-    const Pose link = model.link_pose(l.link, joint_values, s.platforms);
-    force[p] += l.force;
-    moment[p] += (link.transform_point(l.point) - s.platforms[p].position).cross(l.force) + l.torque;
-    magnitude[p] += l.force.norm();
-  }
-  for (size_t i = 0; i < s.rods.size(); ++i) {
-    const RodElement& e = model.rods()[i];
-    const RodResult& r = s.rods[i];
-    // Inputs: the rod-length inputs are the rods' lengths.
-    for (size_t k = 0; k < model.inputs().size(); ++k)
-      if (model.inputs()[k].kind == ActuationInput::Kind::RodLength &&
-          model.inputs()[k].index == static_cast<int>(i))
-        c.length = std::max(c.length, std::abs(r.length - s.inputs[k]));
-    // Couplings: every attached end sits at its attachment point (all coupling kinds fix p).
-    const Vec3 ends[2] = {r.centerline.front(), r.centerline.back()};
-    const RodAttachment* att[2] = {&e.start, &e.end};
-    for (int k = 0; k < 2; ++k) {
-      if (att[k]->link < 0 || att[k]->coupling == RodEndKind::Free) continue;
-      const Pose frame = model.attachment_pose(*att[k], joint_values, s.platforms);
-      c.coupling = std::max(c.coupling, (ends[k] - frame.position).norm());
-      const int p = model.carrying_platform(att[k]->link);
-      if (p < 0) continue;
-      const double sigma = k == 0 ? 1.0 : -1.0;  // start: +n(0); end: -n(L)
-      const Vec3& n = k == 0 ? r.base_force : r.tip_force;
-      const Vec3& m = k == 0 ? r.base_moment : r.tip_moment;
-      force[p] += sigma * n;
-      moment[p] += sigma * (m + (ends[k] - s.platforms[p].position).cross(n));
-      magnitude[p] += n.norm();
-    }
-    // Arc length: |p'| = |e3 + eps| <= 1 + |n| / min(K_SE), |n| largest at an end (n' = -f is
-    // constant), so the centerline polyline (shorter than the curve) is at most
-    // L (1 + max|n| / min K_SE) for an exact solution; the excess measures the discretisation error
-    // (the constitutive law holds only at the collocation points).
-    double polyline = 0.0;
-    for (size_t k = 1; k < r.centerline.size(); ++k)
-      polyline += (r.centerline[k] - r.centerline[k - 1]).norm();
-    const double n_max = std::max(r.base_force.norm(), r.tip_force.norm());
-    const double bound = r.length * (1.0 + n_max / e.rod.shear_extension_stiffness.minCoeff());
-    c.stretch = std::max(c.stretch, polyline / bound - 1.0);
-  }
-  check_passive_balances(model, s, joint_values, c);
-  for (size_t p = 0; p < np; ++p) {
-    c.force = std::max(c.force, force[p].norm());
-    c.moment = std::max(c.moment, moment[p].norm());
-    c.magnitude = std::max(c.magnitude, magnitude[p]);
-  }
-  return c;
 }
 
 struct Stats {
