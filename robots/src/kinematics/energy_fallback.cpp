@@ -174,9 +174,10 @@ bool descended_along_unstable_mode(FkData& data, const Minimum& minimum, const V
 }
 
 /// One start: Ipopt from it, then Newton, then the damped motion; true when either reached a stable
-/// equilibrium (in xs).
+/// equilibrium (in xs). Else `refused` is the equilibrium Newton reached from the minimiser (empty if none).
 bool from_start(FkData& data, const VecX& inputs, const EnergyStart& start, VecX& xs, EnergyFallback& out,
-                std::string& note) {
+                std::string& note, VecX& refused) {
+  refused.resize(0);
   const RobotAssembly& assembly = *data.model->assembly;
   const Clock::time_point t0 = Clock::now();
   xs = *start.x;
@@ -207,6 +208,7 @@ bool from_start(FkData& data, const VecX& inputs, const EnergyStart& start, VecX
   if (!newton_to_stable(data, minimum, inputs, xs, out, note, summary, verdict)) {
     const bool landed = summary.converged() && xs.allFinite();
     const VecX newton_x = xs;
+    if (landed) refused = newton_x;
     if (!damped_to_stable(data, minimum, inputs, minimiser, xs, out, note, summary, verdict) &&
         !(landed &&
           descended_along_unstable_mode(data, minimum, inputs, newton_x, xs, out, note, summary, verdict)))
@@ -231,17 +233,26 @@ EnergyFallback minimise_energy_then_newton(FkData& data, const VecX& inputs,
     return out;
   }
   const int n = data.model->assembly->problem().num_variables();
-  for (const EnergyStart& start : starts) {
-    if (!start.x || start.x->size() != n || !start.x->allFinite()) continue;
-    VecX xs;
+  std::vector<VecX> refused;  // the equilibria Newton reached from the starts' minimisers, refused
+  const auto from = [&](const EnergyStart& start) {
+    VecX xs, landed;
     std::string note;
-    const bool stable = from_start(data, inputs, start, xs, out, note);
+    const bool stable = from_start(data, inputs, start, xs, out, note, landed);
     out.message += (out.message.empty() ? "" : "; ") + note;
-    if (!stable) continue;
+    if (landed.size() == n) refused.push_back(landed);
+    if (!stable) return false;
     out.converged = true;
     out.x = xs;
-    return out;
-  }
+    return true;
+  };
+  for (const EnergyStart& start : starts)
+    if (start.x && start.x->size() == n && start.x->allFinite() && from(start)) return out;
+  // A minimum with a small basin (a rod jammed on a roller, stretched by kilonewtons: planar_rollers at
+  // 0.272806 0.186439 0.173524 m) polished into an equilibrium that is refused: minimised again from that
+  // equilibrium moved off it by from_start's 1e-3, which leaves such a basin.
+  const std::size_t tried = refused.size();
+  for (std::size_t i = 0; i < tried; ++i)
+    if (from({&refused[i], "an equilibrium refused above"})) return out;
   if (out.message.empty()) out.message = "no finite start state";
   return out;
 }
