@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <mutex>
+#include <utility>
 
 #include "../stability/robot_stability_parts.hpp"
 #include "energy_model.hpp"
@@ -250,9 +251,9 @@ EnergyFallback minimise_energy_then_newton(FkData& data, const VecX& inputs,
   // A minimum with a small basin (a rod jammed on a roller, stretched by kilonewtons: planar_rollers at
   // 0.272806 0.186439 0.173524 m) polished into an equilibrium that is refused: minimised again from that
   // equilibrium moved off it by from_start's 1e-3, which leaves such a basin.
-  const std::size_t tried = refused.size();
-  for (std::size_t i = 0; i < tried; ++i)
-    if (from({&refused[i], "an equilibrium refused above"})) return out;
+  const std::vector<VecX> first_round = std::move(refused);
+  for (const VecX& x : first_round)
+    if (from({&x, "an equilibrium refused above"})) return out;
   if (out.message.empty()) out.message = "no finite start state";
   return out;
 }

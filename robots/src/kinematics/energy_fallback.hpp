@@ -28,7 +28,8 @@ struct EnergyStart {
   const char* name;
 };
 
-/// Tries the starts in order until one gives a stable equilibrium at the inputs.
+/// Tries the starts in order until one gives a stable equilibrium at the inputs; where none does, each
+/// equilibrium Newton reached from a start's minimiser and the verdict refused, as one more start.
 EnergyFallback minimise_energy_then_newton(FkData& data, const VecX& inputs,
                                            const std::vector<EnergyStart>& starts);
 
