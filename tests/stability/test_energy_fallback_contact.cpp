@@ -26,6 +26,31 @@ using test::default_state;
 using test::Fk;
 using test::load_model;
 
+namespace {
+
+/// Checks a converged result x at the inputs without the code that found it: the residual within the
+/// solver's tolerance, the inputs exactly those requested, the verdict computed again `stable`.
+void check_stable_equilibrium(const RobotAssembly& a, const VecX& x, const VecX& inputs) {
+  VecX c;
+  a.problem().evaluate_residuals(x, c);
+  BOOST_TEST(c.cwiseAbs().maxCoeff() <= KinematicsOptions{}.tolerance);
+  BOOST_TEST((a.inputs(x) - inputs).cwiseAbs().maxCoeff() == 0.0);
+  const Stability verdict = robot_stability(a, x);
+  BOOST_TEST(to_string(verdict.verdict) == std::string("stable"), verdict.reason);
+}
+
+/// The complementarity of gap and contact density at every midpoint of an obstacle's contact: gap >=
+/// -1e-9 L0, density >= -1e-8 F0 / L0 (the residual tolerance's scale), no density where the gap is open.
+void check_complementarity(const ObstacleContact& contact, double L0, double F0) {
+  for (std::size_t j = 0; j < contact.gaps.size(); ++j) {
+    BOOST_TEST(contact.gaps[j] >= -1e-9 * L0);
+    BOOST_TEST(contact.densities[j] >= -1e-8 * F0 / L0);
+    if (contact.gaps[j] > 1e-6 * L0) BOOST_TEST(std::abs(contact.densities[j]) <= 1e-8 * F0 / L0);
+  }
+}
+
+}  // namespace
+
 BOOST_AUTO_TEST_SUITE(energy_fallback)
 
 // The obstacles' gap rows (frictionless contact in the energy) against finite differences, as the
@@ -98,28 +123,19 @@ BOOST_AUTO_TEST_CASE(planar_post_inputs_that_all_other_strategies_fail_on) {
         minimise_energy_then_newton(fk.data, inputs, {{&start, "the default equilibrium"}});
     BOOST_TEST_REQUIRE(r.converged, r.message);
     BOOST_TEST_MESSAGE("planar_post: " << r.message);
-    VecX c;
-    a.problem().evaluate_residuals(r.x, c);
-    BOOST_TEST(c.cwiseAbs().maxCoeff() <= KinematicsOptions{}.tolerance);
-    BOOST_TEST((a.inputs(r.x) - inputs).cwiseAbs().maxCoeff() == 0.0);
+    // Stable (counted on the energy's Ritz form with the contacts held), and an energy minimisation
+    // started next to it (moved by 1e-3 L0) returns to it: the platform within 1e-5 m and the energy to
+    // 1e-5 relative (the Ritz minimiser against the collocation's equilibrium, the two discretisations'
+    // difference: measured 7.8e-7 m and 5e-7 relative at the first input).
+    check_stable_equilibrium(a, r.x, inputs);
+    BOOST_TEST(to_string(r.verdict.verdict) == std::string("stable"));
     const std::vector<ObstacleContact> contacts =
         read_rod_contact(a.rod(middle), a.rod_variables(middle), *a.rod_contact(middle), r.x);
     BOOST_TEST_REQUIRE(contacts.size() == 1u);
     const ObstacleContact& post = contacts[0];
     BOOST_TEST_REQUIRE(post.gaps.size() == a.rod_contact(middle)->midpoints.size());
-    for (std::size_t j = 0; j < post.gaps.size(); ++j) {
-      BOOST_TEST(post.gaps[j] >= -1e-9 * L0);
-      BOOST_TEST(post.densities[j] >= -1e-8 * F0 / L0);
-      if (post.gaps[j] > 1e-6 * L0) BOOST_TEST(std::abs(post.densities[j]) <= 1e-8 * F0 / L0);
-    }
+    check_complementarity(post, L0, F0);
     BOOST_TEST(!post.intervals.empty());
-    // Stable (counted on the energy's Ritz form with the contacts held), and an energy minimisation
-    // started next to it (moved by 1e-3 L0) returns to it: the platform within 1e-5 m and the energy to
-    // 1e-5 relative (the Ritz minimiser against the collocation's equilibrium, the two discretisations'
-    // difference: measured 7.8e-7 m and 5e-7 relative at the first input).
-    const Stability verdict = robot_stability(a, r.x);
-    BOOST_TEST(to_string(verdict.verdict) == std::string("stable"), verdict.reason);
-    BOOST_TEST(to_string(r.verdict.verdict) == std::string("stable"));
     Vec3 platform;
     const double minimum = test::energy_minimised_from(a, r.x, 1e-3, platform);
     const double V = test::energy_at(a, r.x);
@@ -151,12 +167,7 @@ BOOST_AUTO_TEST_CASE(planar_post_pitchfork_descended_along_the_unstable_mode) {
   BOOST_TEST_REQUIRE(r.converged, r.message);
   BOOST_TEST_MESSAGE("planar_post: " << r.message);
   BOOST_TEST(r.message.find("damped motion along the unstable mode") != std::string::npos, r.message);
-  VecX c;
-  a.problem().evaluate_residuals(r.x, c);
-  BOOST_TEST(c.cwiseAbs().maxCoeff() <= KinematicsOptions{}.tolerance);
-  BOOST_TEST((a.inputs(r.x) - inputs).cwiseAbs().maxCoeff() == 0.0);
-  const Stability verdict = robot_stability(a, r.x);
-  BOOST_TEST(to_string(verdict.verdict) == std::string("stable"), verdict.reason);
+  check_stable_equilibrium(a, r.x, inputs);
   BOOST_TEST(std::abs(a.platform_pose(r.x, 0).position.y()) > 1e-4);
   for (const int elements : {16, 32}) {
     AssemblyOptions o = a.options();
@@ -193,21 +204,12 @@ BOOST_AUTO_TEST_CASE(planar_rollers_jammed_minimum_left_for_a_stable_equilibrium
   BOOST_TEST_REQUIRE(r.converged, r.message);
   BOOST_TEST_MESSAGE("planar_rollers: " << r.message);
   BOOST_TEST(r.message.find("from an equilibrium refused above") != std::string::npos, r.message);
-  VecX c;
-  a.problem().evaluate_residuals(r.x, c);
-  BOOST_TEST(c.cwiseAbs().maxCoeff() <= KinematicsOptions{}.tolerance);
-  BOOST_TEST((a.inputs(r.x) - inputs).cwiseAbs().maxCoeff() == 0.0);
-  const Stability verdict = robot_stability(a, r.x);
-  BOOST_TEST(to_string(verdict.verdict) == std::string("stable"), verdict.reason);
+  check_stable_equilibrium(a, r.x, inputs);
   BOOST_TEST(std::abs(a.platform_pose(r.x, 0).position.y()) > 1e-3);  // out of the plane: 13 mm measured
   const int middle = 1;
   for (const ObstacleContact& roller :
        read_rod_contact(a.rod(middle), a.rod_variables(middle), *a.rod_contact(middle), r.x))
-    for (std::size_t j = 0; j < roller.gaps.size(); ++j) {
-      BOOST_TEST(roller.gaps[j] >= -1e-9 * L0);
-      BOOST_TEST(roller.densities[j] >= -1e-8 * F0 / L0);
-      if (roller.gaps[j] > 1e-6 * L0) BOOST_TEST(std::abs(roller.densities[j]) <= 1e-8 * F0 / L0);
-    }
+    check_complementarity(roller, L0, F0);
   const Vec3 position = a.platform_pose(r.x, 0).position;
   Vec3 platform;
   const double minimum = test::energy_minimised_from(a, r.x, 1e-3, platform);
